@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// Nearest-neighbour field: for every target pixel, the centre of the source patch it copies,
+/// the rotation applied to that patch, and the patch distance.
+
+#include <cstdint>
+#include <vector>
+
+#include "exemplar/core/image.hpp"
+#include "exemplar/core/status.hpp"
+
+namespace exemplar {
+
+/// One NNF entry. A target offset d maps to source position (x, y) + Rot(angle_rad) d.
+struct Match {
+    std::int32_t x = 0;      ///< Source patch centre, x.
+    std::int32_t y = 0;      ///< Source patch centre, y.
+    float angle_rad = 0.0f;  ///< Rotation from target to source patch coordinates.
+    float error = 0.0f;      ///< Patch distance (weighted SSD) of this assignment.
+};
+
+/// A field of matches, one per target pixel, row-major.
+class Nnf {
+public:
+    Nnf() = default;
+    Nnf(int width, int height) : width_(width), height_(height), m_(pixel_count()) {}
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    bool empty() const { return m_.empty(); }
+    std::size_t pixel_count() const {
+        return static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    }
+    Match& at(int x, int y) { return m_[static_cast<std::size_t>(y) * width_ + x]; }
+    const Match& at(int x, int y) const { return m_[static_cast<std::size_t>(y) * width_ + x]; }
+    Match& operator[](std::size_t i) { return m_[i]; }
+    const Match& operator[](std::size_t i) const { return m_[i]; }
+    std::vector<Match>& matches() { return m_; }
+    const std::vector<Match>& matches() const { return m_; }
+
+private:
+    int width_ = 0;
+    int height_ = 0;
+    std::vector<Match> m_;
+};
+
+/// NNF as a 4-channel float image (x, y, angle_rad, error), channel names "x","y","angle","error".
+/// This is the on-disk form (`--save-nnf`, EXR).
+Image nnf_to_image(const Nnf& nnf);
+
+/// Inverse of nnf_to_image. Fails if the image does not have 3 or 4 channels or holds
+/// non-integral / negative source coordinates.
+Result<Nnf> nnf_from_image(const Image& image);
+
+/// Re-applies an NNF to another source image (e.g. a 16-bit or extra-channel version of the
+/// style): every target pixel becomes the average of the overlapping `patch_size` patches, each
+/// read from `source` at its match (rotated, nearest sample). Pixels of the source beyond its
+/// border are clamped. `source` must be at least as large as every match position.
+Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, int threads = 0);
+
+}  // namespace exemplar

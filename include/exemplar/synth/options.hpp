@@ -1,0 +1,84 @@
+#pragma once
+/// \file
+/// Options of one synthesis run. Every numeric option is described once in
+/// `synthesis_option_specs()` (name, doc, unit, range, default); validation, the CLI flags, the
+/// JSON job keys and the docs are generated from that table.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "exemplar/core/status.hpp"
+
+namespace exemplar {
+
+/// How often a source patch may be used in the target.
+enum class UsageStrategy {
+    /// Plain nearest neighbours (Kwatra et al. 2005); tends to wash out.
+    None,
+    /// Every source patch used K or K+1 times (Jamriška et al. 2015, LazyFluids §5.4.1).
+    Uniform,
+    /// Reversed retrieval limited by an error budget (Fišer et al. 2016, StyLit §8.3.3).
+    ErrorBudget,
+    /// Penalty on repeatedly used source patches (Kaspar et al. 2015; Bénard et al. 2013 g_h).
+    OccurrencePenalty,
+};
+
+/// "none", "uniform", "error-budget", "occurrence".
+std::string_view to_string(UsageStrategy strategy);
+/// Parses the names of to_string; error names the accepted values.
+Result<UsageStrategy> parse_usage_strategy(std::string_view name);
+
+/// All options of a run. Defaults follow StyLit §8.3.4 (patch 5, ratio 2, 6 EM and 6 PatchMatch
+/// iterations) unless a comment says otherwise. See synthesis_option_specs() for ranges.
+struct SynthesisOptions {
+    int patch_size = 5;            ///< Patch width in pixels, odd.
+    int levels = 0;                ///< Pyramid levels; 0 = automatic (coarsest side ≥ 5 patches).
+    float pyramid_ratio = 0.5f;    ///< Size ratio between consecutive levels (StyLit: 1/2).
+    int em_iterations = 6;         ///< Search+vote iterations per level (finest level).
+    int search_iterations = 6;     ///< PatchMatch iterations per NNF search.
+    float style_weight = 1.0f;     ///< Weight of the style (A'/B') term relative to guides.
+    float falloff_sigma_px = 0.0f; ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
+    UsageStrategy usage = UsageStrategy::ErrorBudget;
+    /// Error budget: stop reversed retrieval once this fraction of target patches is covered;
+    /// the rest use forward nearest neighbours (StyLit: ~95%).
+    float budget_coverage = 0.95f;
+    /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
+    int budget_max_rounds = 32;
+    /// Occurrence penalty strength h_s (squared error per use above the threshold).
+    float occurrence_strength = 0.05f;
+    /// Occurrence penalty threshold h_τ in uses; 0 = automatic (2 × target/source area ratio).
+    float occurrence_threshold = 0.0f;
+    std::uint64_t seed = 1;  ///< Random seed; same seed → same output for any thread count.
+};
+
+/// Description of one numeric option. `field` points into SynthesisOptions.
+struct OptionSpec {
+    std::string_view name;  ///< kebab-case name, used as --name and JSON key (with '_' too).
+    std::string_view doc;   ///< Meaning and advice.
+    std::string_view unit;  ///< "px", "iterations", "" ...
+    double min = 0.0;       ///< Inclusive range.
+    double max = 0.0;
+    std::variant<int SynthesisOptions::*, float SynthesisOptions::*,
+                 std::uint64_t SynthesisOptions::*>
+        field;
+};
+
+/// The table of numeric options (usage strategy is separate: it is an enum).
+std::span<const OptionSpec> synthesis_option_specs();
+
+/// Reads an option's current value as a double.
+double get_option(const SynthesisOptions& options, const OptionSpec& spec);
+/// Sets an option; rejects values outside [min, max] or non-integral values for integer options
+/// with a message like `patch-size: 4 is invalid (must be odd, 3..31)`.
+Status set_option(SynthesisOptions& options, const OptionSpec& spec, double value);
+/// Finds an option by name ('-' and '_' are interchangeable). nullptr if unknown.
+const OptionSpec* find_option(std::string_view name);
+
+/// Checks every option against its range and cross-option rules (odd patch size, ...).
+Status validate(const SynthesisOptions& options);
+
+}  // namespace exemplar
