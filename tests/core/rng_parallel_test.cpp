@@ -38,7 +38,8 @@ TEST(KeyedRng, RangesStayInBounds) {
 TEST(ParallelFor, CoversEveryIndexOnceForAnyThreadCount) {
     for (int threads : {1, 2, 3, 0}) {
         std::vector<std::atomic<int>> hits(1000);
-        parallel_for(0, 1000, threads, [&](int i) { hits[i].fetch_add(1); }, 7);
+        parallel_for(
+            0, 1000, threads, [&](int i) { hits[i].fetch_add(1); }, 7);
         for (auto& h : hits) ASSERT_EQ(h.load(), 1) << "threads=" << threads;
     }
 }

@@ -21,8 +21,8 @@ std::string format_check(const char* expr_a, const char* op, const char* expr_b,
 }
 }  // namespace exemplar::detail
 
-#define EXEMPLAR_CHECK(cond)                                                  \
-    do {                                                                      \
+#define EXEMPLAR_CHECK(cond)                                                      \
+    do {                                                                          \
         if (!(cond)) ::exemplar::detail::check_failed(__FILE__, __LINE__, #cond); \
     } while (false)
 

@@ -53,9 +53,7 @@ public:
     float* pixel(int x, int y) { return data_.data() + index(x, y); }
     const float* pixel(int x, int y) const { return data_.data() + index(x, y); }
     float& at(int x, int y, int c) { return data_[index(x, y) + static_cast<std::size_t>(c)]; }
-    float at(int x, int y, int c) const {
-        return data_[index(x, y) + static_cast<std::size_t>(c)];
-    }
+    float at(int x, int y, int c) const { return data_[index(x, y) + static_cast<std::size_t>(c)]; }
 
     std::span<float> data() { return data_; }
     std::span<const float> data() const { return data_; }

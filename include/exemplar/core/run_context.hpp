@@ -33,9 +33,13 @@ private:
 
 /// Execution settings of one call.
 struct RunContext {
-    int threads = 0;                     ///< 0 = all cores, 1 = run inline on the caller.
-    ProgressSink progress;               ///< Optional; called from the caller's thread.
-    const CancelToken* cancel = nullptr; ///< Optional.
+    RunContext() = default;
+    /// A context with only a thread count set.
+    explicit RunContext(int thread_count) : threads(thread_count) {}
+
+    int threads = 0;                      ///< 0 = all cores, 1 = run inline on the caller.
+    ProgressSink progress;                ///< Optional; called from the caller's thread.
+    const CancelToken* cancel = nullptr;  ///< Optional.
 
     bool cancelled() const { return cancel != nullptr && cancel->cancelled(); }
     void report(const ProgressEvent& event) const {

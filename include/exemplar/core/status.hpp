@@ -47,17 +47,21 @@ private:
 inline Status invalid_argument(std::string message) {
     return {ErrorCode::InvalidArgument, std::move(message)};
 }
-inline Status io_error(std::string message) { return {ErrorCode::IoError, std::move(message)}; }
+inline Status io_error(std::string message) {
+    return {ErrorCode::IoError, std::move(message)};
+}
 inline Status unsupported(std::string message) {
     return {ErrorCode::Unsupported, std::move(message)};
 }
-inline Status cancelled() { return {ErrorCode::Cancelled, "cancelled"}; }
+inline Status cancelled() {
+    return {ErrorCode::Cancelled, "cancelled"};
+}
 
 /// A value of type T or an error Status. Access the value only when `ok()`.
 template <typename T>
 class [[nodiscard]] Result {
 public:
-    Result(T value) : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
+    Result(T value) : value_(std::move(value)) {}          // NOLINT(google-explicit-constructor)
     Result(Status status) : status_(std::move(status)) {}  // NOLINT(google-explicit-constructor)
 
     bool ok() const { return value_.has_value(); }
@@ -79,8 +83,8 @@ private:
 }  // namespace exemplar
 
 /// Propagate a non-ok Status from an expression returning Status.
-#define EXEMPLAR_RETURN_IF_ERROR(expr)           \
-    do {                                         \
-        ::exemplar::Status exemplar_status_ = (expr); \
+#define EXEMPLAR_RETURN_IF_ERROR(expr)                          \
+    do {                                                        \
+        ::exemplar::Status exemplar_status_ = (expr);           \
         if (!exemplar_status_.is_ok()) return exemplar_status_; \
     } while (false)

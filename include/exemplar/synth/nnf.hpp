@@ -12,6 +12,8 @@
 namespace exemplar {
 
 /// One NNF entry. A target offset d maps to source position (x, y) + Rot(angle_rad) d.
+/// x = y = -1 marks a target pixel that is not a patch centre (within patch_size / 2 of the
+/// border, or outside the dilated target mask); such entries do not vote.
 struct Match {
     std::int32_t x = 0;      ///< Source patch centre, x.
     std::int32_t y = 0;      ///< Source patch centre, y.
@@ -49,7 +51,7 @@ private:
 Image nnf_to_image(const Nnf& nnf);
 
 /// Inverse of nnf_to_image. Fails if the image does not have 3 or 4 channels or holds
-/// non-integral / negative source coordinates.
+/// non-integral or negative source coordinates (other than the -1, -1 "no match" marker).
 Result<Nnf> nnf_from_image(const Image& image);
 
 /// Re-applies an NNF to another source image (e.g. a 16-bit or extra-channel version of the

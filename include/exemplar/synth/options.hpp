@@ -35,13 +35,13 @@ Result<UsageStrategy> parse_usage_strategy(std::string_view name);
 /// All options of a run. Defaults follow StyLit §8.3.4 (patch 5, ratio 2, 6 EM and 6 PatchMatch
 /// iterations) unless a comment says otherwise. See synthesis_option_specs() for ranges.
 struct SynthesisOptions {
-    int patch_size = 5;            ///< Patch width in pixels, odd.
-    int levels = 0;                ///< Pyramid levels; 0 = automatic (coarsest side ≥ 5 patches).
-    float pyramid_ratio = 0.5f;    ///< Size ratio between consecutive levels (StyLit: 1/2).
-    int em_iterations = 6;         ///< Search+vote iterations per level (finest level).
-    int search_iterations = 6;     ///< PatchMatch iterations per NNF search.
-    float style_weight = 1.0f;     ///< Weight of the style (A'/B') term relative to guides.
-    float falloff_sigma_px = 0.0f; ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
+    int patch_size = 5;          ///< Patch width in pixels, odd.
+    int levels = 0;              ///< Pyramid levels; 0 = automatic (coarsest side ≥ 5 patches).
+    float pyramid_ratio = 0.5f;  ///< Size ratio between consecutive levels (StyLit: 1/2).
+    int em_iterations = 6;       ///< Search+vote iterations per level (finest level).
+    int search_iterations = 6;   ///< PatchMatch iterations per NNF search.
+    float style_weight = 1.0f;   ///< Weight of the style (A'/B') term relative to guides.
+    float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
     /// Error budget: stop reversed retrieval once this fraction of target patches is covered;
     /// the rest use forward nearest neighbours (StyLit: ~95%).

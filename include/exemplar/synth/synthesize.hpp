@@ -21,10 +21,10 @@ namespace exemplar {
 
 /// One guide pair. `source` has the style's size, `target` the target size, equal channel counts.
 struct GuidePair {
-    std::string name;           ///< For messages (usually the file names).
-    Image source;               ///< A_i.
-    Image target;               ///< B_i.
-    float weight = 1.0f;        ///< Weight of this guide's squared differences (≥ 0).
+    std::string name;     ///< For messages (usually the file names).
+    Image source;         ///< A_i.
+    Image target;         ///< B_i.
+    float weight = 1.0f;  ///< Weight of this guide's squared differences (≥ 0).
     /// Optional per-pixel multiplier of `weight` on the target grid (1 channel, ≥ 0).
     Image target_weight_map;
 };
@@ -32,19 +32,19 @@ struct GuidePair {
 /// Everything a run reads. Optional images are empty when unused. Single-channel masks are
 /// "inside" where > 0.5; labels are compared after rounding; orientations are angles in radians.
 struct SynthesisInput {
-    Image style;                       ///< A'; any channels (alpha is just another channel).
+    Image style;  ///< A'; any channels (alpha is just another channel).
     std::vector<float> style_channel_weights;  ///< Optional, one per style channel (default 1).
-    std::vector<GuidePair> guides;     ///< A_i / B_i pairs; the target size comes from them.
-    int target_width = 0;              ///< Needed only when there are no guides.
+    std::vector<GuidePair> guides;  ///< A_i / B_i pairs; the target size comes from them.
+    int target_width = 0;           ///< Needed only when there are no guides.
     int target_height = 0;
-    Image target_mask;        ///< Synthesize only here; elsewhere keep `initial_target`.
-    Image source_mask;        ///< Only patches entirely inside may be used.
-    Image source_labels;      ///< A target pixel takes only source patches of its label.
+    Image target_mask;    ///< Synthesize only here; elsewhere keep `initial_target`.
+    Image source_mask;    ///< Only patches entirely inside may be used.
+    Image source_labels;  ///< A target pixel takes only source patches of its label.
     Image target_labels;
-    Image source_orientation; ///< Angle field on the style grid (both or neither).
-    Image target_orientation; ///< Angle field on the target grid.
-    Image initial_target;     ///< Optional start (required with target_mask): style channels.
-    Nnf initial_nnf;          ///< Optional start NNF on the target grid (finest level).
+    Image source_orientation;  ///< Angle field on the style grid (both or neither).
+    Image target_orientation;  ///< Angle field on the target grid.
+    Image initial_target;      ///< Optional start (required with target_mask): style channels.
+    Nnf initial_nnf;           ///< Optional start NNF on the target grid (finest level).
 };
 
 /// Intermediate buffers of a run, for debugging and visualisation.
@@ -52,7 +52,7 @@ struct DebugFrame {
     int level = 0;
     int iteration = 0;
     const Nnf* nnf = nullptr;
-    const Image* usage = nullptr;  ///< Per style pixel: number of target patches using it.
+    const Image* usage = nullptr;    ///< Per style pixel: number of target patches using it.
     const Image* current = nullptr;  ///< Current target estimate (style channels).
 };
 using DebugSink = std::function<void(const DebugFrame&)>;
@@ -70,7 +70,6 @@ Status validate_input(const SynthesisInput& input, const SynthesisOptions& optio
 
 /// Runs the synthesis. Deterministic for a given seed, independent of `context.threads`.
 Result<SynthesisResult> synthesize(const SynthesisInput& input, const SynthesisOptions& options,
-                                   const RunContext& context = {},
-                                   const DebugSink& debug = {});
+                                   const RunContext& context = {}, const DebugSink& debug = {});
 
 }  // namespace exemplar

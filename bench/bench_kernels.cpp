@@ -1,0 +1,93 @@
+// Micro-benchmarks of the synthesis kernels: patch distance (reference vs production), one
+// PatchMatch iteration and one vote, on stylit-like feature counts (3 style + 12 guide channels).
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "level_builder.hpp"
+#include "patch_distance.hpp"
+#include "patchmatch.hpp"
+#include "test_images.hpp"
+#include "vote.hpp"
+
+namespace exemplar::synth {
+namespace {
+
+struct Setup {
+    SynthesisInput in;
+    SynthesisOptions opt;
+    Level L;
+    Nnf nnf;
+};
+
+Setup& setup(int size) {
+    static std::map<int, Setup> cache;
+    auto it = cache.find(size);
+    if (it != cache.end()) return it->second;
+    Setup& s = cache[size];
+    s.in.style = testing::texture(size, size, 3, 1);
+    for (int g = 0; g < 4; ++g) {
+        s.in.guides.push_back(GuidePair{"g",
+                                        testing::texture(size, size, 3, 10 + g),
+                                        testing::texture(size, size, 3, 20 + g),
+                                        0.5f,
+                                        {}});
+    }
+    LevelBuilder builder(s.in, s.opt, 1, 1);
+    s.L = builder.build(0);
+    set_target_style(s.L, testing::texture(size, size, 3, 5));
+    s.nnf = Nnf(size, size);
+    for (Match& m : s.nnf.matches()) m = Match{-1, -1, 0, 0};
+    ForwardProblem all{s.L, s.L.target_active.data()};
+    evaluate_field(all, s.nnf, 1, 1);
+    return s;
+}
+
+void BM_PatchDistanceReference(benchmark::State& state) {
+    const Level& L = setup(128).L;
+    int i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(patch_distance_reference(L, 10 + i % 100, 20, 30, 40 + i % 50, 0));
+        ++i;
+    }
+}
+BENCHMARK(BM_PatchDistanceReference);
+
+void BM_PatchDistanceFast(benchmark::State& state) {
+    const Level& L = setup(128).L;
+    int i = 0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(patch_distance(L, 10 + i % 100, 20, 30, 40 + i % 50, 0));
+        ++i;
+    }
+}
+BENCHMARK(BM_PatchDistanceFast);
+
+void BM_PatchMatchIteration(benchmark::State& state) {
+    Setup& s = setup(256);
+    ForwardProblem all{s.L, s.L.target_active.data()};
+    for (auto _ : state) {
+        Nnf nnf = s.nnf;
+        run_patchmatch(all, nnf, 1, 7, static_cast<int>(state.range(0)));
+        benchmark::DoNotOptimize(nnf.matches().data());
+    }
+    state.SetItemsProcessed(state.iterations() * 256 * 256);
+}
+BENCHMARK(BM_PatchMatchIteration)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_Vote(benchmark::State& state) {
+    Setup& s = setup(256);
+    Image out(256, 256, 3);
+    VoteParams params;
+    for (auto _ : state) {
+        vote(s.nnf, s.L.source_style, params, out, static_cast<int>(state.range(0)));
+        benchmark::DoNotOptimize(out.data().data());
+    }
+    state.SetItemsProcessed(state.iterations() * 256 * 256);
+}
+BENCHMARK(BM_Vote)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace exemplar::synth
+
+BENCHMARK_MAIN();

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian bookworm packages exemplar builds against, if any are missing.
+# Safe to run repeatedly; needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libopenimageio-dev openimageio-tools   # image IO (the CMake config needs the tools too)
+  libtbb-dev                             # threads
+  libhwy-dev                             # SIMD with runtime dispatch
+  libcli11-dev nlohmann-json3-dev        # CLI, job files
+  libfmt-dev libspdlog-dev
+  libgtest-dev libbenchmark-dev          # tests and benchmarks
+  clang-format
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "exemplar: all build dependencies are installed"
+  exit 0
+fi
+
+echo "exemplar: installing ${missing[*]}"
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

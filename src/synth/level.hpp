@@ -1,0 +1,76 @@
+#pragma once
+// One pyramid level of a synthesis run, in the form the kernels use: feature images with the
+// channel weights folded in (sqrt(weight) pre-scaling turns weighted SSD into plain SSD),
+// validity of source patch centres, labels, orientations and the target's active/fixed pixels.
+// Internal to the synth module.
+
+#include <cstdint>
+#include <vector>
+
+#include "exemplar/core/image.hpp"
+
+namespace exemplar::synth {
+
+struct Level {
+    int index = 0;  ///< 0 = coarsest.
+    int patch_size = 5;
+    int radius = 2;
+
+    // Source (style grid).
+    int sw = 0, sh = 0;
+    Image source_style;                      ///< A', unscaled style channels (what voting copies).
+    Image source_features;                   ///< F channels: scaled A' then scaled guides A_i.
+    std::vector<std::uint8_t> source_valid;  ///< Patch centre usable (in bounds, mask).
+    /// Label group of each source pixel (index into valid_by_group); empty when labels are unused.
+    std::vector<int> source_label;
+    std::vector<float> source_angle;  ///< Empty when orientation is unused.
+
+    // Target.
+    int tw = 0, th = 0;
+    Image target_features;  ///< F channels: scaled B' (updated by voting) then scaled guides B_i.
+    Image target_weights;   ///< Empty, or F channels of per-pixel weight multipliers.
+    std::vector<int> target_label;  ///< Label group of each target pixel; empty if unused.
+    std::vector<float> target_angle;
+    std::vector<std::uint8_t> target_active;  ///< Patch centres being optimized.
+    std::vector<std::uint8_t> target_fixed;   ///< Pixels kept from the initial target.
+    Image fixed_style;  ///< Initial target (style channels) at this level; empty if none.
+
+    int style_channels = 0;          ///< S: leading channels of the feature images that hold style.
+    std::vector<float> style_scale;  ///< sqrt(weight) per style channel.
+    std::vector<float> pixel_weight;  ///< Patch fall-off weights (P*P), empty = flat.
+
+    // Valid source centres (pixel indices) grouped by label; one group when labels are unused.
+    std::vector<std::vector<int>> valid_by_group;
+
+    int feature_channels() const { return source_features.channels(); }
+    bool rotated() const { return !source_angle.empty(); }
+    bool labelled() const { return !source_label.empty(); }
+    std::size_t target_index(int x, int y) const {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(tw) +
+               static_cast<std::size_t>(x);
+    }
+    std::size_t source_index(int x, int y) const {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(sw) +
+               static_cast<std::size_t>(x);
+    }
+    /// Group (index into valid_by_group) a target pixel draws from.
+    int target_group(std::size_t target_pixel) const {
+        return labelled() ? target_label[target_pixel] : 0;
+    }
+    int source_group(std::size_t source_pixel) const {
+        return labelled() ? source_label[source_pixel] : 0;
+    }
+    /// Whether source centre (sx, sy) may serve target pixel tq (validity and labels).
+    bool compatible(std::size_t target_pixel, int sx, int sy) const {
+        const std::size_t s = source_index(sx, sy);
+        if (!source_valid[s]) return false;
+        return !labelled() || source_label[s] == target_label[target_pixel];
+    }
+    /// Rotation from target to source coordinates for a pair (0 without orientation).
+    float angle_for(std::size_t target_pixel, int sx, int sy) const {
+        if (!rotated()) return 0.0f;
+        return source_angle[source_index(sx, sy)] - target_angle[target_pixel];
+    }
+};
+
+}  // namespace exemplar::synth

@@ -1,0 +1,285 @@
+#include "level_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "exemplar/core/check.hpp"
+#include "exemplar/filters/resample.hpp"
+
+namespace exemplar::synth {
+
+namespace {
+
+int footprint_radius(int patch_size, bool rotated) {
+    const int r = patch_size / 2;
+    return rotated ? static_cast<int>(std::ceil(static_cast<float>(r) * std::sqrt(2.0f))) : r;
+}
+
+std::vector<Image> pyramid_or_empty(const Image& image, int levels, float ratio,
+                                    ResampleFilter filter, int threads) {
+    if (image.empty()) return std::vector<Image>(static_cast<std::size_t>(levels));
+    return gaussian_pyramid(image, levels, ratio, filter, threads);
+}
+
+// Patch centres whose footprint lies inside the image and entirely inside the mask (if any).
+std::vector<std::uint8_t> source_validity(int w, int h, int fr, const Image& mask) {
+    std::vector<std::uint8_t> valid(static_cast<std::size_t>(w) * h, 0);
+    // Summed-area table of pixels outside the mask.
+    std::vector<int> outside(static_cast<std::size_t>(w + 1) * (h + 1), 0);
+    if (!mask.empty()) {
+        for (int y = 0; y < h; ++y) {
+            int row = 0;
+            for (int x = 0; x < w; ++x) {
+                row += mask.at(x, y, 0) > 0.5f ? 0 : 1;
+                outside[static_cast<std::size_t>(y + 1) * (w + 1) + x + 1] =
+                    outside[static_cast<std::size_t>(y) * (w + 1) + x + 1] + row;
+            }
+        }
+    }
+    auto sum = [&](int x0, int y0, int x1, int y1) {  // inclusive bounds
+        const auto at = [&](int x, int y) {
+            return outside[static_cast<std::size_t>(y) * (w + 1) + x];
+        };
+        return at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
+    };
+    for (int y = fr; y < h - fr; ++y) {
+        for (int x = fr; x < w - fr; ++x) {
+            if (mask.empty() || sum(x - fr, y - fr, x + fr, y + fr) == 0) {
+                valid[static_cast<std::size_t>(y) * w + x] = 1;
+            }
+        }
+    }
+    return valid;
+}
+
+std::vector<float> channel0(const Image& image) {
+    std::vector<float> out(image.pixel_count());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i] = image.data()[i * static_cast<std::size_t>(image.channels())];
+    }
+    return out;
+}
+
+}  // namespace
+
+int automatic_levels(int min_side, int patch_size, float ratio) {
+    int levels = 1;
+    while (pyramid_level_size(min_side, ratio, levels) >= 5 * patch_size) ++levels;
+    return levels;
+}
+
+int max_levels(int min_side, int patch_size, float ratio, bool rotated) {
+    const int need = 2 * footprint_radius(patch_size, rotated) + 1;
+    int levels = 0;
+    while (levels < 32 && pyramid_level_size(min_side, ratio, levels) >= need) ++levels;
+    return levels;
+}
+
+LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& options, int levels,
+                           int threads)
+    : input_(in), options_(options), levels_(levels), threads_(threads) {
+    if (!in.guides.empty()) {
+        tw_ = in.guides.front().target.width();
+        th_ = in.guides.front().target.height();
+    } else if (!in.initial_target.empty()) {
+        tw_ = in.initial_target.width();
+        th_ = in.initial_target.height();
+    } else {
+        tw_ = in.target_width;
+        th_ = in.target_height;
+    }
+    const float ratio = options.pyramid_ratio;
+    using F = ResampleFilter;
+    style_ = gaussian_pyramid(in.style, levels, ratio, F::Gaussian, threads);
+    for (const GuidePair& g : in.guides) {
+        source_guides_.push_back(gaussian_pyramid(g.source, levels, ratio, F::Gaussian, threads));
+        target_guides_.push_back(gaussian_pyramid(g.target, levels, ratio, F::Gaussian, threads));
+        weight_maps_.push_back(
+            pyramid_or_empty(g.target_weight_map, levels, ratio, F::Gaussian, threads));
+    }
+    source_mask_ = pyramid_or_empty(in.source_mask, levels, ratio, F::Box, threads);
+    target_mask_ = pyramid_or_empty(in.target_mask, levels, ratio, F::Box, threads);
+    source_labels_ = pyramid_or_empty(in.source_labels, levels, ratio, F::Nearest, threads);
+    target_labels_ = pyramid_or_empty(in.target_labels, levels, ratio, F::Nearest, threads);
+    source_angle_ = pyramid_or_empty(in.source_orientation, levels, ratio, F::Nearest, threads);
+    target_angle_ = pyramid_or_empty(in.target_orientation, levels, ratio, F::Nearest, threads);
+    initial_ = pyramid_or_empty(in.initial_target, levels, ratio, F::Gaussian, threads);
+    // The finest level of every image is exactly the input (no resampling round-off).
+}
+
+Level LevelBuilder::build(int index) const {
+    const std::size_t d = static_cast<std::size_t>(depth(index));
+    Level L;
+    L.index = index;
+    L.patch_size = options_.patch_size;
+    L.radius = options_.patch_size / 2;
+    const Image& style = style_[d];
+    L.sw = style.width();
+    L.sh = style.height();
+    L.source_style = style;
+    L.style_channels = style.channels();
+    const bool rotated = !input_.source_orientation.empty();
+
+    // Target size at this level comes from the pyramids (guides, initial target) or the formula.
+    if (!target_guides_.empty()) {
+        L.tw = target_guides_.front()[d].width();
+        L.th = target_guides_.front()[d].height();
+    } else if (!initial_[d].empty()) {
+        L.tw = initial_[d].width();
+        L.th = initial_[d].height();
+    } else {
+        L.tw = pyramid_level_size(tw_, options_.pyramid_ratio, static_cast<int>(d));
+        L.th = pyramid_level_size(th_, options_.pyramid_ratio, static_cast<int>(d));
+    }
+
+    // Feature images: sqrt(weight)-scaled style then guides.
+    const int S = L.style_channels;
+    int F = S;
+    for (const GuidePair& g : input_.guides) F += g.source.channels();
+    L.style_scale.resize(static_cast<std::size_t>(S));
+    for (int c = 0; c < S; ++c) {
+        const float w = input_.style_channel_weights.empty()
+                            ? 1.0f
+                            : input_.style_channel_weights[static_cast<std::size_t>(c)];
+        L.style_scale[static_cast<std::size_t>(c)] = std::sqrt(options_.style_weight * w);
+    }
+    L.source_features = Image(L.sw, L.sh, F);
+    L.target_features = Image(L.tw, L.th, F);
+    const bool any_map = std::any_of(weight_maps_.begin(), weight_maps_.end(),
+                                     [&](const auto& p) { return !p[d].empty(); });
+    if (any_map) L.target_weights = Image(L.tw, L.th, F, 1.0f);
+    for (std::size_t i = 0; i < L.source_features.pixel_count(); ++i) {
+        const float* in = style.data().data() + i * static_cast<std::size_t>(S);
+        float* out = L.source_features.data().data() + i * static_cast<std::size_t>(F);
+        for (int c = 0; c < S; ++c) out[c] = L.style_scale[static_cast<std::size_t>(c)] * in[c];
+    }
+    int offset = S;
+    for (std::size_t g = 0; g < input_.guides.size(); ++g) {
+        const float scale = std::sqrt(input_.guides[g].weight);
+        const Image& sg = source_guides_[g][d];
+        const Image& tg = target_guides_[g][d];
+        const Image& map = weight_maps_[g][d];
+        const int C = sg.channels();
+        for (std::size_t i = 0; i < sg.pixel_count(); ++i) {
+            for (int c = 0; c < C; ++c) {
+                L.source_features.data()[i * F + offset + c] = scale * sg.data()[i * C + c];
+            }
+        }
+        for (std::size_t i = 0; i < tg.pixel_count(); ++i) {
+            for (int c = 0; c < C; ++c) {
+                L.target_features.data()[i * F + offset + c] = scale * tg.data()[i * C + c];
+                if (!map.empty()) L.target_weights.data()[i * F + offset + c] = map.data()[i];
+            }
+        }
+        offset += C;
+    }
+
+    if (options_.falloff_sigma_px > 0.0f) {
+        const float s2 = 2.0f * options_.falloff_sigma_px * options_.falloff_sigma_px;
+        for (int dy = -L.radius; dy <= L.radius; ++dy) {
+            for (int dx = -L.radius; dx <= L.radius; ++dx) {
+                L.pixel_weight.push_back(std::exp(-static_cast<float>(dx * dx + dy * dy) / s2));
+            }
+        }
+    }
+
+    // Source validity; a mask that leaves no room at a coarse level is dropped on that level.
+    const int fr = footprint_radius(L.patch_size, rotated);
+    L.source_valid = source_validity(L.sw, L.sh, fr, source_mask_[d]);
+    if (std::count(L.source_valid.begin(), L.source_valid.end(), 1) == 0) {
+        L.source_valid = source_validity(L.sw, L.sh, fr, Image());
+    }
+    if (rotated) {
+        L.source_angle = channel0(source_angle_[d]);
+        L.target_angle = channel0(target_angle_[d]);
+    }
+
+    // Target: active patch centres are those whose patch lies inside the target (so border
+    // pixels are covered by fewer patches but every vote is exact), restricted to the mask
+    // dilated by the patch radius; fixed pixels are outside the mask.
+    const std::size_t nt = static_cast<std::size_t>(L.tw) * L.th;
+    L.target_active.assign(nt, 0);
+    for (int y = L.radius; y < L.th - L.radius; ++y) {
+        for (int x = L.radius; x < L.tw - L.radius; ++x) L.target_active[L.target_index(x, y)] = 1;
+    }
+    if (!target_mask_[d].empty()) {
+        const Image& m = target_mask_[d];
+        L.target_fixed.assign(nt, 1);
+        for (std::size_t i = 0; i < nt; ++i) L.target_fixed[i] = m.data()[i] > 0.5f ? 0 : 1;
+        if (std::count(L.target_fixed.begin(), L.target_fixed.end(), 0) == 0) {
+            // The hole vanished at this coarse level: keep the smallest blob of it.
+            for (std::size_t i = 0; i < nt; ++i) L.target_fixed[i] = m.data()[i] > 0.0f ? 0 : 1;
+        }
+        for (int y = 0; y < L.th; ++y) {
+            for (int x = 0; x < L.tw; ++x) {
+                bool near = false;
+                for (int dy = -L.radius; dy <= L.radius && !near; ++dy) {
+                    for (int dx = -L.radius; dx <= L.radius && !near; ++dx) {
+                        const int xx = x + dx, yy = y + dy;
+                        near = xx >= 0 && yy >= 0 && xx < L.tw && yy < L.th &&
+                               !L.target_fixed[L.target_index(xx, yy)];
+                    }
+                }
+                if (!near) L.target_active[L.target_index(x, y)] = 0;
+            }
+        }
+    }
+    if (!initial_[d].empty()) L.fixed_style = initial_[d];
+
+    // Label groups: one per label value that occurs among the active target pixels. A level on
+    // which some group has no valid source patch (coarse levels of small regions) drops labels.
+    L.valid_by_group.assign(1, {});
+    if (!source_labels_[d].empty()) {
+        std::map<long, int> group_of;
+        std::vector<int> tl(nt), sl(static_cast<std::size_t>(L.sw) * L.sh);
+        for (std::size_t i = 0; i < nt; ++i) {
+            const long v = std::lround(target_labels_[d].data()[i]);
+            auto it = group_of.emplace(v, static_cast<int>(group_of.size())).first;
+            tl[i] = it->second;
+        }
+        std::vector<std::vector<int>> groups(group_of.size());
+        for (std::size_t i = 0; i < sl.size(); ++i) {
+            auto it = group_of.find(std::lround(source_labels_[d].data()[i]));
+            sl[i] = it == group_of.end() ? -1 : it->second;
+            if (sl[i] >= 0 && L.source_valid[i]) {
+                groups[static_cast<std::size_t>(sl[i])].push_back(static_cast<int>(i));
+            }
+        }
+        std::vector<std::uint8_t> used(groups.size(), 0);
+        for (std::size_t i = 0; i < nt; ++i) {
+            if (L.target_active[i]) used[static_cast<std::size_t>(tl[i])] = 1;
+        }
+        bool complete = true;
+        for (std::size_t g = 0; g < groups.size(); ++g) complete &= !used[g] || !groups[g].empty();
+        if (complete) {
+            // Source patches of labels the target does not use are never candidates.
+            for (std::size_t i = 0; i < sl.size(); ++i) {
+                if (sl[i] < 0) L.source_valid[i] = 0;
+            }
+            L.target_label = std::move(tl);
+            L.source_label = std::move(sl);
+            L.valid_by_group = std::move(groups);
+            return L;
+        }
+    }
+    for (std::size_t i = 0; i < L.source_valid.size(); ++i) {
+        if (L.source_valid[i]) L.valid_by_group[0].push_back(static_cast<int>(i));
+    }
+    return L;
+}
+
+void set_target_style(Level& level, const Image& style) {
+    EXEMPLAR_CHECK_EQ(style.width(), level.tw);
+    EXEMPLAR_CHECK_EQ(style.channels(), level.style_channels);
+    const int S = level.style_channels;
+    const int F = level.feature_channels();
+    for (std::size_t i = 0; i < style.pixel_count(); ++i) {
+        for (int c = 0; c < S; ++c) {
+            level.target_features.data()[i * F + c] =
+                level.style_scale[static_cast<std::size_t>(c)] * style.data()[i * S + c];
+        }
+    }
+}
+
+}  // namespace exemplar::synth

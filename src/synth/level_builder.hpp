@@ -1,0 +1,52 @@
+#pragma once
+// Builds the per-level data of a run (pyramids of all inputs, feature images, validity maps).
+// Internal to the synth module.
+
+#include <vector>
+
+#include "exemplar/synth/synthesize.hpp"
+#include "level.hpp"
+
+namespace exemplar::synth {
+
+/// Automatic level count: the coarsest level keeps at least 5 patches across the smaller side of
+/// both the style and the target (StyLit: 6 levels for one megapixel at ratio 1/2).
+int automatic_levels(int min_side, int patch_size, float ratio);
+
+/// Largest level count for which every level still has room for one patch (rotated patches need
+/// a larger footprint).
+int max_levels(int min_side, int patch_size, float ratio, bool rotated);
+
+/// All inputs resampled to every level; level 0 = coarsest.
+class LevelBuilder {
+public:
+    LevelBuilder(const SynthesisInput& input, const SynthesisOptions& options, int levels,
+                 int threads);
+
+    int levels() const { return levels_; }
+    int target_width() const { return tw_; }
+    int target_height() const { return th_; }
+
+    /// Everything of level `index` except the style part of target_features (set it with
+    /// set_target_style once B' is known).
+    Level build(int index) const;
+
+private:
+    int depth(int index) const { return levels_ - 1 - index; }
+
+    const SynthesisInput& input_;
+    const SynthesisOptions& options_;
+    int levels_;
+    int threads_;
+    int tw_, th_;
+    // Pyramids, finest first (index = depth).
+    std::vector<Image> style_;
+    std::vector<std::vector<Image>> source_guides_, target_guides_, weight_maps_;
+    std::vector<Image> source_mask_, target_mask_, source_labels_, target_labels_;
+    std::vector<Image> source_angle_, target_angle_, initial_;
+};
+
+/// Copies B' (style channels) into the style part of the level's target features.
+void set_target_style(Level& level, const Image& style);
+
+}  // namespace exemplar::synth

@@ -1,0 +1,73 @@
+#include "exemplar/synth/nnf.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "vote.hpp"
+
+namespace exemplar {
+
+Image nnf_to_image(const Nnf& nnf) {
+    Image out(nnf.width(), nnf.height(), 4);
+    for (std::size_t i = 0; i < nnf.pixel_count(); ++i) {
+        const Match& m = nnf[i];
+        float* p = out.data().data() + i * 4;
+        p[0] = static_cast<float>(m.x);
+        p[1] = static_cast<float>(m.y);
+        p[2] = m.angle_rad;
+        p[3] = m.error;
+    }
+    out.set_channel_names({"x", "y", "angle", "error"});
+    return out;
+}
+
+Result<Nnf> nnf_from_image(const Image& image) {
+    if (image.channels() != 3 && image.channels() != 4) {
+        return invalid_argument("nnf: has " + std::to_string(image.channels()) +
+                                " channels (must be 3 or 4: x, y, angle[, error])");
+    }
+    Nnf nnf(image.width(), image.height());
+    for (std::size_t i = 0; i < nnf.pixel_count(); ++i) {
+        const float* p = image.data().data() + i * static_cast<std::size_t>(image.channels());
+        const bool none = p[0] == -1.0f && p[1] == -1.0f;
+        if (!none && (!(p[0] >= 0.0f) || !(p[1] >= 0.0f))) {
+            return invalid_argument("nnf: pixel " + std::to_string(i % nnf.width()) + "," +
+                                    std::to_string(i / nnf.width()) +
+                                    " holds a negative source position");
+        }
+        if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || !std::isfinite(p[2]) ||
+            p[0] > 1e8f || p[1] > 1e8f) {
+            return invalid_argument("nnf: pixel " + std::to_string(i % nnf.width()) + "," +
+                                    std::to_string(i / nnf.width()) +
+                                    " holds an invalid source position (must be integers)");
+        }
+        nnf[i] = Match{static_cast<std::int32_t>(p[0]), static_cast<std::int32_t>(p[1]), p[2],
+                       image.channels() == 4 ? p[3] : 0.0f};
+    }
+    return nnf;
+}
+
+Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, int threads) {
+    if (patch_size < 1 || patch_size % 2 == 0) {
+        return invalid_argument("patch-size: " + std::to_string(patch_size) +
+                                " is invalid (must be odd and positive)");
+    }
+    if (nnf.empty() || source.empty()) return invalid_argument("apply_nnf: empty input");
+    for (const Match& m : nnf.matches()) {
+        if (m.x >= source.width() || m.y >= source.height()) {
+            return invalid_argument("nnf refers to source position " + std::to_string(m.x) + "," +
+                                    std::to_string(m.y) + " outside the " +
+                                    std::to_string(source.width()) + "x" +
+                                    std::to_string(source.height()) + " source");
+        }
+    }
+    Image out(nnf.width(), nnf.height(), source.channels());
+    out.set_channel_names(source.channel_names());
+    synth::VoteParams params;
+    params.patch_size = patch_size;
+    params.clamp_source = true;
+    synth::vote(nnf, source, params, out, threads);
+    return out;
+}
+
+}  // namespace exemplar

@@ -1,0 +1,131 @@
+#include "exemplar/synth/options.hpp"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace exemplar {
+
+std::string_view to_string(UsageStrategy strategy) {
+    switch (strategy) {
+        case UsageStrategy::None: return "none";
+        case UsageStrategy::Uniform: return "uniform";
+        case UsageStrategy::ErrorBudget: return "error-budget";
+        case UsageStrategy::OccurrencePenalty: return "occurrence";
+    }
+    return "?";
+}
+
+Result<UsageStrategy> parse_usage_strategy(std::string_view name) {
+    for (auto s : {UsageStrategy::None, UsageStrategy::Uniform, UsageStrategy::ErrorBudget,
+                   UsageStrategy::OccurrencePenalty}) {
+        if (name == to_string(s)) return s;
+    }
+    std::string message = "usage: '";
+    message.append(name);
+    message.append("' is invalid (must be one of none, uniform, error-budget, occurrence)");
+    return invalid_argument(std::move(message));
+}
+
+namespace {
+using O = SynthesisOptions;
+// The one description of every numeric option: CLI flags, JSON keys, validation and docs come
+// from here.
+const std::array<OptionSpec, 12> kSpecs{{
+    {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
+     3, 31, &O::patch_size},
+    {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
+     0, 16, &O::levels},
+    {"pyramid-ratio", "Size ratio between consecutive pyramid levels (StyLit: 0.5).", "", 0.3, 0.95,
+     &O::pyramid_ratio},
+    {"em-iterations", "Search+vote iterations per pyramid level (StyLit: 6).", "iterations", 1, 100,
+     &O::em_iterations},
+    {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
+     "iterations", 1, 100, &O::search_iterations},
+    {"style-weight", "Weight of the style term (B' vs A') relative to the guides.", "", 0, 1e6,
+     &O::style_weight},
+    {"falloff-sigma", "Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal.",
+     "px", 0, 100, &O::falloff_sigma_px},
+    {"budget-coverage",
+     "Error budget: fraction of target patches covered by reversed retrieval before the rest "
+     "falls back to forward nearest neighbours (StyLit: 0.95).",
+     "", 0, 1, &O::budget_coverage},
+    {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
+     "rounds", 1, 1000, &O::budget_max_rounds},
+    {"occurrence-strength",
+     "Occurrence penalty h_s: added squared error per use of a source patch above the "
+     "threshold.",
+     "", 0, 1e6, &O::occurrence_strength},
+    {"occurrence-threshold",
+     "Occurrence penalty h_tau: uses of a source patch before the penalty starts; 0 = automatic "
+     "(2 x target/source area ratio).",
+     "uses", 0, 1e9, &O::occurrence_threshold},
+    {"seed", "Random seed; the same seed gives the same output for any thread count.", "", 0,
+     9007199254740992.0, &O::seed},
+}};
+
+std::string format_number(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+bool same_name(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const char ca = a[i] == '_' ? '-' : a[i];
+        const char cb = b[i] == '_' ? '-' : b[i];
+        if (ca != cb) return false;
+    }
+    return true;
+}
+}  // namespace
+
+std::span<const OptionSpec> synthesis_option_specs() {
+    return kSpecs;
+}
+
+double get_option(const SynthesisOptions& options, const OptionSpec& spec) {
+    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+}
+
+Status set_option(SynthesisOptions& options, const OptionSpec& spec, double value) {
+    const bool integral = !std::holds_alternative<float SynthesisOptions::*>(spec.field);
+    const bool odd_rule = spec.name == "patch-size";
+    const bool bad = !std::isfinite(value) || value < spec.min || value > spec.max ||
+                     (integral && value != std::floor(value)) ||
+                     (odd_rule && static_cast<long long>(value) % 2 == 0);
+    if (bad) {
+        std::string message(spec.name);
+        message.append(": ").append(format_number(value)).append(" is invalid (must be ");
+        if (odd_rule) message.append("odd, ");
+        if (integral && !odd_rule) message.append("an integer, ");
+        message.append(format_number(spec.min)).append("..").append(format_number(spec.max));
+        message.append(")");
+        return invalid_argument(std::move(message));
+    }
+    std::visit(
+        [&](auto field) {
+            using T = std::remove_reference_t<decltype(options.*field)>;
+            options.*field = static_cast<T>(value);
+        },
+        spec.field);
+    return Status::ok();
+}
+
+const OptionSpec* find_option(std::string_view name) {
+    for (const OptionSpec& spec : kSpecs) {
+        if (same_name(spec.name, name)) return &spec;
+    }
+    return nullptr;
+}
+
+Status validate(const SynthesisOptions& options) {
+    for (const OptionSpec& spec : kSpecs) {
+        SynthesisOptions copy = options;
+        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
+    }
+    return Status::ok();
+}
+
+}  // namespace exemplar

@@ -1,0 +1,198 @@
+#pragma once
+// PatchMatch (Barnes et al. 2009) over a generic "problem": for every active query position find
+// the database position of least cost, by propagation from scan-order neighbours and random
+// search around the current best, plus one uniformly drawn valid candidate per pixel (this keeps
+// label/mask-constrained searches from stalling when the allowed region is small).
+//
+// The same code serves the forward search (query = target pixel, database = source patch) and
+// the reversed retrieval of the usage strategies (query = source patch, database = target pixel).
+//
+// Determinism: the query grid is cut into fixed bands of kBandRows rows, processed in parallel.
+// Inside a band, propagation reads the current field; across band borders it reads a snapshot
+// taken at the start of the iteration. Random numbers are keyed by (key, iteration, pixel).
+// Hence the result does not depend on the number of threads.
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+
+#include "exemplar/core/parallel.hpp"
+#include "exemplar/core/rng.hpp"
+#include "exemplar/synth/nnf.hpp"
+#include "patch_distance.hpp"
+
+namespace exemplar::synth {
+
+inline constexpr int kBandRows = 8;
+
+/// Evaluates the cost of every active entry (entries whose position is no longer valid are
+/// replaced by a random valid one). Call after the problem's costs changed.
+template <class Problem>
+void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads) {
+    parallel_for(0, field.height(), threads, [&](int y) {
+        for (int x = 0; x < field.width(); ++x) {
+            const std::size_t qi = static_cast<std::size_t>(y) * field.width() + x;
+            if (!P.query_active(qi)) continue;
+            Match& m = field[qi];
+            const bool in_bounds =
+                m.x >= 0 && m.y >= 0 && m.x < P.db_width() && m.y < P.db_height();
+            if (!in_bounds || !P.db_ok(qi, m.x, m.y)) {
+                KeyedRng rng(key, qi);
+                int dx = 0, dy = 0;
+                if (!P.random_db(qi, rng, dx, dy)) {
+                    m.error = std::numeric_limits<float>::infinity();
+                    continue;
+                }
+                m.x = dx;
+                m.y = dy;
+            }
+            m.angle_rad = P.angle(qi, m.x, m.y);
+            m.error = P.cost(x, y, m.x, m.y, m.angle_rad, std::numeric_limits<float>::infinity());
+        }
+    });
+}
+
+/// Runs `iterations` PatchMatch iterations on `field` (whose active entries must be evaluated).
+template <class Problem>
+void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t key, int threads) {
+    const int w = field.width();
+    const int h = field.height();
+    const int bands = (h + kBandRows - 1) / kBandRows;
+    Nnf snapshot;
+    for (int iter = 0; iter < iterations; ++iter) {
+        snapshot = field;
+        const bool forward_scan = iter % 2 == 0;
+        const int step = forward_scan ? 1 : -1;
+        parallel_for(0, bands, threads, [&](int band) {
+            const int y0 = band * kBandRows;
+            const int y1 = std::min(h, y0 + kBandRows);
+            for (int yi = 0; yi < y1 - y0; ++yi) {
+                const int y = forward_scan ? y0 + yi : y1 - 1 - yi;
+                for (int xi = 0; xi < w; ++xi) {
+                    const int x = forward_scan ? xi : w - 1 - xi;
+                    const std::size_t qi = static_cast<std::size_t>(y) * w + x;
+                    if (!P.query_active(qi)) continue;
+                    Match best = field[qi];
+
+                    auto try_candidate = [&](int cx, int cy) {
+                        if (cx < 0 || cy < 0 || cx >= P.db_width() || cy >= P.db_height()) return;
+                        if (cx == best.x && cy == best.y) return;
+                        if (!P.db_ok(qi, cx, cy)) return;
+                        const float angle = P.angle(qi, cx, cy);
+                        const float d = P.cost(x, y, cx, cy, angle, best.error);
+                        if (d < best.error) best = Match{cx, cy, angle, d};
+                    };
+
+                    // Propagation from the neighbours already visited in this scan.
+                    const int nx = x - step;
+                    const int ny = y - step;
+                    if (nx >= 0 && nx < w) {
+                        const std::size_t ni = static_cast<std::size_t>(y) * w + nx;
+                        if (P.query_active(ni)) {
+                            const Match& m = field[ni];
+                            const RotatedOffset o = rotate_offset(step, 0, std::cos(m.angle_rad),
+                                                                  std::sin(m.angle_rad));
+                            try_candidate(m.x + o.dx, m.y + o.dy);
+                        }
+                    }
+                    if (ny >= 0 && ny < h) {
+                        const std::size_t ni = static_cast<std::size_t>(ny) * w + x;
+                        if (P.query_active(ni)) {
+                            const bool same_band = ny >= y0 && ny < y1;
+                            const Match& m = same_band ? field[ni] : snapshot[ni];
+                            const RotatedOffset o = rotate_offset(0, step, std::cos(m.angle_rad),
+                                                                  std::sin(m.angle_rad));
+                            try_candidate(m.x + o.dx, m.y + o.dy);
+                        }
+                    }
+
+                    // Random search in shrinking windows around the best match.
+                    KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
+                    for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
+                         radius /= 2) {
+                        const int cx =
+                            std::clamp(best.x + rng.range(-radius, radius), 0, P.db_width() - 1);
+                        const int cy =
+                            std::clamp(best.y + rng.range(-radius, radius), 0, P.db_height() - 1);
+                        try_candidate(cx, cy);
+                    }
+                    // One candidate drawn from everything this query may use.
+                    int rx = 0, ry = 0;
+                    if (P.random_db(qi, rng, rx, ry)) try_candidate(rx, ry);
+
+                    field[qi] = best;
+                }
+            }
+        });
+    }
+}
+
+/// Forward search: target pixels → source patch centres.
+struct ForwardProblem {
+    const Level& L;
+    const std::uint8_t* process;            ///< Target pixels to optimize (tw*th).
+    const std::uint8_t* allowed = nullptr;  ///< Optional: source centres allowed (sw*sh).
+    const float* penalty = nullptr;         ///< Optional: cost added per source centre.
+    /// Optional: the lists random candidates are drawn from, per label group (default: every
+    /// valid source centre of the group). Must agree with `allowed`.
+    const std::vector<std::vector<int>>* draw_lists = nullptr;
+
+    int db_width() const { return L.sw; }
+    int db_height() const { return L.sh; }
+    bool query_active(std::size_t qi) const { return process[qi] != 0; }
+    bool db_ok(std::size_t qi, int sx, int sy) const {
+        return L.compatible(qi, sx, sy) && (allowed == nullptr || allowed[L.source_index(sx, sy)]);
+    }
+    float angle(std::size_t qi, int sx, int sy) const { return L.angle_for(qi, sx, sy); }
+    float cost(int tx, int ty, int sx, int sy, float angle_rad, float bound) const {
+        const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
+        return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
+    }
+    bool random_db(std::size_t qi, KeyedRng& rng, int& sx, int& sy) const {
+        const auto& lists = draw_lists != nullptr ? *draw_lists : L.valid_by_group;
+        const auto& list = lists[static_cast<std::size_t>(L.target_group(qi))];
+        if (list.empty()) return false;
+        for (int attempt = 0; attempt < 8; ++attempt) {
+            const int s = list[rng.below(static_cast<std::uint32_t>(list.size()))];
+            if (allowed != nullptr && !allowed[static_cast<std::size_t>(s)]) continue;
+            sx = s % L.sw;
+            sy = s / L.sw;
+            return true;
+        }
+        return false;
+    }
+};
+
+/// Reversed retrieval: source patch centres → free target pixels. Stored angles are the
+/// rotation from source to target coordinates (the negated forward angle).
+struct ReverseProblem {
+    const Level& L;
+    const std::uint8_t* query_ok;     ///< Source centres that look for a target (sw*sh).
+    const std::uint8_t* target_free;  ///< Target pixels still to be assigned (tw*th).
+    const std::vector<std::vector<int>>& free_by_group;  ///< Free target pixels per label group.
+
+    int db_width() const { return L.tw; }
+    int db_height() const { return L.th; }
+    bool query_active(std::size_t si) const { return query_ok[si] != 0; }
+    bool db_ok(std::size_t si, int tx, int ty) const {
+        const std::size_t ti = L.target_index(tx, ty);
+        return target_free[ti] != 0 && L.target_group(ti) == L.source_group(si);
+    }
+    float angle(std::size_t si, int tx, int ty) const {
+        return -L.angle_for(L.target_index(tx, ty), static_cast<int>(si % L.sw),
+                            static_cast<int>(si / L.sw));
+    }
+    float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {
+        return patch_distance(L, tx, ty, sx, sy, -angle_rad, bound);
+    }
+    bool random_db(std::size_t si, KeyedRng& rng, int& tx, int& ty) const {
+        const auto& list = free_by_group[static_cast<std::size_t>(L.source_group(si))];
+        if (list.empty()) return false;
+        const int t = list[rng.below(static_cast<std::uint32_t>(list.size()))];
+        tx = t % L.tw;
+        ty = t / L.tw;
+        return true;
+    }
+};
+
+}  // namespace exemplar::synth

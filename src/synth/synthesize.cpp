@@ -1,0 +1,402 @@
+// Multi-scale EM synthesis driver (Kwatra et al. 2005; Wexler et al. 2007; as used by StyLit,
+// Fišer et al. 2016, §8.3.3-8.3.4): build pyramids; for each level coarse to fine: initialize
+// or upsample the NNF, then alternate nearest-neighbour search (with the selected usage
+// strategy) and voting.
+
+#include "exemplar/synth/synthesize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "exemplar/core/rng.hpp"
+#include "level_builder.hpp"
+#include "patchmatch.hpp"
+#include "usage.hpp"
+#include "vote.hpp"
+
+namespace exemplar {
+
+namespace {
+
+std::string size_str(const Image& im) {
+    return std::to_string(im.width()) + "x" + std::to_string(im.height());
+}
+
+std::string guide_name(const GuidePair& g, std::size_t i) {
+    return g.name.empty() ? "guide " + std::to_string(i + 1) : g.name;
+}
+
+Status check_single_channel(const Image& im, const char* what, int w, int h) {
+    if (im.channels() != 1) {
+        return invalid_argument(std::string(what) + ": has " + std::to_string(im.channels()) +
+                                " channels (must be 1)");
+    }
+    if (im.width() != w || im.height() != h) {
+        return invalid_argument(std::string(what) + ": is " + size_str(im) + " (must be " +
+                                std::to_string(w) + "x" + std::to_string(h) + ")");
+    }
+    if (!all_finite(im)) return invalid_argument(std::string(what) + ": contains NaN or infinity");
+    return Status::ok();
+}
+
+Status check_mask(const Image& mask, const char* what, int w, int h) {
+    EXEMPLAR_RETURN_IF_ERROR(check_single_channel(mask, what, w, h));
+    const auto inside =
+        std::count_if(mask.data().begin(), mask.data().end(), [](float v) { return v > 0.5f; });
+    if (inside == 0) return invalid_argument(std::string(what) + ": is empty (no pixel > 0.5)");
+    return Status::ok();
+}
+
+std::set<long> label_set(const Image& labels, const Image& mask) {
+    std::set<long> out;
+    for (std::size_t i = 0; i < labels.pixel_count(); ++i) {
+        if (mask.empty() || mask.data()[i] > 0.5f) out.insert(std::lround(labels.data()[i]));
+    }
+    return out;
+}
+
+// Target size of a run (see SynthesisInput).
+void target_size(const SynthesisInput& in, int& w, int& h) {
+    if (!in.guides.empty()) {
+        w = in.guides.front().target.width();
+        h = in.guides.front().target.height();
+    } else if (!in.initial_target.empty()) {
+        w = in.initial_target.width();
+        h = in.initial_target.height();
+    } else {
+        w = in.target_width;
+        h = in.target_height;
+    }
+}
+
+// NNF of a finer level from the coarser one: same relative source position, offset within the
+// patch kept (rotated with the match). Invalid results are repaired by evaluate_field.
+Nnf upsample_nnf(const Nnf& coarse, int coarse_sw, int coarse_sh, const synth::Level& fine) {
+    Nnf out(fine.tw, fine.th);
+    const double tx_scale = static_cast<double>(coarse.width()) / fine.tw;
+    const double ty_scale = static_cast<double>(coarse.height()) / fine.th;
+    const double sx_scale = static_cast<double>(fine.sw) / coarse_sw;
+    const double sy_scale = static_cast<double>(fine.sh) / coarse_sh;
+    for (int y = 0; y < fine.th; ++y) {
+        for (int x = 0; x < fine.tw; ++x) {
+            const double u = (x + 0.5) * tx_scale - 0.5;
+            const double v = (y + 0.5) * ty_scale - 0.5;
+            const int cx = std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
+            const int cy = std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
+            const Match& m = coarse.at(cx, cy);
+            const double du = u - cx, dv = v - cy;
+            const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
+            const double su = m.x + c * du - s * dv;
+            const double sv = m.y + s * du + c * dv;
+            Match& o = out.at(x, y);
+            o.x = static_cast<int>(std::lround((su + 0.5) * sx_scale - 0.5));
+            o.y = static_cast<int>(std::lround((sv + 0.5) * sy_scale - 0.5));
+            o.angle_rad = m.angle_rad;
+        }
+    }
+    return out;
+}
+
+// A uniformly random valid NNF (matches are drawn per pixel from its label group).
+Nnf random_nnf(const synth::Level& L, std::uint64_t key) {
+    Nnf out(L.tw, L.th);
+    for (std::size_t i = 0; i < out.pixel_count(); ++i) out[i] = Match{-1, -1, 0.0f, 0.0f};
+    (void)key;
+    return out;  // evaluate_field replaces every invalid entry with a random valid one
+}
+
+}  // namespace
+
+Status validate_input(const SynthesisInput& in, const SynthesisOptions& options) {
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    if (in.style.empty()) return invalid_argument("style: is empty");
+    if (!all_finite(in.style)) return invalid_argument("style: contains NaN or infinity");
+    const int sw = in.style.width(), sh = in.style.height();
+    if (!in.style_channel_weights.empty()) {
+        if (static_cast<int>(in.style_channel_weights.size()) != in.style.channels()) {
+            return invalid_argument(
+                "style-weights: " + std::to_string(in.style_channel_weights.size()) +
+                " values given but the style has " + std::to_string(in.style.channels()) +
+                " channels");
+        }
+        for (float w : in.style_channel_weights) {
+            if (!(w >= 0.0f) || !std::isfinite(w)) {
+                return invalid_argument("style-weights: " + std::to_string(w) +
+                                        " is invalid (must be >= 0)");
+            }
+        }
+    }
+    for (std::size_t i = 0; i < in.guides.size(); ++i) {
+        const GuidePair& g = in.guides[i];
+        const std::string name = guide_name(g, i);
+        if (g.source.empty() || g.target.empty()) return invalid_argument(name + ": is empty");
+        if (!g.source.same_size(in.style)) {
+            return invalid_argument(name + ": source guide is " + size_str(g.source) +
+                                    " but the style is " + size_str(in.style));
+        }
+        if (!g.target.same_size(in.guides.front().target)) {
+            return invalid_argument(name + ": target guide is " + size_str(g.target) +
+                                    " but the first target guide is " +
+                                    size_str(in.guides.front().target));
+        }
+        if (g.source.channels() != g.target.channels()) {
+            return invalid_argument(
+                name + ": source guide has " + std::to_string(g.source.channels()) +
+                " channels but the target guide has " + std::to_string(g.target.channels()));
+        }
+        if (!(g.weight >= 0.0f) || !std::isfinite(g.weight)) {
+            return invalid_argument(name + ": weight " + std::to_string(g.weight) +
+                                    " is invalid (must be >= 0)");
+        }
+        if (!all_finite(g.source) || !all_finite(g.target)) {
+            return invalid_argument(name + ": contains NaN or infinity");
+        }
+    }
+    int tw = 0, th = 0;
+    target_size(in, tw, th);
+    if (tw <= 0 || th <= 0) {
+        return invalid_argument("target size: unknown (give guides, an initial target or a size)");
+    }
+    for (std::size_t i = 0; i < in.guides.size(); ++i) {
+        const GuidePair& g = in.guides[i];
+        if (g.target_weight_map.empty()) continue;
+        const std::string what = guide_name(g, i) + " weight map";
+        EXEMPLAR_RETURN_IF_ERROR(check_single_channel(g.target_weight_map, what.c_str(), tw, th));
+        for (float v : g.target_weight_map.data()) {
+            if (v < 0.0f) return invalid_argument(what + ": has negative values");
+        }
+    }
+    if (!in.initial_target.empty()) {
+        if (in.initial_target.width() != tw || in.initial_target.height() != th) {
+            return invalid_argument("initial target: is " + size_str(in.initial_target) +
+                                    " but the target is " + std::to_string(tw) + "x" +
+                                    std::to_string(th));
+        }
+        if (in.initial_target.channels() != in.style.channels()) {
+            return invalid_argument(
+                "initial target: has " + std::to_string(in.initial_target.channels()) +
+                " channels but the style has " + std::to_string(in.style.channels()));
+        }
+        if (!all_finite(in.initial_target)) {
+            return invalid_argument("initial target: contains NaN or infinity");
+        }
+    }
+    if (!in.target_mask.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_mask(in.target_mask, "target mask", tw, th));
+        if (in.initial_target.empty()) {
+            return invalid_argument(
+                "target mask: needs an initial target (the content kept outside the mask)");
+        }
+    }
+    if (!in.source_mask.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_mask(in.source_mask, "source mask", sw, sh));
+    }
+    if (in.source_labels.empty() != in.target_labels.empty()) {
+        return invalid_argument("labels: give both source and target labels, or neither");
+    }
+    if (!in.source_labels.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_single_channel(in.source_labels, "source labels", sw, sh));
+        EXEMPLAR_RETURN_IF_ERROR(check_single_channel(in.target_labels, "target labels", tw, th));
+        const std::set<long> have = label_set(in.source_labels, in.source_mask);
+        for (long label : label_set(in.target_labels, in.target_mask)) {
+            if (!have.count(label)) {
+                return invalid_argument("target labels: label " + std::to_string(label) +
+                                        " does not occur in the source labels" +
+                                        (in.source_mask.empty() ? "" : " inside the source mask"));
+            }
+        }
+    }
+    if (in.source_orientation.empty() != in.target_orientation.empty()) {
+        return invalid_argument(
+            "orientation: give both source and target orientation fields, or neither");
+    }
+    if (!in.source_orientation.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_single_channel(in.source_orientation, "source orientation", sw, sh));
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_single_channel(in.target_orientation, "target orientation", tw, th));
+    }
+    const bool rotated = !in.source_orientation.empty();
+    const int room =
+        synth::max_levels(std::min(sw, sh), options.patch_size, options.pyramid_ratio, rotated);
+    if (room < 1) {
+        return invalid_argument("patch-size: " + std::to_string(options.patch_size) +
+                                " is too large for the " + size_str(in.style) + " style" +
+                                (rotated ? " with rotated patches" : ""));
+    }
+    const int troom =
+        synth::max_levels(std::min(tw, th), options.patch_size, options.pyramid_ratio, false);
+    if (troom < 1) {
+        return invalid_argument("patch-size: " + std::to_string(options.patch_size) +
+                                " is too large for the " + std::to_string(tw) + "x" +
+                                std::to_string(th) + " target");
+    }
+    if (options.levels > std::min(room, troom)) {
+        return invalid_argument("levels: " + std::to_string(options.levels) +
+                                " is too many for these sizes and patch-size " +
+                                std::to_string(options.patch_size) + " (at most " +
+                                std::to_string(std::min(room, troom)) + ")");
+    }
+    if (!in.initial_nnf.empty()) {
+        if (in.initial_nnf.width() != tw || in.initial_nnf.height() != th) {
+            return invalid_argument("initial nnf: is " + std::to_string(in.initial_nnf.width()) +
+                                    "x" + std::to_string(in.initial_nnf.height()) +
+                                    " but the target is " + std::to_string(tw) + "x" +
+                                    std::to_string(th));
+        }
+        for (const Match& m : in.initial_nnf.matches()) {
+            if (m.x < 0 || m.y < 0 || m.x >= sw || m.y >= sh) {
+                return invalid_argument("initial nnf: refers to " + std::to_string(m.x) + "," +
+                                        std::to_string(m.y) + " outside the " + size_str(in.style) +
+                                        " style");
+            }
+        }
+    }
+    if (!in.source_mask.empty()) {
+        // Some patch must fit entirely inside the mask at full resolution.
+        const int r = options.patch_size / 2;
+        bool any = false;
+        for (int y = r; y < sh - r && !any; ++y) {
+            for (int x = r; x < sw - r && !any; ++x) {
+                bool inside = true;
+                for (int dy = -r; dy <= r && inside; ++dy) {
+                    for (int dx = -r; dx <= r && inside; ++dx) {
+                        inside = in.source_mask.at(x + dx, y + dy, 0) > 0.5f;
+                    }
+                }
+                any = inside;
+            }
+        }
+        if (!any) {
+            return invalid_argument("source mask: no " + std::to_string(options.patch_size) + "x" +
+                                    std::to_string(options.patch_size) +
+                                    " patch fits entirely inside it");
+        }
+    }
+    return Status::ok();
+}
+
+Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOptions& options,
+                                   const RunContext& context, const DebugSink& debug) {
+    EXEMPLAR_RETURN_IF_ERROR(validate_input(in, options));
+    const int threads = context.threads;
+    int tw = 0, th = 0;
+    target_size(in, tw, th);
+    const bool rotated = !in.source_orientation.empty();
+    const int min_side = std::min({in.style.width(), in.style.height(), tw, th});
+    const int levels =
+        options.levels > 0
+            ? options.levels
+            : std::min(
+                  synth::automatic_levels(min_side, options.patch_size, options.pyramid_ratio),
+                  synth::max_levels(min_side, options.patch_size, options.pyramid_ratio, rotated));
+    synth::LevelBuilder builder(in, options, levels, threads);
+
+    // Progress is proportional to target pixels x EM iterations per level.
+    std::vector<double> work(static_cast<std::size_t>(levels));
+    double total_work = 0.0;
+    for (int l = 0; l < levels; ++l) {
+        const double scale = std::pow(options.pyramid_ratio, 2.0 * (levels - 1 - l));
+        work[static_cast<std::size_t>(l)] = scale * tw * th * options.em_iterations;
+        total_work += work[static_cast<std::size_t>(l)];
+    }
+    double done_work = 0.0;
+
+    Nnf nnf;
+    Image current;  // B' at the current level
+    int prev_sw = 0, prev_sh = 0;
+    SynthesisResult result;
+    for (int l = 0; l < levels; ++l) {
+        if (context.cancelled()) return cancelled();
+        synth::Level L = builder.build(l);
+        const std::uint64_t level_key = hash_keys(options.seed, static_cast<std::uint64_t>(l));
+        synth::ForwardProblem all{L, L.target_active.data()};
+
+        // Initialize the NNF: random at the coarsest level (or the given one), else upsampled.
+        if (l == 0) {
+            if (!in.initial_nnf.empty()) {
+                const double rx = static_cast<double>(L.tw) / tw;
+                const double ry = static_cast<double>(L.th) / th;
+                const double sx = static_cast<double>(L.sw) / in.style.width();
+                const double sy = static_cast<double>(L.sh) / in.style.height();
+                nnf = Nnf(L.tw, L.th);
+                for (int y = 0; y < L.th; ++y) {
+                    for (int x = 0; x < L.tw; ++x) {
+                        const Match& m =
+                            in.initial_nnf.at(std::min(tw - 1, static_cast<int>((x + 0.5) / rx)),
+                                              std::min(th - 1, static_cast<int>((y + 0.5) / ry)));
+                        nnf.at(x, y) = Match{static_cast<int>(std::lround((m.x + 0.5) * sx - 0.5)),
+                                             static_cast<int>(std::lround((m.y + 0.5) * sy - 0.5)),
+                                             m.angle_rad, 0.0f};
+                    }
+                }
+            } else {
+                nnf = random_nnf(L, level_key);
+            }
+        } else {
+            nnf = upsample_nnf(nnf, prev_sw, prev_sh, L);
+        }
+
+        // Initial B' of this level: the initial target on the coarsest level if given, else
+        // the vote of the initial NNF. Fixed pixels always hold the initial target.
+        current = L.fixed_style.empty() ? Image(L.tw, L.th, L.style_channels) : L.fixed_style;
+        current.set_channel_names(in.style.channel_names());
+        synth::VoteParams vp;
+        vp.patch_size = L.patch_size;
+        vp.active = L.target_active.data();
+        vp.fixed = L.target_fixed.empty() ? nullptr : L.target_fixed.data();
+        set_target_style(L, current);
+        evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
+        const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
+        if (!keep_initial) {
+            synth::vote(nnf, L.source_style, vp, current, threads);
+            set_target_style(L, current);
+        }
+
+        for (int it = 0; it < options.em_iterations; ++it) {
+            if (context.cancelled()) return cancelled();
+            const synth::SearchSetup setup{
+                L, options, hash_keys(level_key, 0x100 + static_cast<std::uint64_t>(it)), threads};
+            synth::search(setup, nnf);
+            synth::vote(nnf, L.source_style, vp, current, threads);
+            set_target_style(L, current);
+
+            done_work += work[static_cast<std::size_t>(l)] / options.em_iterations;
+            context.report(ProgressEvent{"synthesis", l, levels, it, options.em_iterations,
+                                         done_work / total_work});
+            if (debug) {
+                const std::vector<float> counts = synth::usage_counts(L, nnf);
+                Image usage(L.sw, L.sh, 1);
+                std::copy(counts.begin(), counts.end(), usage.data().begin());
+                debug(DebugFrame{l, it, &nnf, &usage, &current});
+            }
+        }
+        prev_sw = L.sw;
+        prev_sh = L.sh;
+
+        if (l == levels - 1) {
+            // Final errors are the true distances of the final NNF against the final B'.
+            result.error = Image(L.tw, L.th, 1, 0.0f);
+            result.error.set_channel_names({"error"});
+            parallel_for(0, L.th, threads, [&](int y) {
+                for (int x = 0; x < L.tw; ++x) {
+                    const std::size_t i = L.target_index(x, y);
+                    Match& m = nnf[i];
+                    if (!L.target_active[i]) {
+                        m = Match{-1, -1, 0.0f, 0.0f};
+                        continue;
+                    }
+                    m.error = synth::patch_distance(L, x, y, m.x, m.y, m.angle_rad);
+                    result.error.data()[i] = m.error;
+                }
+            });
+        }
+    }
+    result.image = std::move(current);
+    result.nnf = std::move(nnf);
+    return result;
+}
+
+}  // namespace exemplar

@@ -1,0 +1,387 @@
+#include "usage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "exemplar/core/check.hpp"
+#include "exemplar/core/rng.hpp"
+#include "patchmatch.hpp"
+
+namespace exemplar::synth {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+// Reversed rounds after the first start from the previous round's field, so fewer PatchMatch
+// iterations suffice (the paper does not say how many it used).
+constexpr int kLaterRoundIterations = 2;
+// Uniform usage: rounds of reversed retrieval before the remaining targets are assigned by a
+// capacity-limited forward search (guarantees termination; see docs/algorithms.md).
+constexpr int kUniformMaxReverseRounds = 64;
+
+struct Candidate {
+    float error;
+    int source;   // source pixel index
+    int target;   // target pixel index
+    float angle;  // target -> source rotation
+};
+
+bool candidate_less(const Candidate& a, const Candidate& b) {
+    if (a.error != b.error) return a.error < b.error;
+    return a.source < b.source;
+}
+
+// Reversed-retrieval state shared by the uniform and error-budget strategies.
+class ReverseRetrieval {
+public:
+    ReverseRetrieval(const SearchSetup& setup, Nnf& nnf) : s_(setup), L_(setup.level), nnf_(nnf) {
+        const std::size_t n_t = static_cast<std::size_t>(L_.tw) * L_.th;
+        free_.assign(n_t, 0);
+        for (std::size_t t = 0; t < n_t; ++t) {
+            if (L_.target_active[t]) {
+                free_[t] = 1;
+                ++free_count_;
+            }
+        }
+        active_count_ = free_count_;
+        query_.assign(static_cast<std::size_t>(L_.sw) * L_.sh, 0);
+        reverse_ = Nnf(L_.sw, L_.sh);
+        for (Match& m : reverse_.matches()) m = Match{-1, -1, 0.0f, kInf};
+        rebuild_free_lists();
+    }
+
+    std::size_t free_count() const { return free_count_; }
+    std::size_t active_count() const { return active_count_; }
+    std::vector<std::uint8_t>& query_mask() { return query_; }
+    const std::vector<std::uint8_t>& free_mask() const { return free_; }
+    const std::vector<std::vector<int>>& free_by_group() const { return free_by_group_; }
+
+    // One reversed retrieval over the sources in query_mask(); returns collision-free
+    // candidates (one per target, the smallest error), sorted by error.
+    std::vector<Candidate> retrieve(int round, std::vector<Candidate>* all = nullptr) {
+        ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_};
+        const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
+        evaluate_field(problem, reverse_, key, s_.threads);
+        run_patchmatch(problem, reverse_,
+                       round == 0 ? s_.options.search_iterations : kLaterRoundIterations,
+                       hash_keys(key, 1), s_.threads);
+        std::vector<Candidate> best_per_target(free_.size(), Candidate{kInf, -1, -1, 0.0f});
+        for (std::size_t si = 0; si < query_.size(); ++si) {
+            if (!query_[si]) continue;
+            const Match& m = reverse_[si];
+            if (!(m.error < kInf)) continue;
+            const int t = static_cast<int>(L_.target_index(m.x, m.y));
+            const Candidate c{m.error, static_cast<int>(si), t, -m.angle_rad};
+            if (all != nullptr) all->push_back(c);
+            if (candidate_less(c, best_per_target[static_cast<std::size_t>(t)])) {
+                best_per_target[static_cast<std::size_t>(t)] = c;
+            }
+        }
+        std::vector<Candidate> unique;
+        for (const Candidate& c : best_per_target) {
+            if (c.source >= 0) unique.push_back(c);
+        }
+        std::sort(unique.begin(), unique.end(), candidate_less);
+        return unique;
+    }
+
+    void assign(const Candidate& c) {
+        EXEMPLAR_DCHECK(free_[static_cast<std::size_t>(c.target)]);
+        free_[static_cast<std::size_t>(c.target)] = 0;
+        --free_count_;
+        nnf_[static_cast<std::size_t>(c.target)] =
+            Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
+    }
+
+    void rebuild_free_lists() {
+        const std::size_t groups = L_.valid_by_group.size();
+        free_by_group_.assign(groups, {});
+        for (std::size_t t = 0; t < free_.size(); ++t) {
+            if (free_[t]) {
+                free_by_group_[static_cast<std::size_t>(L_.target_group(t))].push_back(
+                    static_cast<int>(t));
+            }
+        }
+    }
+
+    // Forward search from the free targets to the sources in `allowed` (nullptr = any);
+    // returns one candidate per free target, sorted by error.
+    std::vector<Candidate> forward_candidates(const std::uint8_t* allowed, int pass) {
+        ForwardProblem problem{L_, free_.data(), allowed, nullptr};
+        std::vector<std::vector<int>> lists;
+        if (allowed != nullptr) {
+            lists.resize(L_.valid_by_group.size());
+            for (std::size_t g = 0; g < lists.size(); ++g) {
+                for (int s : L_.valid_by_group[g]) {
+                    if (allowed[static_cast<std::size_t>(s)]) lists[g].push_back(s);
+                }
+            }
+            problem.draw_lists = &lists;
+        }
+        const std::uint64_t key = hash_keys(s_.key, 0xF0F0, static_cast<std::uint64_t>(pass));
+        evaluate_field(problem, nnf_, key, s_.threads);
+        run_patchmatch(problem, nnf_, s_.options.search_iterations, hash_keys(key, 1), s_.threads);
+        std::vector<Candidate> out;
+        for (std::size_t t = 0; t < free_.size(); ++t) {
+            if (!free_[t]) continue;
+            const Match& m = nnf_[t];
+            if (!(m.error < kInf)) continue;
+            out.push_back(Candidate{m.error, static_cast<int>(L_.source_index(m.x, m.y)),
+                                    static_cast<int>(t), m.angle_rad});
+        }
+        std::sort(out.begin(), out.end(), candidate_less);
+        return out;
+    }
+
+private:
+    const SearchSetup& s_;
+    const Level& L_;
+    Nnf& nnf_;
+    std::vector<std::uint8_t> free_;
+    std::vector<std::uint8_t> query_;
+    std::vector<std::vector<int>> free_by_group_;
+    std::size_t free_count_ = 0;
+    std::size_t active_count_ = 0;
+    Nnf reverse_;
+};
+
+SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
+    ForwardProblem problem{setup.level, setup.level.target_active.data(), nullptr, nullptr};
+    evaluate_field(problem, nnf, hash_keys(setup.key, 0xA), setup.threads);
+    run_patchmatch(problem, nnf, setup.options.search_iterations, hash_keys(setup.key, 0xB),
+                   setup.threads);
+    SearchStats stats;
+    stats.forward_assigned = static_cast<std::size_t>(
+        std::count(setup.level.target_active.begin(), setup.level.target_active.end(), 1));
+    return stats;
+}
+
+// LazyFluids §5.4.1: every source patch is used K = |X| / |Z| or K + 1 times (R = |X| mod |Z|
+// of them K + 1), per label group.
+SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
+    const Level& L = setup.level;
+    ReverseRetrieval rr(setup, nnf);
+    const std::size_t groups = L.valid_by_group.size();
+    std::vector<std::size_t> K(groups), R(groups);
+    {
+        std::vector<std::size_t> targets(groups, 0);
+        for (std::size_t t = 0; t < rr.free_mask().size(); ++t) {
+            if (rr.free_mask()[t]) ++targets[static_cast<std::size_t>(L.target_group(t))];
+        }
+        for (std::size_t g = 0; g < groups; ++g) {
+            const std::size_t sources = L.valid_by_group[g].size();
+            K[g] = sources == 0 ? 0 : targets[g] / sources;
+            R[g] = sources == 0 ? 0 : targets[g] % sources;
+        }
+    }
+    std::vector<std::uint32_t> count(static_cast<std::size_t>(L.sw) * L.sh, 0);
+    auto has_capacity = [&](std::size_t s) {
+        const auto g = static_cast<std::size_t>(L.source_group(s));
+        return count[s] < K[g] || (count[s] == K[g] && R[g] > 0);
+    };
+    auto try_assign = [&](const Candidate& c) {
+        const auto s = static_cast<std::size_t>(c.source);
+        const auto g = static_cast<std::size_t>(L.source_group(s));
+        if (count[s] < K[g]) {
+            ++count[s];
+        } else if (count[s] == K[g] && R[g] > 0) {
+            ++count[s];
+            --R[g];
+        } else {
+            return false;
+        }
+        rr.assign(c);
+        return true;
+    };
+
+    SearchStats stats;
+    // Reversed retrieval rounds.
+    while (rr.free_count() > 0 && stats.rounds < kUniformMaxReverseRounds) {
+        std::vector<std::uint8_t>& query = rr.query_mask();
+        for (std::size_t s = 0; s < query.size(); ++s) {
+            query[s] = L.source_valid[s] && has_capacity(s) &&
+                       !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
+        }
+        const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
+        ++stats.rounds;
+        std::size_t assigned = 0;
+        for (const Candidate& c : candidates) assigned += try_assign(c) ? 1 : 0;
+        stats.reverse_assigned += assigned;
+        rr.rebuild_free_lists();
+        // A round that assigns almost nothing means the reversed search is starving on a few
+        // scattered free targets; the forward pass below finishes those efficiently.
+        if (assigned == 0 || assigned * 200 < rr.free_count()) break;
+    }
+    // Remaining targets: forward search restricted to sources with capacity left, assigned in
+    // order of increasing error under the same K/R rules. Each pass assigns at least one target.
+    std::vector<std::uint8_t> allowed(count.size(), 0);
+    for (int pass = 0; rr.free_count() > 0; ++pass) {
+        for (std::size_t s = 0; s < allowed.size(); ++s) {
+            allowed[s] = L.source_valid[s] && has_capacity(s);
+        }
+        const std::vector<Candidate> candidates = rr.forward_candidates(allowed.data(), pass);
+        std::size_t assigned = 0;
+        for (const Candidate& c : candidates) {
+            if (has_capacity(static_cast<std::size_t>(c.source))) {
+                assigned += try_assign(c) ? 1 : 0;
+            }
+        }
+        stats.forward_assigned += assigned;
+        rr.rebuild_free_lists();
+        // Capacity equals the number of targets, so a pass assigns at least its best candidate;
+        // zero means no target could reach any source with capacity (e.g. a label group whose
+        // sources all vanished). Those few keep unconstrained nearest neighbours.
+        if (assigned == 0) {
+            stats.forward_assigned += rr.free_count();
+            rr.forward_candidates(nullptr, pass + 1);
+            break;
+        }
+    }
+    return stats;
+}
+
+// StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
+// whose summed error stays within the budget T estimated at the knee of the sorted errors; once
+// `budget_coverage` of the targets are covered the rest take forward nearest neighbours.
+SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
+    const Level& L = setup.level;
+    ReverseRetrieval rr(setup, nnf);
+    SearchStats stats;
+    const auto target_total = static_cast<double>(rr.active_count());
+    while (rr.free_count() > 0 && stats.rounds < setup.options.budget_max_rounds) {
+        const double covered = 1.0 - static_cast<double>(rr.free_count()) / target_total;
+        if (covered >= setup.options.budget_coverage) break;
+        std::vector<std::uint8_t>& query = rr.query_mask();
+        for (std::size_t s = 0; s < query.size(); ++s) {
+            query[s] = L.source_valid[s] &&
+                       !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
+        }
+        const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
+        ++stats.rounds;
+        if (candidates.empty()) break;
+        std::vector<float> errors(candidates.size());
+        std::transform(candidates.begin(), candidates.end(), errors.begin(),
+                       [](const Candidate& c) { return c.error; });
+        const KneeFit fit = fit_knee(errors);
+        double budget = 0.0;
+        for (std::size_t i = 0; i < fit.knee_index; ++i) budget += errors[i];
+        double spent = 0.0;
+        std::size_t assigned = 0;
+        for (const Candidate& c : candidates) {
+            // Always take the best candidate so that every round makes progress.
+            if (assigned > 0 && spent + c.error > budget) break;
+            spent += c.error;
+            rr.assign(c);
+            ++assigned;
+        }
+        stats.reverse_assigned += assigned;
+        rr.rebuild_free_lists();
+    }
+    if (rr.free_count() > 0) {
+        stats.forward_assigned = rr.free_count();
+        rr.forward_candidates(nullptr, 0);
+    }
+    return stats;
+}
+
+// Forward search whose cost adds h_s * max(0, H(p) - h_tau), H the (blurred) usage histogram of
+// the current NNF, recomputed before every PatchMatch iteration.
+SearchStats search_occurrence(const SearchSetup& setup, Nnf& nnf) {
+    const Level& L = setup.level;
+    const auto active =
+        static_cast<double>(std::count(L.target_active.begin(), L.target_active.end(), 1));
+    std::size_t sources = 0;
+    for (const auto& g : L.valid_by_group) sources += g.size();
+    const double threshold = setup.options.occurrence_threshold > 0.0f
+                                 ? setup.options.occurrence_threshold
+                                 : std::max(1.0, 2.0 * active / std::max<double>(1, sources));
+    std::vector<float> penalty(static_cast<std::size_t>(L.sw) * L.sh, 0.0f);
+    for (int iter = 0; iter < setup.options.search_iterations; ++iter) {
+        const std::vector<float> usage = usage_counts(L, nnf);
+        // Small 3x3 binomial blur of the histogram (Bénard: "a small Gaussian kernel").
+        for (int y = 0; y < L.sh; ++y) {
+            for (int x = 0; x < L.sw; ++x) {
+                double h = 0.0, wsum = 0.0;
+                for (int dy = -1; dy <= 1; ++dy) {
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int xx = x + dx, yy = y + dy;
+                        if (xx < 0 || yy < 0 || xx >= L.sw || yy >= L.sh) continue;
+                        const double w = (dx == 0 ? 2.0 : 1.0) * (dy == 0 ? 2.0 : 1.0);
+                        h += w * usage[L.source_index(xx, yy)];
+                        wsum += w;
+                    }
+                }
+                penalty[L.source_index(x, y)] = static_cast<float>(
+                    setup.options.occurrence_strength * std::max(0.0, h / wsum - threshold));
+            }
+        }
+        ForwardProblem problem{L, L.target_active.data(), nullptr, penalty.data()};
+        const std::uint64_t key = hash_keys(setup.key, 0xC, static_cast<std::uint64_t>(iter));
+        evaluate_field(problem, nnf, key, setup.threads);
+        run_patchmatch(problem, nnf, 1, hash_keys(key, 1), setup.threads);
+    }
+    SearchStats stats;
+    stats.forward_assigned = static_cast<std::size_t>(active);
+    return stats;
+}
+
+}  // namespace
+
+KneeFit fit_knee(std::span<const float> sorted_errors) {
+    KneeFit fit;
+    const std::size_t n = sorted_errors.size();
+    fit.knee_index = n;
+    if (n < 3) return fit;
+    const double max_error = sorted_errors[n - 1];
+    if (!(max_error > 0.0)) return fit;
+    // Weighted linear least squares on 1/y = a - b x. Weights y^4 make the residuals comparable
+    // to residuals in y (d(1/y) = -dy / y^2), so tiny errors near zero do not dominate the fit.
+    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double y = sorted_errors[i] / max_error;
+        if (!(y > 1e-6)) continue;
+        const double x = static_cast<double>(i) / static_cast<double>(n - 1);
+        const double w = y * y * y * y;
+        const double v = 1.0 / y;
+        sw += w;
+        sx += w * x;
+        sy += w * v;
+        sxx += w * x * x;
+        sxy += w * x * v;
+    }
+    const double det = sw * sxx - sx * sx;
+    if (!(std::abs(det) > 1e-18)) return fit;
+    const double slope = (sw * sxy - sx * sy) / det;  // = -b
+    fit.b = -slope;
+    fit.a = (sy - slope * sx) / sw;
+    if (!(fit.b > 0.0)) return fit;  // not increasing: no knee, everything is feasible
+    // f'(x) = b / (a - b x)^2 = 1  =>  x = (a - sqrt(b)) / b, the root before the pole at a/b.
+    fit.knee_x = std::clamp((fit.a - std::sqrt(fit.b)) / fit.b, 0.0, 1.0);
+    fit.knee_index =
+        std::min(n, static_cast<std::size_t>(std::ceil(fit.knee_x * static_cast<double>(n - 1))));
+    return fit;
+}
+
+std::vector<float> usage_counts(const Level& level, const Nnf& nnf) {
+    std::vector<float> usage(static_cast<std::size_t>(level.sw) * level.sh, 0.0f);
+    for (std::size_t t = 0; t < nnf.pixel_count(); ++t) {
+        if (!level.target_active[t]) continue;
+        const Match& m = nnf[t];
+        usage[level.source_index(m.x, m.y)] += 1.0f;
+    }
+    return usage;
+}
+
+SearchStats search(const SearchSetup& setup, Nnf& nnf) {
+    switch (setup.options.usage) {
+        case UsageStrategy::None: return search_forward(setup, nnf);
+        case UsageStrategy::Uniform: return search_uniform(setup, nnf);
+        case UsageStrategy::ErrorBudget: return search_error_budget(setup, nnf);
+        case UsageStrategy::OccurrencePenalty: return search_occurrence(setup, nnf);
+    }
+    return {};
+}
+
+}  // namespace exemplar::synth

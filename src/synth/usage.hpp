@@ -1,0 +1,51 @@
+#pragma once
+// Nearest-neighbour search with patch-usage control: the E-step of one EM iteration.
+//   none        forward PatchMatch (Kwatra et al. 2005)
+//   uniform     reversed retrieval with counters, K and R (Jamriška et al. 2015, LazyFluids §5.4.1)
+//   error-budget reversed retrieval under a knee-based budget (Fišer et al. 2016, StyLit §8.3.3)
+//   occurrence  forward search with a penalty on over-used source patches (Kaspar et al. 2015,
+//               Bénard et al. 2013 eq. 8)
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "exemplar/synth/nnf.hpp"
+#include "exemplar/synth/options.hpp"
+#include "level.hpp"
+
+namespace exemplar::synth {
+
+/// Least-squares fit of f(x) = 1 / (a - b x) to errors sorted ascending, with x = i / (n - 1)
+/// and y = error / max error (the normalized axes of StyLit Fig. 8.6).
+struct KneeFit {
+    double a = 0.0;
+    double b = 0.0;
+    double knee_x = 1.0;         ///< Where f'(x) = 1, clamped to [0, 1].
+    std::size_t knee_index = 0;  ///< First index at or beyond the knee (n if none).
+};
+KneeFit fit_knee(std::span<const float> sorted_errors);
+
+/// Statistics of one search, for tests and debugging.
+struct SearchStats {
+    int rounds = 0;                    ///< Reversed-retrieval rounds.
+    std::size_t reverse_assigned = 0;  ///< Target patches assigned by reversed retrieval.
+    std::size_t forward_assigned = 0;  ///< Target patches assigned by forward search.
+};
+
+/// Per-call settings shared by the strategies.
+struct SearchSetup {
+    const Level& level;
+    const SynthesisOptions& options;
+    std::uint64_t key;  ///< Hash of (seed, level, iteration); randomness derives from it.
+    int threads;
+};
+
+/// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`
+/// (whose active entries must hold valid matches on entry, e.g. from the previous iteration).
+SearchStats search(const SearchSetup& setup, Nnf& nnf);
+
+/// Number of active target pixels whose NNF centre is each source pixel (sw*sh counts).
+std::vector<float> usage_counts(const Level& level, const Nnf& nnf);
+
+}  // namespace exemplar::synth

@@ -1,0 +1,68 @@
+#include "vote.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "exemplar/core/check.hpp"
+#include "exemplar/core/parallel.hpp"
+#include "patch_distance.hpp"
+
+namespace exemplar::synth {
+
+void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads) {
+    EXEMPLAR_CHECK_EQ(out.width(), nnf.width());
+    EXEMPLAR_CHECK_EQ(out.height(), nnf.height());
+    EXEMPLAR_CHECK_EQ(out.channels(), source.channels());
+    const int w = nnf.width();
+    const int h = nnf.height();
+    const int C = source.channels();
+    const int r = params.patch_size / 2;
+    parallel_for(0, h, threads, [&](int y) {
+        std::vector<double> acc(static_cast<std::size_t>(C));
+        for (int x = 0; x < w; ++x) {
+            const std::size_t qi = static_cast<std::size_t>(y) * w + x;
+            if (params.fixed != nullptr && params.fixed[qi]) continue;
+            std::fill(acc.begin(), acc.end(), 0.0);
+            double total = 0.0;
+            // The patch centred at (x - dx, y - dy) covers this pixel at its offset (dx, dy).
+            for (int dy = -r; dy <= r; ++dy) {
+                const int cy = y - dy;
+                if (cy < 0 || cy >= h) continue;
+                for (int dx = -r; dx <= r; ++dx) {
+                    const int cx = x - dx;
+                    if (cx < 0 || cx >= w) continue;
+                    const std::size_t ci = static_cast<std::size_t>(cy) * w + cx;
+                    if (params.active != nullptr && !params.active[ci]) continue;
+                    const Match& m = nnf[ci];
+                    if (m.x < 0) continue;  // not a patch centre
+                    const float weight =
+                        params.patch_weights.empty() ? 1.0f : params.patch_weights[ci];
+                    if (!(weight > 0.0f)) continue;
+                    const RotatedOffset o =
+                        m.angle_rad == 0.0f
+                            ? RotatedOffset{dx, dy}
+                            : rotate_offset(dx, dy, std::cos(m.angle_rad), std::sin(m.angle_rad));
+                    int sx = m.x + o.dx;
+                    int sy = m.y + o.dy;
+                    if (params.clamp_source) {
+                        sx = std::clamp(sx, 0, source.width() - 1);
+                        sy = std::clamp(sy, 0, source.height() - 1);
+                    }
+                    EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < source.width() &&
+                                    sy < source.height());
+                    const float* s = source.pixel(sx, sy);
+                    for (int c = 0; c < C; ++c) acc[static_cast<std::size_t>(c)] += weight * s[c];
+                    total += weight;
+                }
+            }
+            if (total <= 0.0) continue;
+            float* o = out.pixel(x, y);
+            for (int c = 0; c < C; ++c) {
+                o[c] = static_cast<float>(acc[static_cast<std::size_t>(c)] / total);
+            }
+        }
+    });
+}
+
+}  // namespace exemplar::synth

@@ -1,0 +1,28 @@
+#pragma once
+// Voting (the M-step of Kwatra et al. 2005 / Wexler et al. 2007): every target pixel becomes the
+// weighted average of the values that the overlapping patches of the NNF map onto it. Written as
+// a gather over the target so that each output pixel is owned by one task (deterministic).
+
+#include <cstdint>
+#include <span>
+
+#include "exemplar/core/image.hpp"
+#include "exemplar/synth/nnf.hpp"
+
+namespace exemplar::synth {
+
+struct VoteParams {
+    int patch_size = 5;
+    const std::uint8_t* active = nullptr;  ///< Patches that vote (nullptr = all).
+    const std::uint8_t* fixed = nullptr;   ///< Pixels left untouched (nullptr = none).
+    /// Optional weight of each target patch's vote (the weighted-vote hook; empty = 1).
+    std::span<const float> patch_weights;
+    /// Clamp source reads to the source bounds (needed when the NNF comes from elsewhere).
+    bool clamp_source = false;
+};
+
+/// Writes the vote into `out`, which must already have the NNF's size and the source's channel
+/// count. Pixels that receive no vote (or are fixed) keep their value.
+void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads);
+
+}  // namespace exemplar::synth

@@ -1,0 +1,319 @@
+#include "exemplar/synth/synthesize.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "test_images.hpp"
+
+namespace exemplar {
+namespace {
+
+SynthesisInput identity_input(int w, int h) {
+    SynthesisInput in;
+    in.style = testing::texture(w, h, 3, 101);
+    // Guides identical on both sides: the style itself and a position ramp.
+    in.guides.push_back(GuidePair{"style", in.style, in.style, 1.0f, {}});
+    in.guides.push_back(GuidePair{"ramp", testing::ramp(w, h), testing::ramp(w, h), 4.0f, {}});
+    return in;
+}
+
+TEST(Synthesize, IdentityReproducesTheStyle) {
+    for (UsageStrategy usage : {UsageStrategy::None, UsageStrategy::Uniform,
+                                UsageStrategy::ErrorBudget, UsageStrategy::OccurrencePenalty}) {
+        const SynthesisInput in = identity_input(64, 56);
+        SynthesisOptions opt;
+        opt.usage = usage;
+        auto result = synthesize(in, opt, RunContext{2});
+        ASSERT_TRUE(result.ok()) << result.status().message();
+        EXPECT_GT(testing::psnr(result->image, in.style), 40.0) << to_string(usage);
+        EXPECT_EQ(result->image.channels(), 3);
+        EXPECT_EQ(result->error.width(), 64);
+    }
+}
+
+TEST(Synthesize, DeterministicForAnyThreadCount) {
+    SynthesisInput in;
+    in.style = testing::texture(48, 40, 4, 7);  // 4 channels: alpha is just another channel
+    in.guides.push_back(
+        GuidePair{"g", testing::texture(48, 40, 2, 8), testing::texture(60, 52, 2, 9), 2.0f, {}});
+    for (UsageStrategy usage : {UsageStrategy::None, UsageStrategy::Uniform,
+                                UsageStrategy::ErrorBudget, UsageStrategy::OccurrencePenalty}) {
+        SynthesisOptions opt;
+        opt.usage = usage;
+        opt.seed = 1234;
+        auto a = synthesize(in, opt, RunContext{1});
+        auto b = synthesize(in, opt, RunContext{2});
+        auto c = synthesize(in, opt, RunContext{0});
+        ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+        EXPECT_TRUE(
+            std::equal(a->image.data().begin(), a->image.data().end(), b->image.data().begin()))
+            << to_string(usage);
+        EXPECT_TRUE(
+            std::equal(a->image.data().begin(), a->image.data().end(), c->image.data().begin()))
+            << to_string(usage);
+        opt.seed = 99;  // another seed gives another result
+        auto d = synthesize(in, opt, RunContext{2});
+        EXPECT_FALSE(
+            std::equal(a->image.data().begin(), a->image.data().end(), d->image.data().begin()));
+    }
+}
+
+TEST(Synthesize, TargetMaskKeepsOutsidePixelsBitIdentical) {
+    SynthesisInput in;
+    in.style = testing::texture(50, 50, 3, 21);
+    in.initial_target = testing::texture(50, 50, 3, 22);
+    in.target_mask = Image(50, 50, 1, 0.0f);
+    for (int y = 15; y < 35; ++y)
+        for (int x = 10; x < 30; ++x) in.target_mask.at(x, y, 0) = 1.0f;
+    SynthesisOptions opt;
+    auto result = synthesize(in, opt, RunContext{2});
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    int changed_inside = 0;
+    for (int y = 0; y < 50; ++y) {
+        for (int x = 0; x < 50; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const float out = result->image.at(x, y, c);
+                const float init = in.initial_target.at(x, y, c);
+                if (in.target_mask.at(x, y, 0) > 0.5f) {
+                    changed_inside += out != init ? 1 : 0;
+                } else {
+                    ASSERT_EQ(out, init) << x << "," << y;
+                }
+            }
+        }
+    }
+    EXPECT_GT(changed_inside, 20 * 20 * 3 / 2);
+}
+
+TEST(Synthesize, SourceMaskExcludesOutsidePixels) {
+    // The style is pure red outside the mask; no red may appear in the output.
+    SynthesisInput in;
+    in.style = testing::texture(60, 50, 3, 31);
+    in.source_mask = Image(60, 50, 1, 1.0f);
+    for (int y = 0; y < 50; ++y) {
+        for (int x = 0; x < 60; ++x) {
+            if (x >= 35 || y < 8) {
+                in.source_mask.at(x, y, 0) = 0.0f;
+                in.style.at(x, y, 0) = 5.0f;  // far outside the texture's range
+            }
+        }
+    }
+    in.target_width = 40;
+    in.target_height = 40;
+    for (UsageStrategy usage : {UsageStrategy::None, UsageStrategy::Uniform,
+                                UsageStrategy::ErrorBudget, UsageStrategy::OccurrencePenalty}) {
+        SynthesisOptions opt;
+        opt.usage = usage;
+        auto result = synthesize(in, opt, RunContext{2});
+        ASSERT_TRUE(result.ok()) << result.status().message();
+        for (float v : extract_channels(result->image, 0, 1).data()) {
+            ASSERT_LT(v, 1.5f) << to_string(usage);
+        }
+        for (const Match& m : result->nnf.matches()) {
+            if (m.x < 0) continue;
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx)
+                    ASSERT_GT(in.source_mask.at(m.x + dx, m.y + dy, 0), 0.5f);
+        }
+    }
+}
+
+TEST(Synthesize, LabelsRestrictSources) {
+    // Left half of the style is dark, right half bright; target labels ask for bright on top.
+    SynthesisInput in;
+    in.style = Image(40, 30, 1);
+    in.source_labels = Image(40, 30, 1);
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            const bool right = x >= 20;
+            in.style.at(x, y, 0) = (right ? 0.8f : 0.2f) + 0.05f * std::sin(x * 1.3f + y);
+            in.source_labels.at(x, y, 0) = right ? 2.0f : 1.0f;
+        }
+    in.target_labels = Image(36, 36, 1);
+    for (int y = 0; y < 36; ++y)
+        for (int x = 0; x < 36; ++x) in.target_labels.at(x, y, 0) = y < 18 ? 2.0f : 1.0f;
+    in.guides.push_back(GuidePair{"labels", in.source_labels, in.target_labels, 1.0f, {}});
+    SynthesisOptions opt;
+    opt.usage = UsageStrategy::Uniform;
+    auto result = synthesize(in, opt, RunContext{2});
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    for (int y = 0; y < 36; ++y) {
+        for (int x = 0; x < 36; ++x) {
+            const Match& m = result->nnf.at(x, y);
+            if (m.x < 0) continue;
+            ASSERT_EQ(in.source_labels.at(m.x, m.y, 0), in.target_labels.at(x, y, 0));
+        }
+    }
+    EXPECT_GT(result->image.at(18, 5, 0), 0.6f);
+    EXPECT_LT(result->image.at(18, 30, 0), 0.4f);
+}
+
+// Mean squared derivative along x and along y of channel 0.
+std::pair<double, double> gradient_energy(const Image& im, int margin) {
+    double gx = 0, gy = 0;
+    for (int y = margin; y < im.height() - margin - 1; ++y) {
+        for (int x = margin; x < im.width() - margin - 1; ++x) {
+            const double dx = im.at(x + 1, y, 0) - im.at(x, y, 0);
+            const double dy = im.at(x, y + 1, 0) - im.at(x, y, 0);
+            gx += dx * dx;
+            gy += dy * dy;
+        }
+    }
+    return {gx, gy};
+}
+
+TEST(Synthesize, OrientationDifferenceRotatesStripes) {
+    // Vertical stripes in the style (they vary along x).
+    const int w = 64;
+    SynthesisInput in;
+    in.style = Image(w, w, 1);
+    for (int y = 0; y < w; ++y)
+        for (int x = 0; x < w; ++x) in.style.at(x, y, 0) = (x / 4) % 2 == 0 ? 0.9f : 0.1f;
+    const auto [sx, sy] = gradient_energy(in.style, 0);
+    ASSERT_GT(sx, 100 * (sy + 1e-9));
+    in.source_orientation = Image(w, w, 1, 0.0f);
+    in.target_orientation = Image(48, 48, 1, static_cast<float>(std::numbers::pi / 2));
+    in.target_width = 48;
+    in.target_height = 48;
+    SynthesisOptions opt;
+    opt.usage = UsageStrategy::None;
+    auto result = synthesize(in, opt, RunContext{2});
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    const auto [gx, gy] = gradient_energy(result->image, 3);
+    // Horizontal stripes: intensity changes along y, hardly along x.
+    EXPECT_GT(gy, 5.0 * gx) << "gx " << gx << " gy " << gy;
+    for (const Match& m : result->nnf.matches()) {
+        if (m.x < 0) continue;
+        EXPECT_NEAR(std::abs(m.angle_rad), std::numbers::pi / 2, 1e-5);
+    }
+}
+
+TEST(Synthesize, NnfReappliesToTheStyle) {
+    SynthesisInput in = identity_input(40, 36);
+    in.guides[1].target = testing::ramp(44, 30);
+    in.guides[0].target = testing::texture(44, 30, 3, 5);
+    SynthesisOptions opt;
+    auto result = synthesize(in, opt, RunContext{2});
+    ASSERT_TRUE(result.ok());
+    auto again = apply_nnf(result->nnf, in.style, opt.patch_size, 2);
+    ASSERT_TRUE(again.ok());
+    EXPECT_TRUE(
+        std::equal(again->data().begin(), again->data().end(), result->image.data().begin()));
+    // NNF image round trip.
+    auto back = nnf_from_image(nnf_to_image(result->nnf));
+    ASSERT_TRUE(back.ok());
+    EXPECT_EQ(back->at(7, 9).x, result->nnf.at(7, 9).x);
+    EXPECT_EQ(back->at(7, 9).error, result->nnf.at(7, 9).error);
+}
+
+TEST(Synthesize, InitialNnfIsUsedAsStart) {
+    const SynthesisInput base = identity_input(40, 40);
+    SynthesisOptions opt;
+    opt.levels = 1;
+    opt.em_iterations = 1;
+    opt.search_iterations = 1;
+    opt.usage = UsageStrategy::None;
+    SynthesisInput in = base;
+    in.initial_nnf = Nnf(40, 40);
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x)
+            in.initial_nnf.at(x, y) = Match{std::clamp(x, 2, 37), std::clamp(y, 2, 37), 0, 0};
+    auto result = synthesize(in, opt, RunContext{1});
+    ASSERT_TRUE(result.ok());
+    EXPECT_GT(testing::psnr(result->image, base.style), 40.0);
+}
+
+TEST(Synthesize, ProgressAndCancellation) {
+    const SynthesisInput in = identity_input(48, 48);
+    SynthesisOptions opt;
+    std::vector<double> fractions;
+    RunContext ctx;
+    ctx.threads = 1;
+    ctx.progress = [&](const ProgressEvent& e) { fractions.push_back(e.fraction); };
+    ASSERT_TRUE(synthesize(in, opt, ctx).ok());
+    ASSERT_FALSE(fractions.empty());
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_NEAR(fractions.back(), 1.0, 1e-9);
+
+    CancelToken token;
+    ctx.cancel = &token;
+    ctx.progress = [&](const ProgressEvent&) { token.cancel(); };
+    auto cancelled_run = synthesize(in, opt, ctx);
+    ASSERT_FALSE(cancelled_run.ok());
+    EXPECT_EQ(cancelled_run.status().code(), ErrorCode::Cancelled);
+}
+
+TEST(Synthesize, DebugSinkReceivesUsageMaps) {
+    const SynthesisInput in = identity_input(32, 32);
+    SynthesisOptions opt;
+    opt.levels = 2;
+    int frames = 0;
+    float last_usage_sum = 0;
+    auto sink = [&](const DebugFrame& f) {
+        ++frames;
+        last_usage_sum = 0;
+        for (float v : f.usage->data()) last_usage_sum += v;
+        EXPECT_EQ(f.nnf->width(), f.current->width());
+    };
+    ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
+    EXPECT_EQ(frames, 2 * opt.em_iterations);
+    EXPECT_EQ(last_usage_sum, 28.0f * 28.0f);  // patch centres at least 2 px from the border
+}
+
+struct BadCase {
+    const char* what;
+    std::function<void(SynthesisInput&, SynthesisOptions&)> mutate;
+    const char* message_part;
+};
+
+TEST(Synthesize, RejectsBadInputWithOneLineMessages) {
+    const std::vector<BadCase> cases = {
+        {"even patch", [](auto&, auto& o) { o.patch_size = 4; }, "patch-size: 4 is invalid"},
+        {"huge patch",
+         [](auto& in, auto& o) {
+             in = identity_input(20, 20);
+             o.patch_size = 31;
+         },
+         "too large"},
+        {"source size", [](auto& in, auto&) { in.guides[0].source = testing::ramp(10, 10); },
+         "source guide is 10x10 but the style is 40x40"},
+        {"target sizes", [](auto& in, auto&) { in.guides[1].target = testing::ramp(30, 30); },
+         "target guide is 30x30"},
+        {"channels", [](auto& in, auto&) { in.guides[1].target = testing::texture(40, 40, 3, 1); },
+         "has 2 channels but the target guide has 3"},
+        {"nan", [](auto& in, auto&) { in.guides[0].target.at(3, 3, 1) = std::nanf(""); }, "NaN"},
+        {"empty mask",
+         [](auto& in, auto&) {
+             in.initial_target = in.style;
+             in.target_mask = Image(40, 40, 1, 0.0f);
+         },
+         "target mask: is empty"},
+        {"mask without init", [](auto& in, auto&) { in.target_mask = Image(40, 40, 1, 1.0f); },
+         "initial target"},
+        {"labels one side", [](auto& in, auto&) { in.source_labels = Image(40, 40, 1); }, "both"},
+        {"missing label",
+         [](auto& in, auto&) {
+             in.source_labels = Image(40, 40, 1, 1.0f);
+             in.target_labels = Image(40, 40, 1, 2.0f);
+         },
+         "label 2 does not occur"},
+        {"levels", [](auto&, auto& o) { o.levels = 12; }, "levels: 12 is too many"},
+        {"negative weight", [](auto& in, auto&) { in.guides[0].weight = -1; }, "weight"},
+    };
+    for (const BadCase& c : cases) {
+        SynthesisInput in = identity_input(40, 40);
+        SynthesisOptions opt;
+        c.mutate(in, opt);
+        auto result = synthesize(in, opt);
+        ASSERT_FALSE(result.ok()) << c.what;
+        EXPECT_EQ(result.status().code(), ErrorCode::InvalidArgument) << c.what;
+        EXPECT_NE(result.status().message().find(c.message_part), std::string::npos)
+            << c.what << ": " << result.status().message();
+        EXPECT_EQ(result.status().message().find('\n'), std::string::npos) << c.what;
+    }
+}
+
+}  // namespace
+}  // namespace exemplar

@@ -1,0 +1,186 @@
+#include "usage.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "level_builder.hpp"
+#include "patchmatch.hpp"
+#include "test_images.hpp"
+
+namespace exemplar::synth {
+namespace {
+
+// Normalized hyperbola with a known knee: y = 1 / (a - b x), a - b = 1 so y(1) = 1; the knee
+// (f' = 1) is at x = (a - sqrt(b)) / b.
+std::vector<float> hyperbola(int n, double a, double b, double scale) {
+    std::vector<float> v(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        const double x = static_cast<double>(i) / (n - 1);
+        v[static_cast<std::size_t>(i)] = static_cast<float>(scale / (a - b * x));
+    }
+    return v;
+}
+
+TEST(KneeFit, FindsKnownKnee) {
+    for (double b : {2.0, 4.0, 9.0, 20.0}) {
+        const double a = 1.0 + b;
+        const double knee = (a - std::sqrt(b)) / b;
+        for (double scale : {1.0, 0.003, 250.0}) {  // errors come in any unit
+            const KneeFit fit = fit_knee(hyperbola(2000, a, b, scale));
+            EXPECT_NEAR(fit.a, a, 1e-3 * a) << "b=" << b;
+            EXPECT_NEAR(fit.b, b, 1e-3 * b);
+            EXPECT_NEAR(fit.knee_x, knee, 1e-3) << "b=" << b << " scale=" << scale;
+            EXPECT_NEAR(static_cast<double>(fit.knee_index) / 1999.0, knee, 2e-3);
+        }
+    }
+}
+
+TEST(KneeFit, NoisyCurveStillCloseAndFlatCurveHasNoKnee) {
+    std::vector<float> v = hyperbola(5000, 5.0, 4.0, 1.0);
+    KeyedRng rng(3, 0);
+    for (float& e : v) e *= 1.0f + 0.05f * (rng.uniform() - 0.5f);
+    std::sort(v.begin(), v.end());
+    EXPECT_NEAR(fit_knee(v).knee_x, 0.75, 0.03);
+
+    const std::vector<float> flat(100, 0.5f);
+    const KneeFit f = fit_knee(flat);
+    EXPECT_EQ(f.knee_index, flat.size());  // nothing erroneous
+}
+
+struct UsageFixture {
+    SynthesisInput in;
+    SynthesisOptions opt;
+    Level L;
+    Nnf nnf;
+};
+
+UsageFixture make(int sw, int sh, int tw, int th, UsageStrategy usage, bool labels) {
+    UsageFixture f;
+    f.in.style = testing::texture(sw, sh, 3, 40);
+    GuidePair g;
+    g.source = testing::texture(sw, sh, 1, 41);
+    g.target = testing::texture(tw, th, 1, 42);
+    f.in.guides.push_back(g);
+    if (labels) {
+        f.in.source_labels = Image(sw, sh, 1);
+        f.in.target_labels = Image(tw, th, 1);
+        for (int y = 0; y < sh; ++y)
+            for (int x = 0; x < sw; ++x) f.in.source_labels.at(x, y, 0) = x < sw / 3 ? 1.f : 2.f;
+        for (int y = 0; y < th; ++y)
+            for (int x = 0; x < tw; ++x) f.in.target_labels.at(x, y, 0) = y < th / 2 ? 1.f : 2.f;
+    }
+    f.opt.usage = usage;
+    LevelBuilder builder(f.in, f.opt, 1, 1);
+    f.L = builder.build(0);
+    set_target_style(f.L, testing::texture(tw, th, 3, 43));
+    f.nnf = Nnf(tw, th);
+    for (Match& m : f.nnf.matches()) m = Match{-1, -1, 0.0f, 0.0f};
+    ForwardProblem all{f.L, f.L.target_active.data()};
+    evaluate_field(all, f.nnf, 1, 1);
+    return f;
+}
+
+void expect_uniform(const UsageFixture& f) {
+    const std::vector<float> usage = usage_counts(f.L, f.nnf);
+    for (std::size_t g = 0; g < f.L.valid_by_group.size(); ++g) {
+        std::size_t targets = 0;
+        for (std::size_t t = 0; t < f.nnf.pixel_count(); ++t) {
+            targets += f.L.target_active[t] && f.L.target_group(t) == static_cast<int>(g) ? 1 : 0;
+        }
+        const std::size_t sources = f.L.valid_by_group[g].size();
+        const float K = static_cast<float>(targets / sources);
+        std::size_t k_plus_one = 0;
+        for (int s : f.L.valid_by_group[g]) {
+            const float u = usage[static_cast<std::size_t>(s)];
+            ASSERT_TRUE(u == K || u == K + 1) << "source " << s << " used " << u << ", K=" << K;
+            k_plus_one += u == K + 1 ? 1 : 0;
+        }
+        EXPECT_EQ(k_plus_one, targets % sources) << "group " << g;
+    }
+    // Every match respects validity and labels.
+    for (std::size_t t = 0; t < f.nnf.pixel_count(); ++t) {
+        if (!f.L.target_active[t]) continue;
+        ASSERT_TRUE(f.L.compatible(t, f.nnf[t].x, f.nnf[t].y));
+    }
+}
+
+TEST(UniformUsage, EverySourcePatchUsedKOrKPlusOneTimes) {
+    // Target larger than the source: K >= 1 with a remainder.
+    UsageFixture f = make(20, 18, 41, 37, UsageStrategy::Uniform, false);
+    const SearchStats stats = search(SearchSetup{f.L, f.opt, 77, 2}, f.nnf);
+    EXPECT_GT(stats.reverse_assigned, stats.forward_assigned);  // mostly the paper's retrieval
+    expect_uniform(f);
+}
+
+TEST(UniformUsage, SmallerTargetUsesEachPatchAtMostOnce) {
+    UsageFixture f = make(40, 40, 20, 22, UsageStrategy::Uniform, false);
+    search(SearchSetup{f.L, f.opt, 5, 1}, f.nnf);
+    expect_uniform(f);  // K = 0, R = |X|
+}
+
+TEST(UniformUsage, PerLabelSegment) {
+    UsageFixture f = make(30, 24, 36, 30, UsageStrategy::Uniform, true);
+    ASSERT_EQ(f.L.valid_by_group.size(), 2u);
+    search(SearchSetup{f.L, f.opt, 8, 2}, f.nnf);
+    expect_uniform(f);
+}
+
+TEST(ErrorBudget, CoversEveryTargetAndPrefersLowErrors) {
+    UsageFixture f = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, false);
+    const SearchStats stats = search(SearchSetup{f.L, f.opt, 3, 2}, f.nnf);
+    EXPECT_GE(stats.rounds, 2);  // the target is larger: patches must be reused
+    EXPECT_GT(stats.reverse_assigned, 0u);
+    const auto active =
+        static_cast<std::size_t>(std::count(f.L.target_active.begin(), f.L.target_active.end(), 1));
+    EXPECT_EQ(stats.reverse_assigned + stats.forward_assigned, active);
+    for (std::size_t t = 0; t < f.nnf.pixel_count(); ++t) {
+        if (!f.L.target_active[t]) continue;
+        const Match& m = f.nnf[t];
+        ASSERT_TRUE(f.L.compatible(t, m.x, m.y));
+        ASSERT_NEAR(m.error,
+                    patch_distance_reference(f.L, static_cast<int>(t % f.L.tw),
+                                             static_cast<int>(t / f.L.tw), m.x, m.y, 0.0f),
+                    1e-4f);
+    }
+    // Coverage by reversed retrieval reaches the configured 95% (or the round limit).
+    const double covered =
+        static_cast<double>(stats.reverse_assigned) / static_cast<double>(active);
+    EXPECT_TRUE(covered >= 0.95 || stats.rounds == f.opt.budget_max_rounds) << covered;
+}
+
+TEST(OccurrencePenalty, ReducesMaximalUsage) {
+    // A flat target makes plain nearest neighbours pile onto a few source patches.
+    auto max_usage = [](UsageStrategy usage, float strength) {
+        UsageFixture f = make(30, 30, 40, 40, usage, false);
+        f.opt.occurrence_strength = strength;
+        Image flat(40, 40, 3, 0.5f);
+        set_target_style(f.L, flat);
+        ForwardProblem all{f.L, f.L.target_active.data()};
+        evaluate_field(all, f.nnf, 1, 1);
+        search(SearchSetup{f.L, f.opt, 4, 1}, f.nnf);
+        const std::vector<float> u = usage_counts(f.L, f.nnf);
+        return *std::max_element(u.begin(), u.end());
+    };
+    const float plain = max_usage(UsageStrategy::None, 0.0f);
+    const float penalized = max_usage(UsageStrategy::OccurrencePenalty, 1.0f);
+    EXPECT_LT(penalized, plain * 0.5f) << "plain " << plain << " penalized " << penalized;
+}
+
+TEST(Usage, StrategiesAreDeterministicAcrossThreadCounts) {
+    for (UsageStrategy s : {UsageStrategy::None, UsageStrategy::Uniform, UsageStrategy::ErrorBudget,
+                            UsageStrategy::OccurrencePenalty}) {
+        UsageFixture a = make(26, 22, 33, 29, s, true);
+        UsageFixture b = make(26, 22, 33, 29, s, true);
+        search(SearchSetup{a.L, a.opt, 12, 1}, a.nnf);
+        search(SearchSetup{b.L, b.opt, 12, 2}, b.nnf);
+        for (std::size_t i = 0; i < a.nnf.pixel_count(); ++i) {
+            ASSERT_EQ(a.nnf[i].x, b.nnf[i].x) << to_string(s);
+            ASSERT_EQ(a.nnf[i].y, b.nnf[i].y) << to_string(s);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace exemplar::synth
