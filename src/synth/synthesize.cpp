@@ -355,10 +355,12 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             set_target_style(L, current);
         }
 
+        Nnf reverse_field;  // reversed-retrieval state, kept warm between EM iterations
         for (int it = 0; it < options.em_iterations; ++it) {
             if (context.cancelled()) return cancelled();
             const synth::SearchSetup setup{
-                L, options, hash_keys(level_key, 0x100 + static_cast<std::uint64_t>(it)), threads};
+                L, options, hash_keys(level_key, 0x100 + static_cast<std::uint64_t>(it)), threads,
+                &reverse_field};
             synth::search(setup, nnf);
             synth::vote(nnf, L.source_style, vp, current, threads);
             set_target_style(L, current);

@@ -14,8 +14,8 @@ namespace exemplar::synth {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// Reversed rounds after the first start from the previous round's field, so fewer PatchMatch
-// iterations suffice (the paper does not say how many it used).
+// Reversed rounds that start from a previous round's (or EM iteration's) field need fewer
+// PatchMatch iterations than a cold start (the paper does not say how many it used).
 constexpr int kLaterRoundIterations = 2;
 // Uniform usage: rounds of reversed retrieval before the remaining targets are assigned by a
 // capacity-limited forward search (guarantees termination; see docs/algorithms.md).
@@ -36,7 +36,11 @@ bool candidate_less(const Candidate& a, const Candidate& b) {
 // Reversed-retrieval state shared by the uniform and error-budget strategies.
 class ReverseRetrieval {
 public:
-    ReverseRetrieval(const SearchSetup& setup, Nnf& nnf) : s_(setup), L_(setup.level), nnf_(nnf) {
+    ReverseRetrieval(const SearchSetup& setup, Nnf& nnf)
+        : s_(setup),
+          L_(setup.level),
+          nnf_(nnf),
+          reverse_(setup.reverse_field != nullptr ? *setup.reverse_field : own_reverse_) {
         const std::size_t n_t = static_cast<std::size_t>(L_.tw) * L_.th;
         free_.assign(n_t, 0);
         for (std::size_t t = 0; t < n_t; ++t) {
@@ -47,8 +51,11 @@ public:
         }
         active_count_ = free_count_;
         query_.assign(static_cast<std::size_t>(L_.sw) * L_.sh, 0);
-        reverse_ = Nnf(L_.sw, L_.sh);
-        for (Match& m : reverse_.matches()) m = Match{-1, -1, 0.0f, kInf};
+        warm_ = reverse_.width() == L_.sw && reverse_.height() == L_.sh;
+        if (!warm_) {
+            reverse_ = Nnf(L_.sw, L_.sh);
+            for (Match& m : reverse_.matches()) m = Match{-1, -1, 0.0f, kInf};
+        }
         rebuild_free_lists();
     }
 
@@ -60,12 +67,13 @@ public:
 
     // One reversed retrieval over the sources in query_mask(); returns collision-free
     // candidates (one per target, the smallest error), sorted by error.
-    std::vector<Candidate> retrieve(int round, std::vector<Candidate>* all = nullptr) {
+    std::vector<Candidate> retrieve(int round) {
         ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_};
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
         evaluate_field(problem, reverse_, key, s_.threads);
+        const bool cold = round == 0 && !warm_;
         run_patchmatch(problem, reverse_,
-                       round == 0 ? s_.options.search_iterations : kLaterRoundIterations,
+                       cold ? s_.options.search_iterations : kLaterRoundIterations,
                        hash_keys(key, 1), s_.threads);
         std::vector<Candidate> best_per_target(free_.size(), Candidate{kInf, -1, -1, 0.0f});
         for (std::size_t si = 0; si < query_.size(); ++si) {
@@ -74,7 +82,6 @@ public:
             if (!(m.error < kInf)) continue;
             const int t = static_cast<int>(L_.target_index(m.x, m.y));
             const Candidate c{m.error, static_cast<int>(si), t, -m.angle_rad};
-            if (all != nullptr) all->push_back(c);
             if (candidate_less(c, best_per_target[static_cast<std::size_t>(t)])) {
                 best_per_target[static_cast<std::size_t>(t)] = c;
             }
@@ -144,7 +151,9 @@ private:
     std::vector<std::vector<int>> free_by_group_;
     std::size_t free_count_ = 0;
     std::size_t active_count_ = 0;
-    Nnf reverse_;
+    Nnf own_reverse_;  // used when the caller keeps no field between iterations
+    Nnf& reverse_;
+    bool warm_ = false;
 };
 
 SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {

@@ -39,6 +39,10 @@ struct SearchSetup {
     const SynthesisOptions& options;
     std::uint64_t key;  ///< Hash of (seed, level, iteration); randomness derives from it.
     int threads;
+    /// Optional reversed field kept between the EM iterations of a level (uniform and
+    /// error-budget strategies): a warm start lets the first reversed round run as few
+    /// PatchMatch iterations as the later rounds.
+    Nnf* reverse_field = nullptr;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`
