@@ -108,12 +108,12 @@ LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& opt
     // The finest level of every image is exactly the input (no resampling round-off).
 }
 
-Level LevelBuilder::build(int index) const {
+Level LevelBuilder::build(int index, int patch_size) const {
     const std::size_t d = static_cast<std::size_t>(depth(index));
     Level L;
     L.index = index;
-    L.patch_size = options_.patch_size;
-    L.radius = options_.patch_size / 2;
+    L.patch_size = patch_size > 0 ? patch_size : options_.patch_size;
+    L.radius = L.patch_size / 2;
     const Image& style = style_[d];
     L.sw = style.width();
     L.sh = style.height();

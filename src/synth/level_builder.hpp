@@ -28,8 +28,8 @@ public:
     int target_height() const { return th_; }
 
     /// Everything of level `index` except the style part of target_features (set it with
-    /// set_target_style once B' is known).
-    Level build(int index) const;
+    /// set_target_style once B' is known), for patches of `patch_size` (default: the options').
+    Level build(int index, int patch_size = 0) const;
 
 private:
     int depth(int index) const { return levels_ - 1 - index; }

@@ -47,7 +47,8 @@ Result<Nnf> nnf_from_image(const Image& image) {
     return nnf;
 }
 
-Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, int threads) {
+Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, VoteMode mode,
+                        int threads) {
     if (patch_size < 1 || patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(patch_size) +
                                 " is invalid (must be odd and positive)");
@@ -66,6 +67,11 @@ Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, int
     synth::VoteParams params;
     params.patch_size = patch_size;
     params.clamp_source = true;
+    std::vector<float> weights;
+    if (mode == VoteMode::Weighted) {
+        weights = synth::error_weights(nnf, nullptr);
+        params.patch_weights = weights;
+    }
     synth::vote(nnf, source, params, out, threads);
     return out;
 }

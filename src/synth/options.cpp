@@ -16,6 +16,24 @@ std::string_view to_string(UsageStrategy strategy) {
     return "?";
 }
 
+std::string_view to_string(VoteMode mode) {
+    switch (mode) {
+        case VoteMode::Average: return "average";
+        case VoteMode::Weighted: return "weighted";
+    }
+    return "?";
+}
+
+Result<VoteMode> parse_vote_mode(std::string_view name) {
+    for (auto m : {VoteMode::Average, VoteMode::Weighted}) {
+        if (name == to_string(m)) return m;
+    }
+    std::string message = "vote: '";
+    message.append(name);
+    message.append("' is invalid (must be one of average, weighted)");
+    return invalid_argument(std::move(message));
+}
+
 Result<UsageStrategy> parse_usage_strategy(std::string_view name) {
     for (auto s : {UsageStrategy::None, UsageStrategy::Uniform, UsageStrategy::ErrorBudget,
                    UsageStrategy::OccurrencePenalty}) {
@@ -31,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 12> kSpecs{{
+const std::array<OptionSpec, 13> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -42,6 +60,9 @@ const std::array<OptionSpec, 12> kSpecs{{
      &O::em_iterations},
     {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
      "iterations", 1, 100, &O::search_iterations},
+    {"final-pass-iterations",
+     "EM iterations with 3x3 patches after the finest level; restores fine grain. 0 = off.",
+     "iterations", 0, 100, &O::final_pass_iterations},
     {"style-weight", "Weight of the style term (B' vs A') relative to the guides.", "", 0, 1e6,
      &O::style_weight},
     {"falloff-sigma", "Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal.",

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "exemplar/core/rng.hpp"
+#include "exemplar/filters/resample.hpp"
 #include "level_builder.hpp"
 #include "patchmatch.hpp"
 #include "usage.hpp"
@@ -99,12 +100,72 @@ Nnf upsample_nnf(const Nnf& coarse, int coarse_sw, int coarse_sh, const synth::L
     return out;
 }
 
-// A uniformly random valid NNF (matches are drawn per pixel from its label group).
-Nnf random_nnf(const synth::Level& L, std::uint64_t key) {
-    Nnf out(L.tw, L.th);
-    for (std::size_t i = 0; i < out.pixel_count(); ++i) out[i] = Match{-1, -1, 0.0f, 0.0f};
-    (void)key;
-    return out;  // evaluate_field replaces every invalid entry with a random valid one
+// An NNF with no valid entry: evaluate_field replaces each with a random valid match.
+Nnf unassigned_nnf(int width, int height) {
+    Nnf out(width, height);
+    for (Match& m : out.matches()) m = Match{-1, -1, 0.0f, 0.0f};
+    return out;
+}
+
+// Vote parameters of a level; `weights` receives the weighted vote's weights if needed.
+synth::VoteParams vote_params(const synth::Level& L, VoteMode mode, const Nnf& nnf,
+                              std::vector<float>* weights) {
+    synth::VoteParams vp;
+    vp.patch_size = L.patch_size;
+    vp.active = L.target_active.data();
+    vp.fixed = L.target_fixed.empty() ? nullptr : L.target_fixed.data();
+    if (mode == VoteMode::Weighted && weights != nullptr) {
+        *weights = synth::error_weights(nnf, vp.active);
+        vp.patch_weights = *weights;
+    }
+    return vp;
+}
+
+// Progress over the whole run; work units are target pixels x EM iterations x patch area.
+struct ProgressTracker {
+    const RunContext& context;
+    int levels;
+    double total_work;
+    double done_work = 0.0;
+    bool cancelled = false;
+
+    void step(int level, int iteration, int iterations, double work) {
+        done_work += work;
+        context.report(ProgressEvent{"synthesis", level, levels, iteration, iterations,
+                                     std::min(1.0, done_work / total_work)});
+    }
+};
+
+// EM iterations on one level: search with the usage strategy, then vote.
+void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
+            int threads, Nnf& nnf, Image& current, ProgressTracker& tracker,
+            const DebugSink& debug) {
+    synth::ForwardProblem all{L, L.target_active.data()};
+    evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
+    const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
+                        (options.patch_size * options.patch_size);
+    Nnf reverse_field;  // reversed-retrieval state, kept warm between EM iterations
+    std::vector<float> weights;
+    for (int it = 0; it < iterations; ++it) {
+        if (tracker.context.cancelled()) {
+            tracker.cancelled = true;
+            return;
+        }
+        const synth::SearchSetup setup{L, options,
+                                       hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
+                                       threads, &reverse_field};
+        synth::search(setup, nnf);
+        synth::vote(nnf, L.source_style, vote_params(L, options.vote, nnf, &weights), current,
+                    threads);
+        set_target_style(L, current);
+        tracker.step(L.index, it, iterations, work);
+        if (debug) {
+            const std::vector<float> counts = synth::usage_counts(L, nnf);
+            Image usage(L.sw, L.sh, 1);
+            std::copy(counts.begin(), counts.end(), usage.data().begin());
+            debug(DebugFrame{L.index, it, &nnf, &usage, &current});
+        }
+    }
 }
 
 }  // namespace
@@ -294,15 +355,18 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                   synth::max_levels(min_side, options.patch_size, options.pyramid_ratio, rotated));
     synth::LevelBuilder builder(in, options, levels, threads);
 
-    // Progress is proportional to target pixels x EM iterations per level.
-    std::vector<double> work(static_cast<std::size_t>(levels));
+    // Progress is proportional to target pixels x EM iterations (x patch area, final pass).
     double total_work = 0.0;
     for (int l = 0; l < levels; ++l) {
-        const double scale = std::pow(options.pyramid_ratio, 2.0 * (levels - 1 - l));
-        work[static_cast<std::size_t>(l)] = scale * tw * th * options.em_iterations;
-        total_work += work[static_cast<std::size_t>(l)];
+        const int depth = levels - 1 - l;
+        total_work += static_cast<double>(pyramid_level_size(tw, options.pyramid_ratio, depth)) *
+                      pyramid_level_size(th, options.pyramid_ratio, depth) * options.em_iterations;
     }
-    double done_work = 0.0;
+    if (options.final_pass_iterations > 0 && options.patch_size > 3) {
+        total_work += static_cast<double>(tw) * th * options.final_pass_iterations * 9.0 /
+                      (options.patch_size * options.patch_size);
+    }
+    ProgressTracker tracker{context, levels, total_work};
 
     Nnf nnf;
     Image current;  // B' at the current level
@@ -333,7 +397,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                     }
                 }
             } else {
-                nnf = random_nnf(L, level_key);
+                nnf = unassigned_nnf(L.tw, L.th);
             }
         } else {
             nnf = upsample_nnf(nnf, prev_sw, prev_sh, L);
@@ -343,42 +407,31 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         // the vote of the initial NNF. Fixed pixels always hold the initial target.
         current = L.fixed_style.empty() ? Image(L.tw, L.th, L.style_channels) : L.fixed_style;
         current.set_channel_names(in.style.channel_names());
-        synth::VoteParams vp;
-        vp.patch_size = L.patch_size;
-        vp.active = L.target_active.data();
-        vp.fixed = L.target_fixed.empty() ? nullptr : L.target_fixed.data();
         set_target_style(L, current);
         evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
         const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
         if (!keep_initial) {
-            synth::vote(nnf, L.source_style, vp, current, threads);
+            synth::vote(nnf, L.source_style, vote_params(L, VoteMode::Average, nnf, {}), current,
+                        threads);
             set_target_style(L, current);
         }
 
-        Nnf reverse_field;  // reversed-retrieval state, kept warm between EM iterations
-        for (int it = 0; it < options.em_iterations; ++it) {
-            if (context.cancelled()) return cancelled();
-            const synth::SearchSetup setup{
-                L, options, hash_keys(level_key, 0x100 + static_cast<std::uint64_t>(it)), threads,
-                &reverse_field};
-            synth::search(setup, nnf);
-            synth::vote(nnf, L.source_style, vp, current, threads);
-            set_target_style(L, current);
-
-            done_work += work[static_cast<std::size_t>(l)] / options.em_iterations;
-            context.report(ProgressEvent{"synthesis", l, levels, it, options.em_iterations,
-                                         done_work / total_work});
-            if (debug) {
-                const std::vector<float> counts = synth::usage_counts(L, nnf);
-                Image usage(L.sw, L.sh, 1);
-                std::copy(counts.begin(), counts.end(), usage.data().begin());
-                debug(DebugFrame{l, it, &nnf, &usage, &current});
-            }
-        }
+        run_em(L, options, options.em_iterations, level_key, threads, nnf, current, tracker, debug);
+        if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
 
         if (l == levels - 1) {
+            // Optional final iterations with 3x3 patches restore the finest grain.
+            if (options.final_pass_iterations > 0 && options.patch_size > 3) {
+                synth::Level fine = builder.build(l, 3);
+                set_target_style(fine, current);
+                run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
+                       threads, nnf, current, tracker, debug);
+                if (tracker.cancelled) return cancelled();
+                L = std::move(fine);
+            }
+            result.nnf_patch_size = L.patch_size;
             // Final errors are the true distances of the final NNF against the final B'.
             result.error = Image(L.tw, L.th, 1, 0.0f);
             result.error.set_channel_names({"error"});
@@ -390,8 +443,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                         m = Match{-1, -1, 0.0f, 0.0f};
                         continue;
                     }
-                    m.error = synth::patch_distance(L, x, y, m.x, m.y, m.angle_rad);
-                    result.error.data()[i] = m.error;
+                    result.error.data()[i] = synth::patch_distance(L, x, y, m.x, m.y, m.angle_rad);
                 }
             });
         }

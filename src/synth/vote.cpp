@@ -10,6 +10,29 @@
 
 namespace exemplar::synth {
 
+// Relative error at which a patch's weight has halved from its maximum: small values let good
+// matches dominate the average (ebsynth's 1/(1+E) on 0..255 SSD behaves like ~0.001); 0.01 keeps
+// the stroke texture of the stylit and texbynum examples (docs/algorithms.md).
+constexpr double kWeightedVoteEpsilon = 0.01;
+
+std::vector<float> error_weights(const Nnf& nnf, const std::uint8_t* active) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < nnf.pixel_count(); ++i) {
+        if ((active != nullptr && !active[i]) || nnf[i].x < 0) continue;
+        sum += nnf[i].error;
+        ++n;
+    }
+    const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
+    std::vector<float> weights(nnf.pixel_count(), 1.0f);
+    if (mean > 0.0) {
+        for (std::size_t i = 0; i < weights.size(); ++i) {
+            weights[i] = static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[i].error / mean));
+        }
+    }
+    return weights;
+}
+
 void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads) {
     EXEMPLAR_CHECK_EQ(out.width(), nnf.width());
     EXEMPLAR_CHECK_EQ(out.height(), nnf.height());

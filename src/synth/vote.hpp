@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "exemplar/core/image.hpp"
 #include "exemplar/synth/nnf.hpp"
@@ -20,6 +21,10 @@ struct VoteParams {
     /// Clamp source reads to the source bounds (needed when the NNF comes from elsewhere).
     bool clamp_source = false;
 };
+
+/// Weights of VoteMode::Weighted: 1 / (0.01 + e / ē) per NNF entry, e its error and ē the mean
+/// error over the entries that vote (`active`, nullptr = all entries with a match).
+std::vector<float> error_weights(const Nnf& nnf, const std::uint8_t* active);
 
 /// Writes the vote into `out`, which must already have the NNF's size and the source's channel
 /// count. Pixels that receive no vote (or are fixed) keep their value.

@@ -108,13 +108,15 @@ TEST(Synthesize, SourceMaskExcludesOutsidePixels) {
         opt.usage = usage;
         auto result = synthesize(in, opt, RunContext{2});
         ASSERT_TRUE(result.ok()) << result.status().message();
-        for (float v : extract_channels(result->image, 0, 1).data()) {
+        const Image red = extract_channels(result->image, 0, 1);
+        for (float v : red.data()) {
             ASSERT_LT(v, 1.5f) << to_string(usage);
         }
         for (const Match& m : result->nnf.matches()) {
             if (m.x < 0) continue;
-            for (int dy = -2; dy <= 2; ++dy)
-                for (int dx = -2; dx <= 2; ++dx)
+            const int r = result->nnf_patch_size / 2;
+            for (int dy = -r; dy <= r; ++dy)
+                for (int dx = -r; dx <= r; ++dx)
                     ASSERT_GT(in.source_mask.at(m.x + dx, m.y + dy, 0), 0.5f);
         }
     }
@@ -197,7 +199,8 @@ TEST(Synthesize, NnfReappliesToTheStyle) {
     SynthesisOptions opt;
     auto result = synthesize(in, opt, RunContext{2});
     ASSERT_TRUE(result.ok());
-    auto again = apply_nnf(result->nnf, in.style, opt.patch_size, 2);
+    EXPECT_EQ(result->nnf_patch_size, 3);  // the final 3x3 pass is on by default
+    auto again = apply_nnf(result->nnf, in.style, result->nnf_patch_size, VoteMode::Weighted, 2);
     ASSERT_TRUE(again.ok());
     EXPECT_TRUE(
         std::equal(again->data().begin(), again->data().end(), result->image.data().begin()));
@@ -258,8 +261,9 @@ TEST(Synthesize, DebugSinkReceivesUsageMaps) {
         EXPECT_EQ(f.nnf->width(), f.current->width());
     };
     ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
-    EXPECT_EQ(frames, 2 * opt.em_iterations);
-    EXPECT_EQ(last_usage_sum, 28.0f * 28.0f);  // patch centres at least 2 px from the border
+    EXPECT_EQ(frames, 2 * opt.em_iterations + opt.final_pass_iterations);
+    // The last frame is the final 3x3 pass: patch centres at least 1 px from the border.
+    EXPECT_EQ(last_usage_sum, 30.0f * 30.0f);
 }
 
 struct BadCase {

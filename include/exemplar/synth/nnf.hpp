@@ -8,6 +8,7 @@
 
 #include "exemplar/core/image.hpp"
 #include "exemplar/core/status.hpp"
+#include "exemplar/synth/options.hpp"
 
 namespace exemplar {
 
@@ -18,7 +19,9 @@ struct Match {
     std::int32_t x = 0;      ///< Source patch centre, x.
     std::int32_t y = 0;      ///< Source patch centre, y.
     float angle_rad = 0.0f;  ///< Rotation from target to source patch coordinates.
-    float error = 0.0f;      ///< Patch distance (weighted SSD) of this assignment.
+    /// Patch distance (weighted SSD) of this assignment as found by the last search; the
+    /// weighted vote derives its weights from it.
+    float error = 0.0f;
 };
 
 /// A field of matches, one per target pixel, row-major.
@@ -55,9 +58,12 @@ Image nnf_to_image(const Nnf& nnf);
 Result<Nnf> nnf_from_image(const Image& image);
 
 /// Re-applies an NNF to another source image (e.g. a 16-bit or extra-channel version of the
-/// style): every target pixel becomes the average of the overlapping `patch_size` patches, each
-/// read from `source` at its match (rotated, nearest sample). Pixels of the source beyond its
-/// border are clamped. `source` must be at least as large as every match position.
-Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, int threads = 0);
+/// style): every target pixel becomes the (weighted) average of the overlapping `patch_size`
+/// patches, each read from `source` at its match (rotated, nearest sample), exactly as the
+/// synthesis voted (use SynthesisResult::nnf_patch_size and the run's vote mode; the weights
+/// come from the stored errors). Source reads beyond its border are clamped; every match must
+/// lie inside `source`.
+Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size,
+                        VoteMode vote = VoteMode::Weighted, int threads = 0);
 
 }  // namespace exemplar

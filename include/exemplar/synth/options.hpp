@@ -27,6 +27,21 @@ enum class UsageStrategy {
     OccurrencePenalty,
 };
 
+/// How overlapping patches are combined into a pixel (the M-step).
+enum class VoteMode {
+    /// Plain average (Wexler et al. 2007; StyLit).
+    Average,
+    /// Average weighted by 1 / (0.01 + e / ē), e the patch's distance and ē the mean distance
+    /// of the iteration: good matches dominate, which keeps strokes sharp (like ebsynth's
+    /// weighted vote, but independent of the value range).
+    Weighted,
+};
+
+/// "average", "weighted".
+std::string_view to_string(VoteMode mode);
+/// Parses the names of to_string; error names the accepted values.
+Result<VoteMode> parse_vote_mode(std::string_view name);
+
 /// "none", "uniform", "error-budget", "occurrence".
 std::string_view to_string(UsageStrategy strategy);
 /// Parses the names of to_string; error names the accepted values.
@@ -43,6 +58,10 @@ struct SynthesisOptions {
     float style_weight = 1.0f;   ///< Weight of the style (A'/B') term relative to guides.
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
+    VoteMode vote = VoteMode::Weighted;
+    /// Extra EM iterations with 3x3 patches after the finest level; they restore fine grain that
+    /// averaging 5x5 patches blurs (ebsynth's "extrapass3x3"). 0 = off.
+    int final_pass_iterations = 2;
     /// Error budget: stop reversed retrieval once this fraction of target patches is covered;
     /// the rest use forward nearest neighbours (StyLit: ~95%).
     float budget_coverage = 0.95f;

@@ -61,7 +61,12 @@ using DebugSink = std::function<void(const DebugFrame&)>;
 struct SynthesisResult {
     Image image;  ///< B', same channels as the style, target size.
     Nnf nnf;      ///< Final NNF (target grid).
-    Image error;  ///< Per-pixel patch distance of the final NNF (1 channel).
+    /// Patch size the final NNF was computed with (3 after a final 3x3 pass); use it with
+    /// apply_nnf.
+    int nnf_patch_size = 0;
+    /// Per-pixel patch distance of the final NNF against the final image (1 channel; 0 where
+    /// the pixel is not a patch centre).
+    Image error;
 };
 
 /// Checks inputs (sizes, channel counts, masks, finite values) and options; returns the first
