@@ -7,6 +7,7 @@
 #include "level_builder.hpp"
 #include "patch_distance.hpp"
 #include "patchmatch.hpp"
+#include "ssd.hpp"
 #include "test_images.hpp"
 #include "vote.hpp"
 
@@ -54,6 +55,8 @@ void BM_PatchDistanceReference(benchmark::State& state) {
 BENCHMARK(BM_PatchDistanceReference);
 
 void BM_PatchDistanceFast(benchmark::State& state) {
+    set_simd_enabled(state.range(0) != 0);
+    state.SetLabel(state.range(0) != 0 ? simd_target_name() : "scalar");
     const Level& L = setup(128).L;
     int i = 0;
     for (auto _ : state) {
@@ -61,9 +64,10 @@ void BM_PatchDistanceFast(benchmark::State& state) {
         ++i;
     }
 }
-BENCHMARK(BM_PatchDistanceFast);
+BENCHMARK(BM_PatchDistanceFast)->Arg(0)->Arg(1);
 
 void BM_PatchMatchIteration(benchmark::State& state) {
+    set_simd_enabled(true);
     Setup& s = setup(256);
     ForwardProblem all{s.L, s.L.target_active.data()};
     for (auto _ : state) {

@@ -2,28 +2,11 @@
 
 #include <algorithm>
 
+#include "ssd.hpp"
+
 namespace exemplar::synth {
 
 namespace {
-
-// Sum of squared differences of n contiguous floats, in eight independent lanes so the compiler
-// can vectorize it without reassociating a single accumulator.
-inline float ssd_span(const float* a, const float* b, int n) {
-    float acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    int i = 0;
-    for (; i + 8 <= n; i += 8) {
-        for (int k = 0; k < 8; ++k) {
-            const float d = a[i + k] - b[i + k];
-            acc[k] += d * d;
-        }
-    }
-    float tail = 0.0f;
-    for (; i < n; ++i) {
-        const float d = a[i] - b[i];
-        tail += d * d;
-    }
-    return ((acc[0] + acc[4]) + (acc[1] + acc[5])) + ((acc[2] + acc[6]) + (acc[3] + acc[7])) + tail;
-}
 
 // General path: clamped target coordinates, rotation, weight maps and fall-off.
 template <bool kEarlyExit>
@@ -81,14 +64,8 @@ float patch_distance(const Level& L, int tx, int ty, int sx, int sy, float angle
     const int n = L.patch_size * F;
     const std::size_t t_stride = static_cast<std::size_t>(L.tw) * static_cast<std::size_t>(F);
     const std::size_t s_stride = static_cast<std::size_t>(L.sw) * static_cast<std::size_t>(F);
-    const float* t = L.target_features.pixel(tx - r, ty - r);
-    const float* s = L.source_features.pixel(sx - r, sy - r);
-    float sum = 0.0f;
-    for (int row = 0; row < L.patch_size; ++row, t += t_stride, s += s_stride) {
-        sum += ssd_span(t, s, n);
-        if (sum > bound) return sum;
-    }
-    return sum;
+    return ssd_rows(L.target_features.pixel(tx - r, ty - r), t_stride,
+                    L.source_features.pixel(sx - r, sy - r), s_stride, L.patch_size, n, bound);
 }
 
 }  // namespace exemplar::synth

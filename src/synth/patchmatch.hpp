@@ -25,6 +25,12 @@ namespace exemplar::synth {
 
 inline constexpr int kBandRows = 8;
 
+/// Offset of a one-pixel step (dx, dy) in a neighbour's match rotated by its angle.
+inline RotatedOffset rotated_step(float angle_rad, int dx, int dy) {
+    if (angle_rad == 0.0f) return {dx, dy};
+    return rotate_offset(dx, dy, std::cos(angle_rad), std::sin(angle_rad));
+}
+
 /// Evaluates the cost of every active entry (entries whose position is no longer valid are
 /// replaced by a random valid one). Call after the problem's costs changed.
 template <class Problem>
@@ -90,8 +96,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         const std::size_t ni = static_cast<std::size_t>(y) * w + nx;
                         if (P.query_active(ni)) {
                             const Match& m = field[ni];
-                            const RotatedOffset o = rotate_offset(step, 0, std::cos(m.angle_rad),
-                                                                  std::sin(m.angle_rad));
+                            const RotatedOffset o = rotated_step(m.angle_rad, step, 0);
                             try_candidate(m.x + o.dx, m.y + o.dy);
                         }
                     }
@@ -100,8 +105,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         if (P.query_active(ni)) {
                             const bool same_band = ny >= y0 && ny < y1;
                             const Match& m = same_band ? field[ni] : snapshot[ni];
-                            const RotatedOffset o = rotate_offset(0, step, std::cos(m.angle_rad),
-                                                                  std::sin(m.angle_rad));
+                            const RotatedOffset o = rotated_step(m.angle_rad, 0, step);
                             try_candidate(m.x + o.dx, m.y + o.dy);
                         }
                     }

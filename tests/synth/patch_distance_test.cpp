@@ -97,3 +97,76 @@ TEST(PatchDistance, EarlyTerminationExceedsBound) {
 
 }  // namespace
 }  // namespace exemplar::synth
+
+#include "ssd.hpp"
+
+namespace exemplar::synth {
+namespace {
+
+TEST(SsdRows, SimdMatchesScalarForEveryLength) {
+    std::vector<float> a(4096), b(4096);
+    KeyedRng rng(5, 0);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        a[i] = rng.uniform();
+        b[i] = rng.uniform();
+    }
+    for (int n = 1; n <= 130; ++n) {
+        for (int rows : {1, 3, 5}) {
+            const float scalar = ssd_rows_scalar(a.data(), 300, b.data() + 7, 301, rows, n, 1e30f);
+            const float simd = ssd_rows(a.data(), 300, b.data() + 7, 301, rows, n, 1e30f);
+            ASSERT_NEAR(simd, scalar, 1e-5f * scalar) << "n=" << n << " rows=" << rows;
+        }
+    }
+    // Early termination: the result exceeds the bound, and is a partial sum.
+    const float full = ssd_rows(a.data(), 100, b.data(), 100, 5, 100, 1e30f);
+    const float cut = ssd_rows(a.data(), 100, b.data(), 100, 5, 100, full * 0.3f);
+    EXPECT_GT(cut, full * 0.3f);
+    EXPECT_LT(cut, full);
+    EXPECT_NE(std::string(simd_target_name()), "");
+}
+
+TEST(SsdRows, ScalarSwitchGivesTheSameDistances) {
+    const Level L = make_level(5, false, 0.0f, false);
+    ASSERT_TRUE(simd_enabled());
+    for (int ty = 2; ty < L.th - 2; ty += 3) {
+        const float simd = patch_distance(L, 10, ty, 9, 12, 0.0f);
+        set_simd_enabled(false);
+        const float scalar = patch_distance(L, 10, ty, 9, 12, 0.0f);
+        set_simd_enabled(true);
+        EXPECT_NEAR(simd, scalar, 1e-5f * (1.0f + scalar));
+    }
+}
+
+}  // namespace
+}  // namespace exemplar::synth
+
+#include <hwy/targets.h>
+
+namespace exemplar::synth {
+namespace {
+
+TEST(SsdRows, EverySupportedSimdTargetMatchesScalar) {
+    std::vector<float> a(2048), b(2048);
+    KeyedRng rng(9, 0);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        a[i] = rng.uniform();
+        b[i] = rng.uniform();
+    }
+    int tested = 0;
+    for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
+         targets &= targets - 1) {
+        const int64_t target = targets & -targets;
+        hwy::SetSupportedTargetsForTest(target);
+        for (int n : {3, 15, 25, 75, 97}) {
+            const float scalar = ssd_rows_scalar(a.data(), 200, b.data(), 200, 5, n, 1e30f);
+            EXPECT_NEAR(ssd_rows(a.data(), 200, b.data(), 200, 5, n, 1e30f), scalar, 1e-5f * scalar)
+                << hwy::TargetName(target) << " n=" << n;
+        }
+        ++tested;
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    EXPECT_GE(tested, 1);
+}
+
+}  // namespace
+}  // namespace exemplar::synth
