@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 13> kSpecs{{
+const std::array<OptionSpec, 14> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -60,6 +60,10 @@ const std::array<OptionSpec, 13> kSpecs{{
      &O::em_iterations},
     {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
      "iterations", 1, 100, &O::search_iterations},
+    {"warm-search-iterations",
+     "PatchMatch iterations when the search starts from the previous EM iteration's field "
+     "(StyLit: 6; fewer is faster but keeps less of the exemplar's fine texture).",
+     "iterations", 1, 100, &O::warm_search_iterations},
     {"final-pass-iterations",
      "EM iterations with 3x3 patches after the finest level; restores fine grain. 0 = off.",
      "iterations", 0, 100, &O::final_pass_iterations},

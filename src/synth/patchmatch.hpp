@@ -32,9 +32,11 @@ inline RotatedOffset rotated_step(float angle_rad, int dx, int dy) {
 }
 
 /// Evaluates the cost of every active entry (entries whose position is no longer valid are
-/// replaced by a random valid one). Call after the problem's costs changed.
+/// replaced by a random valid one). Call after the problem's costs changed. With
+/// `only_invalid`, valid entries keep their stored cost (for when only validity changed).
 template <class Problem>
-void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads) {
+void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads,
+                    bool only_invalid = false) {
     parallel_for(0, field.height(), threads, [&](int y) {
         for (int x = 0; x < field.width(); ++x) {
             const std::size_t qi = static_cast<std::size_t>(y) * field.width() + x;
@@ -42,7 +44,11 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
             Match& m = field[qi];
             const bool in_bounds =
                 m.x >= 0 && m.y >= 0 && m.x < P.db_width() && m.y < P.db_height();
-            if (!in_bounds || !P.db_ok(qi, m.x, m.y)) {
+            const bool valid = in_bounds && P.db_ok(qi, m.x, m.y);
+            if (valid && only_invalid && m.error < std::numeric_limits<float>::infinity()) {
+                continue;
+            }
+            if (!valid) {
                 KeyedRng rng(key, qi);
                 int dx = 0, dy = 0;
                 if (!P.random_db(qi, rng, dx, dy)) {

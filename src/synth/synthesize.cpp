@@ -151,9 +151,9 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
             tracker.cancelled = true;
             return;
         }
-        const synth::SearchSetup setup{L, options,
-                                       hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
-                                       threads, &reverse_field};
+        const synth::SearchSetup setup{
+            L,       options,        hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
+            threads, &reverse_field, it > 0};
         synth::search(setup, nnf);
         synth::vote(nnf, L.source_style, vote_params(L, options.vote, nnf, &weights), current,
                     threads);

@@ -14,12 +14,13 @@ namespace exemplar::synth {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-// Reversed rounds that start from a previous round's (or EM iteration's) field need fewer
-// PatchMatch iterations than a cold start (the paper does not say how many it used).
-constexpr int kLaterRoundIterations = 2;
 // Uniform usage: rounds of reversed retrieval before the remaining targets are assigned by a
 // capacity-limited forward search (guarantees termination; see docs/algorithms.md).
 constexpr int kUniformMaxReverseRounds = 64;
+
+int search_iterations(const SearchSetup& setup) {
+    return setup.warm ? setup.options.warm_search_iterations : setup.options.search_iterations;
+}
 
 struct Candidate {
     float error;
@@ -70,10 +71,12 @@ public:
     std::vector<Candidate> retrieve(int round) {
         ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_};
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
-        evaluate_field(problem, reverse_, key, s_.threads);
+        // Target features do not change between the rounds of one search, so after the first
+        // round only entries whose target was taken need a new (random free) target.
+        evaluate_field(problem, reverse_, key, s_.threads, /*only_invalid=*/round > 0);
         const bool cold = round == 0 && !warm_;
         run_patchmatch(problem, reverse_,
-                       cold ? s_.options.search_iterations : kLaterRoundIterations,
+                       cold ? s_.options.search_iterations : s_.options.warm_search_iterations,
                        hash_keys(key, 1), s_.threads);
         std::vector<Candidate> best_per_target(free_.size(), Candidate{kInf, -1, -1, 0.0f});
         for (std::size_t si = 0; si < query_.size(); ++si) {
@@ -129,7 +132,7 @@ public:
         }
         const std::uint64_t key = hash_keys(s_.key, 0xF0F0, static_cast<std::uint64_t>(pass));
         evaluate_field(problem, nnf_, key, s_.threads);
-        run_patchmatch(problem, nnf_, s_.options.search_iterations, hash_keys(key, 1), s_.threads);
+        run_patchmatch(problem, nnf_, search_iterations(s_), hash_keys(key, 1), s_.threads);
         std::vector<Candidate> out;
         for (std::size_t t = 0; t < free_.size(); ++t) {
             if (!free_[t]) continue;
@@ -159,7 +162,7 @@ private:
 SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
     ForwardProblem problem{setup.level, setup.level.target_active.data(), nullptr, nullptr};
     evaluate_field(problem, nnf, hash_keys(setup.key, 0xA), setup.threads);
-    run_patchmatch(problem, nnf, setup.options.search_iterations, hash_keys(setup.key, 0xB),
+    run_patchmatch(problem, nnf, search_iterations(setup), hash_keys(setup.key, 0xB),
                    setup.threads);
     SearchStats stats;
     stats.forward_assigned = static_cast<std::size_t>(
@@ -307,7 +310,7 @@ SearchStats search_occurrence(const SearchSetup& setup, Nnf& nnf) {
                                  ? setup.options.occurrence_threshold
                                  : std::max(1.0, 2.0 * active / std::max<double>(1, sources));
     std::vector<float> penalty(static_cast<std::size_t>(L.sw) * L.sh, 0.0f);
-    for (int iter = 0; iter < setup.options.search_iterations; ++iter) {
+    for (int iter = 0; iter < search_iterations(setup); ++iter) {
         const std::vector<float> usage = usage_counts(L, nnf);
         // Small 3x3 binomial blur of the histogram (Bénard: "a small Gaussian kernel").
         for (int y = 0; y < L.sh; ++y) {

@@ -43,6 +43,9 @@ struct SearchSetup {
     /// error-budget strategies): a warm start lets the first reversed round run as few
     /// PatchMatch iterations as the later rounds.
     Nnf* reverse_field = nullptr;
+    /// The NNF (and reverse_field, if any) come from the previous EM iteration of this level:
+    /// searches run options.warm_search_iterations instead of search_iterations.
+    bool warm = false;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`

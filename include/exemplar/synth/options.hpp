@@ -54,8 +54,13 @@ struct SynthesisOptions {
     int levels = 0;              ///< Pyramid levels; 0 = automatic (coarsest side ≥ 5 patches).
     float pyramid_ratio = 0.5f;  ///< Size ratio between consecutive levels (StyLit: 1/2).
     int em_iterations = 6;       ///< Search+vote iterations per level (finest level).
-    int search_iterations = 6;   ///< PatchMatch iterations per NNF search.
-    float style_weight = 1.0f;   ///< Weight of the style (A'/B') term relative to guides.
+    int search_iterations = 6;   ///< PatchMatch iterations per NNF search from a cold start.
+    /// PatchMatch iterations when the search starts from the previous EM iteration's field
+    /// (every EM iteration after a level's first, every reversed round after the first).
+    /// StyLit uses 6 throughout; 3 keeps most of the texture at about half the time
+    /// (measurements in docs/PERFORMANCE.md).
+    int warm_search_iterations = 3;
+    float style_weight = 1.0f;      ///< Weight of the style (A'/B') term relative to guides.
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
     VoteMode vote = VoteMode::Weighted;
