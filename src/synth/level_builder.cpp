@@ -63,6 +63,19 @@ std::vector<float> channel0(const Image& image) {
 
 }  // namespace
 
+void target_size(const SynthesisInput& in, int& w, int& h) {
+    if (!in.guides.empty()) {
+        w = in.guides.front().target.width();
+        h = in.guides.front().target.height();
+    } else if (!in.initial_target.empty()) {
+        w = in.initial_target.width();
+        h = in.initial_target.height();
+    } else {
+        w = in.target_width;
+        h = in.target_height;
+    }
+}
+
 int automatic_levels(int min_side, int patch_size, float ratio) {
     int levels = 1;
     while (pyramid_level_size(min_side, ratio, levels) >= 5 * patch_size) ++levels;
@@ -79,16 +92,7 @@ int max_levels(int min_side, int patch_size, float ratio, bool rotated) {
 LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& options, int levels,
                            int threads)
     : input_(in), options_(options), levels_(levels), threads_(threads) {
-    if (!in.guides.empty()) {
-        tw_ = in.guides.front().target.width();
-        th_ = in.guides.front().target.height();
-    } else if (!in.initial_target.empty()) {
-        tw_ = in.initial_target.width();
-        th_ = in.initial_target.height();
-    } else {
-        tw_ = in.target_width;
-        th_ = in.target_height;
-    }
+    target_size(in, tw_, th_);
     const float ratio = options.pyramid_ratio;
     using F = ResampleFilter;
     style_ = gaussian_pyramid(in.style, levels, ratio, F::Gaussian, threads);

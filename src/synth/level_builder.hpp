@@ -9,6 +9,9 @@
 
 namespace exemplar::synth {
 
+/// Target size of a run: from the guides, else the initial target, else the given size.
+void target_size(const SynthesisInput& input, int& width, int& height);
+
 /// Automatic level count: the coarsest level keeps at least 5 patches across the smaller side of
 /// both the style and the target (StyLit: 6 levels for one megapixel at ratio 1/2).
 int automatic_levels(int min_side, int patch_size, float ratio);

@@ -58,20 +58,6 @@ std::set<long> label_set(const Image& labels, const Image& mask) {
     return out;
 }
 
-// Target size of a run (see SynthesisInput).
-void target_size(const SynthesisInput& in, int& w, int& h) {
-    if (!in.guides.empty()) {
-        w = in.guides.front().target.width();
-        h = in.guides.front().target.height();
-    } else if (!in.initial_target.empty()) {
-        w = in.initial_target.width();
-        h = in.initial_target.height();
-    } else {
-        w = in.target_width;
-        h = in.target_height;
-    }
-}
-
 // NNF of a finer level from the coarser one: same relative source position, offset within the
 // patch kept (rotated with the match). Invalid results are repaired by evaluate_field.
 Nnf upsample_nnf(const Nnf& coarse, int coarse_sw, int coarse_sh, const synth::Level& fine) {
@@ -216,7 +202,7 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
         }
     }
     int tw = 0, th = 0;
-    target_size(in, tw, th);
+    synth::target_size(in, tw, th);
     if (tw <= 0 || th <= 0) {
         return invalid_argument("target size: unknown (give guides, an initial target or a size)");
     }
@@ -344,7 +330,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
     EXEMPLAR_RETURN_IF_ERROR(validate_input(in, options));
     const int threads = context.threads;
     int tw = 0, th = 0;
-    target_size(in, tw, th);
+    synth::target_size(in, tw, th);
     const bool rotated = !in.source_orientation.empty();
     const int min_side = std::min({in.style.width(), in.style.height(), tw, th});
     const int levels =

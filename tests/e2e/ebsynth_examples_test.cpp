@@ -80,6 +80,26 @@ std::map<std::array<int, 3>, double> segment_energy(const Image& im, const Image
     return out;
 }
 
+// Fraction of matched target pixels whose segmentation colour equals (L1 distance below
+// `tolerance`) the colour at the source of their match.
+double segment_agreement(const Nnf& nnf, const Image& source_seg, const Image& target_seg,
+                         double tolerance) {
+    int n = 0, agree = 0;
+    for (int y = 0; y < target_seg.height(); ++y) {
+        for (int x = 0; x < target_seg.width(); ++x) {
+            const Match& m = nnf.at(x, y);
+            if (m.x < 0) continue;
+            ++n;
+            double d = 0.0;
+            for (int c = 0; c < 3; ++c) {
+                d += std::abs(source_seg.at(m.x, m.y, c) - target_seg.at(x, y, c));
+            }
+            agree += d < tolerance ? 1 : 0;
+        }
+    }
+    return n > 0 ? static_cast<double>(agree) / n : 0.0;
+}
+
 double mean_channel(const Image& im, int x, int y) {
     double s = 0.0;
     for (int c = 0; c < im.channels(); ++c) s += im.at(x, y, c);
@@ -147,20 +167,7 @@ TEST(Examples, FacestyleKeepsTextureAndSegments) {
     ASSERT_TRUE(result.ok()) << result.status().message();
     EXPECT_NEAR(gradient_energy(result->image) / gradient_energy(in.style), 1.0, 0.2);
     // The segmentation colour at the source of each match agrees with the target's.
-    const Image& sseg = in.guides[1].source;
-    const Image& tseg = in.guides[1].target;
-    int n = 0, agree = 0;
-    for (int y = 0; y < tseg.height(); ++y) {
-        for (int x = 0; x < tseg.width(); ++x) {
-            const Match& m = result->nnf.at(x, y);
-            if (m.x < 0) continue;
-            ++n;
-            double d = 0.0;
-            for (int c = 0; c < 3; ++c) d += std::abs(sseg.at(m.x, m.y, c) - tseg.at(x, y, c));
-            agree += d < 0.15 ? 1 : 0;
-        }
-    }
-    EXPECT_GT(static_cast<double>(agree) / n, 0.9);
+    EXPECT_GT(segment_agreement(result->nnf, in.guides[1].source, in.guides[1].target, 0.15), 0.9);
 }
 
 TEST(Examples, TextureByNumbersRespectsSegments) {
@@ -194,20 +201,7 @@ TEST(Examples, TextureByNumbersRespectsSegments) {
         EXPECT_LT(energy / it->second, 1.2);
     }
     EXPECT_GE(compared, 3);
-    const Image& sseg = in.guides[0].source;
-    const Image& tseg = in.guides[0].target;
-    int n = 0, agree = 0;
-    for (int y = 0; y < tseg.height(); ++y) {
-        for (int x = 0; x < tseg.width(); ++x) {
-            const Match& m = result->nnf.at(x, y);
-            if (m.x < 0) continue;
-            ++n;
-            double d = 0.0;
-            for (int c = 0; c < 3; ++c) d += std::abs(sseg.at(m.x, m.y, c) - tseg.at(x, y, c));
-            agree += d < 0.1 ? 1 : 0;
-        }
-    }
-    EXPECT_GT(static_cast<double>(agree) / n, 0.9);
+    EXPECT_GT(segment_agreement(result->nnf, in.guides[0].source, in.guides[0].target, 0.1), 0.9);
 }
 
 }  // namespace

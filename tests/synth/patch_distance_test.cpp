@@ -1,12 +1,21 @@
 #include "patch_distance.hpp"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include "level_builder.hpp"
+#include "ssd.hpp"
 #include "test_images.hpp"
 
 namespace exemplar::synth {
 namespace {
+
+std::vector<float> random_floats(std::size_t n, std::uint64_t seed) {
+    std::vector<float> v(n);
+    KeyedRng rng(seed, 0);
+    for (float& x : v) x = rng.uniform();
+    return v;
+}
 
 Level make_level(int patch, bool weight_map, float falloff, bool rotated) {
     SynthesisInput in;
@@ -95,21 +104,8 @@ TEST(PatchDistance, EarlyTerminationExceedsBound) {
     EXPECT_GT(patch_distance(L, 10, 10, 8, 8, 0.0f, full * 0.1f), full * 0.1f);
 }
 
-}  // namespace
-}  // namespace exemplar::synth
-
-#include "ssd.hpp"
-
-namespace exemplar::synth {
-namespace {
-
 TEST(SsdRows, SimdMatchesScalarForEveryLength) {
-    std::vector<float> a(4096), b(4096);
-    KeyedRng rng(5, 0);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        a[i] = rng.uniform();
-        b[i] = rng.uniform();
-    }
+    const std::vector<float> a = random_floats(4096, 5), b = random_floats(4096, 6);
     for (int n = 1; n <= 130; ++n) {
         for (int rows : {1, 3, 5}) {
             const float scalar = ssd_rows_scalar(a.data(), 300, b.data() + 7, 301, rows, n, 1e30f);
@@ -137,21 +133,8 @@ TEST(SsdRows, ScalarSwitchGivesTheSameDistances) {
     }
 }
 
-}  // namespace
-}  // namespace exemplar::synth
-
-#include <hwy/targets.h>
-
-namespace exemplar::synth {
-namespace {
-
 TEST(SsdRows, EverySupportedSimdTargetMatchesScalar) {
-    std::vector<float> a(2048), b(2048);
-    KeyedRng rng(9, 0);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        a[i] = rng.uniform();
-        b[i] = rng.uniform();
-    }
+    const std::vector<float> a = random_floats(2048, 9), b = random_floats(2048, 10);
     int tested = 0;
     for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
          targets &= targets - 1) {
