@@ -93,6 +93,46 @@ Nnf unassigned_nnf(int width, int height) {
     return out;
 }
 
+// The given full-resolution NNF sampled onto the grid of (coarse) level L.
+Nnf downscale_nnf(const Nnf& full, const Image& style, const synth::Level& L) {
+    const double rx = static_cast<double>(L.tw) / full.width();
+    const double ry = static_cast<double>(L.th) / full.height();
+    const double sx = static_cast<double>(L.sw) / style.width();
+    const double sy = static_cast<double>(L.sh) / style.height();
+    Nnf out(L.tw, L.th);
+    for (int y = 0; y < L.th; ++y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const Match& m = full.at(std::min(full.width() - 1, static_cast<int>((x + 0.5) / rx)),
+                                     std::min(full.height() - 1, static_cast<int>((y + 0.5) / ry)));
+            // "No match" entries stay invalid; evaluate_field gives them a random match.
+            out.at(x, y) = m.x < 0 ? Match{-1, -1, 0.0f, 0.0f}
+                                   : Match{static_cast<int>(std::lround((m.x + 0.5) * sx - 0.5)),
+                                           static_cast<int>(std::lround((m.y + 0.5) * sy - 0.5)),
+                                           m.angle_rad, 0.0f};
+        }
+    }
+    return out;
+}
+
+// Per-pixel distance of the final NNF against the final B' (0 where no patch is centred);
+// entries that are not patch centres become (-1, -1).
+Image final_errors(const synth::Level& L, Nnf& nnf, int threads) {
+    Image error(L.tw, L.th, 1, 0.0f);
+    error.set_channel_names({"error"});
+    parallel_for(0, L.th, threads, [&](int y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const std::size_t i = L.target_index(x, y);
+            Match& m = nnf[i];
+            if (!L.target_active[i]) {
+                m = Match{-1, -1, 0.0f, 0.0f};
+                continue;
+            }
+            error.data()[i] = synth::patch_distance(L, x, y, m.x, m.y, m.angle_rad);
+        }
+    });
+    return error;
+}
+
 // Vote parameters of a level; `weights` receives the weighted vote's weights if needed.
 synth::VoteParams vote_params(const synth::Level& L, VoteMode mode, const Nnf& nnf,
                               std::vector<float>* weights) {
@@ -366,25 +406,8 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
 
         // Initialize the NNF: random at the coarsest level (or the given one), else upsampled.
         if (l == 0) {
-            if (!in.initial_nnf.empty()) {
-                const double rx = static_cast<double>(L.tw) / tw;
-                const double ry = static_cast<double>(L.th) / th;
-                const double sx = static_cast<double>(L.sw) / in.style.width();
-                const double sy = static_cast<double>(L.sh) / in.style.height();
-                nnf = Nnf(L.tw, L.th);
-                for (int y = 0; y < L.th; ++y) {
-                    for (int x = 0; x < L.tw; ++x) {
-                        const Match& m =
-                            in.initial_nnf.at(std::min(tw - 1, static_cast<int>((x + 0.5) / rx)),
-                                              std::min(th - 1, static_cast<int>((y + 0.5) / ry)));
-                        nnf.at(x, y) = Match{static_cast<int>(std::lround((m.x + 0.5) * sx - 0.5)),
-                                             static_cast<int>(std::lround((m.y + 0.5) * sy - 0.5)),
-                                             m.angle_rad, 0.0f};
-                    }
-                }
-            } else {
-                nnf = unassigned_nnf(L.tw, L.th);
-            }
+            nnf = in.initial_nnf.empty() ? unassigned_nnf(L.tw, L.th)
+                                         : downscale_nnf(in.initial_nnf, in.style, L);
         } else {
             nnf = upsample_nnf(nnf, prev_sw, prev_sh, L);
         }
@@ -418,20 +441,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                 L = std::move(fine);
             }
             result.nnf_patch_size = L.patch_size;
-            // Final errors are the true distances of the final NNF against the final B'.
-            result.error = Image(L.tw, L.th, 1, 0.0f);
-            result.error.set_channel_names({"error"});
-            parallel_for(0, L.th, threads, [&](int y) {
-                for (int x = 0; x < L.tw; ++x) {
-                    const std::size_t i = L.target_index(x, y);
-                    Match& m = nnf[i];
-                    if (!L.target_active[i]) {
-                        m = Match{-1, -1, 0.0f, 0.0f};
-                        continue;
-                    }
-                    result.error.data()[i] = synth::patch_distance(L, x, y, m.x, m.y, m.angle_rad);
-                }
-            });
+            result.error = final_errors(L, nnf, threads);
         }
     }
     result.image = std::move(current);
