@@ -42,7 +42,15 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
     SynthesisOptions opt;
     for (int r = 0; r < repeats; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        auto result = synthesize(in, opt, RunContext{threads});
+        RunContext context(threads);
+        // Per-level wall time, printed after the run: where the time goes.
+        std::vector<double> level_end;
+        context.progress = [&](const ProgressEvent& e) {
+            if (e.iteration + 1 != e.iterations) return;
+            level_end.push_back(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        };
+        auto result = synthesize(in, opt, context);
         const double secs =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (!result.ok()) {
@@ -52,6 +60,9 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
         std::printf("%-10s %dx%d threads=%d usage=%s  %.2f s\n", name.c_str(),
                     result->image.width(), result->image.height(), threads,
                     std::string(to_string(opt.usage)).c_str(), secs);
+        std::printf("  time at the end of each level (last: final 3x3 pass):");
+        for (double t : level_end) std::printf(" %.2f", t);
+        std::printf("\n");
         std::fflush(stdout);
     }
     return 0;
