@@ -162,15 +162,16 @@ struct ProgressTracker {
     }
 };
 
-// EM iterations on one level: search with the usage strategy, then vote.
+// EM iterations on one level: search with the usage strategy, then vote. `reverse_field` is the
+// reversed-retrieval state; with `warm_start` the first search already counts as warm (the NNF
+// and reverse_field come from a previous pass over the same level).
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
-            int threads, Nnf& nnf, Image& current, ProgressTracker& tracker,
-            const DebugSink& debug) {
+            int threads, bool warm_start, Nnf& nnf, Nnf& reverse_field, Image& current,
+            ProgressTracker& tracker, const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
                         (options.patch_size * options.patch_size);
-    Nnf reverse_field;  // reversed-retrieval state, kept warm between EM iterations
     std::vector<float> weights;
     for (int it = 0; it < iterations; ++it) {
         if (tracker.context.cancelled()) {
@@ -179,7 +180,7 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
         }
         const synth::SearchSetup setup{
             L,       options,        hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
-            threads, &reverse_field, it > 0};
+            threads, &reverse_field, it > 0 || warm_start};
         synth::search(setup, nnf);
         synth::vote(nnf, L.source_style, vote_params(L, options.vote, nnf, &weights), current,
                     threads);
@@ -425,7 +426,9 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             set_target_style(L, current);
         }
 
-        run_em(L, options, options.em_iterations, level_key, threads, nnf, current, tracker, debug);
+        Nnf reverse_field;  // reversed-retrieval state, kept warm within the level
+        run_em(L, options, options.em_iterations, level_key, threads, /*warm_start=*/false, nnf,
+               reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
@@ -435,8 +438,10 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             if (options.final_pass_iterations > 0 && options.patch_size > 3) {
                 synth::Level fine = builder.build(l, 3);
                 set_target_style(fine, current);
+                // Same grid as the last pass: both fields carry over (every 5x5 match is a
+                // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
-                       threads, nnf, current, tracker, debug);
+                       threads, /*warm_start=*/true, nnf, reverse_field, current, tracker, debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }
