@@ -1,0 +1,99 @@
+// `exemplar apply-nnf`: a saved NNF applied to another image on the style's grid (a 16-bit or
+// extra-channel version of the style), voting as the synthesis did.
+
+#include <algorithm>
+#include <limits>
+
+#include "commands.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/synth/nnf.hpp"
+#include "output_files.hpp"
+
+namespace exemplar::cli {
+
+namespace {
+
+// Distance from the image border of the matched entry closest to it. The synthesis leaves every
+// pixel within patch_size / 2 of the border unmatched (-1, -1), so an NNF made with patch size p
+// has p / 2 <= this distance (more with a target mask). INT_MAX if nothing is matched.
+int matched_border_distance(const Nnf& nnf) {
+    int distance = std::numeric_limits<int>::max();
+    for (int y = 0; y < nnf.height(); ++y) {
+        for (int x = 0; x < nnf.width(); ++x) {
+            if (nnf.at(x, y).x < 0) continue;
+            distance = std::min({distance, x, y, nnf.width() - 1 - x, nnf.height() - 1 - y});
+        }
+    }
+    return distance;
+}
+
+}  // namespace
+
+ApplyNnfCommand::ApplyNnfCommand(CLI::App& parent) {
+    app_ = parent.add_subcommand(
+        "apply-nnf", "Re-apply an NNF saved by `stylize --save-nnf` to another source image");
+    app_->footer(
+        "Example: exemplar apply-nnf --nnf out_nnf.exr --source style_16bit.png --patch-size 3 "
+        "-o out16.png");
+    app_->add_option("--nnf", nnf_, "NNF written by `stylize --save-nnf`")->required();
+    app_->add_option("--source", source_,
+                     "Image on the style's grid to copy from (e.g. a 16-bit or extra-channel "
+                     "version of the style)")
+        ->required();
+    app_->add_option("--patch-size", patch_size_,
+                     "Patch size the NNF was made with (stylize --save-nnf prints it: 3 after its "
+                     "default 3x3 final pass, else its --patch-size)")
+        ->required();
+    app_->add_option("--output,-o", output_,
+                     "Output image; PNG/TIFF keep the source's bit depth (16-bit in, 16-bit out)")
+        ->required();
+    app_->add_option("--vote", vote_, "average or weighted (default), as the stylize run");
+    app_->add_option("--threads,-j", threads_, "Threads; 0 = all cores (default)");
+    app_->add_flag("--quiet,-q", quiet_, "Do not print the output path");
+}
+
+Status ApplyNnfCommand::run(const Streams& streams) const {
+    // Checks that need no file.
+    auto vote = parse_vote_mode(vote_);
+    if (!vote.ok()) return vote.status();
+    SynthesisOptions options;
+    EXEMPLAR_RETURN_IF_ERROR(set_option(options, *find_option("patch-size"), patch_size_));
+    if (threads_ < 0) {
+        return invalid_argument("--threads: " + std::to_string(threads_) +
+                                " is invalid (must be >= 0; 0 = all cores)");
+    }
+    EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", output_));
+
+    // The NNF, checked against the patch size.
+    auto nnf_image = load_image(nnf_);
+    if (!nnf_image.ok()) return nnf_image.status();
+    auto nnf = nnf_from_image(*nnf_image);
+    if (!nnf.ok()) return invalid_argument("--nnf " + nnf_ + ": " + nnf.status().message());
+    const int border = matched_border_distance(*nnf);
+    if (patch_size_ / 2 > border) {
+        return invalid_argument("--patch-size: " + std::to_string(patch_size_) + " does not fit " +
+                                "--nnf " + nnf_ + " (it has matches " + std::to_string(border) +
+                                " px from the border, so its patch size is at most " +
+                                std::to_string(2 * border + 1) + ")");
+    }
+
+    // The source.
+    auto source = load_image(source_);
+    if (!source.ok()) return source.status();
+    if (!all_finite(*source)) {
+        return invalid_argument("--source " + source_ + ": contains NaN or infinity");
+    }
+    const SaveOptions save = output_options(*source, output_);
+    EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, *source, save));
+
+    auto result = apply_nnf(*nnf, *source, patch_size_, *vote, threads_);
+    if (!result.ok()) {
+        return Status(result.status().code(), "--nnf " + nnf_ + " with --source " + source_ + ": " +
+                                                  result.status().message());
+    }
+    EXEMPLAR_RETURN_IF_ERROR(save_image(*result, output_, save));
+    if (!quiet_) streams.out << output_ << '\n';
+    return Status::ok();
+}
+
+}  // namespace exemplar::cli

@@ -1,0 +1,79 @@
+#pragma once
+// The subcommands of `exemplar`. Each registers its flags on a CLI11 subcommand and runs after
+// parsing. Grammar errors found after CLI11's own parsing (a --weight before any --guide, a
+// missing --style) are thrown as CLI::ParseError like CLI11's own, so that run_cli maps them to
+// exit code 2 with the rest; every other problem is the returned Status (exit code 1).
+
+#include <CLI/CLI.hpp>
+#include <map>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "exemplar/core/status.hpp"
+#include "stylize_job.hpp"
+
+namespace exemplar::cli {
+
+/// Where a command writes: normal output (the written file's path), errors and the progress bar.
+struct Streams {
+    std::ostream& out;
+    std::ostream& err;
+    bool err_is_terminal = false;
+};
+
+/// `exemplar stylize`: ebsynth-style guides, job files, input checks, the run and its outputs.
+class StylizeCommand {
+public:
+    /// Adds the `stylize` subcommand and its flags to `app`.
+    explicit StylizeCommand(CLI::App& app);
+    StylizeCommand(const StylizeCommand&) = delete;
+    StylizeCommand& operator=(const StylizeCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams);
+
+private:
+    StylizeJob job_from_flags();
+
+    CLI::App* app_ = nullptr;
+    StylizeJob flag_job_;  // paths and words bound directly by CLI11
+    std::string config_;
+    std::vector<std::pair<std::string, std::string>> guide_files_;  // (SRC, TGT) per --guide
+    std::vector<float> weights_;
+    std::vector<std::string> weight_maps_;
+    std::string style_weights_;
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
+    int threads_ = 0;
+    bool quiet_ = false;
+    CLI::Option* guide_flag_ = nullptr;
+    CLI::Option* weight_flag_ = nullptr;
+    CLI::Option* weight_map_flag_ = nullptr;
+    CLI::Option* threads_flag_ = nullptr;
+    CLI::Option* quiet_flag_ = nullptr;
+};
+
+/// `exemplar apply-nnf`: re-applies a saved NNF to another image on the style's grid.
+class ApplyNnfCommand {
+public:
+    /// Adds the `apply-nnf` subcommand and its flags to `app`.
+    explicit ApplyNnfCommand(CLI::App& app);
+    ApplyNnfCommand(const ApplyNnfCommand&) = delete;
+    ApplyNnfCommand& operator=(const ApplyNnfCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string nnf_, source_, output_, vote_ = "weighted";
+    int patch_size_ = 0;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
+}  // namespace exemplar::cli

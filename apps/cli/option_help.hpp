@@ -1,0 +1,27 @@
+#pragma once
+// Help text of the numeric synthesis options, generated from synthesis_option_specs(). The same
+// strings appear in `exemplar stylize --help` and in docs/cli.md (a test keeps them in step).
+
+#include <string>
+
+#include "exemplar/synth/options.hpp"
+
+namespace exemplar::cli {
+
+/// A number as a person writes it: integers without exponent or decimals ("9007199254740992",
+/// "1000000"), others with up to 6 significant digits ("0.95").
+std::string format_number(double value);
+
+/// "3..31 px": the inclusive range and the unit.
+std::string format_range(const OptionSpec& spec);
+
+/// The default of an option, formatted ("5", "0.95").
+std::string format_default(const OptionSpec& spec);
+
+/// True for options stored as integers (the flag takes INT).
+bool is_integer_option(const OptionSpec& spec);
+
+/// Full flag help: "<doc> [<range>, default <default>]".
+std::string describe(const OptionSpec& spec);
+
+}  // namespace exemplar::cli

@@ -1,0 +1,134 @@
+#include "output_files.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+namespace exemplar::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string named(std::string_view flag, const std::string& path) {
+    std::string text(flag);
+    text.append(" ").append(path);
+    return text;
+}
+
+// Largest step (in [0, 1] units) of an integer grid all values lie on: 8 for k/255, 16 for
+// k/65535, 0 if some value is on neither (float data, or outside [0, 1]).
+int integer_grid_bits(const Image& image) {
+    bool on8 = true, on16 = true;
+    for (float v : image.data()) {
+        if (!(v >= 0.0f && v <= 1.0f)) return 0;
+        const double v8 = static_cast<double>(v) * 255.0;
+        const double v16 = static_cast<double>(v) * 65535.0;
+        on8 = on8 && std::fabs(v8 - std::round(v8)) < 1e-3;
+        on16 = on16 && std::fabs(v16 - std::round(v16)) < 0.02;
+        if (!on8 && !on16) return 0;
+    }
+    return on8 ? 8 : 16;
+}
+
+}  // namespace
+
+std::string lowercase_extension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+Status check_output_path(std::string_view flag, const std::string& path) {
+    if (path.empty()) return invalid_argument(std::string(flag) + ": is empty");
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return invalid_argument(named(flag, path) + ": is a folder");
+    fs::path folder = fs::path(path).parent_path();
+    if (folder.empty()) folder = ".";
+    if (!fs::is_directory(folder, ec)) {
+        return io_error(named(flag, path) + ": folder " + folder.string() + " does not exist");
+    }
+    if (::access(folder.c_str(), W_OK) != 0) {
+        return io_error(named(flag, path) + ": folder " + folder.string() + " is not writable");
+    }
+    return Status::ok();
+}
+
+Status check_output_format(std::string_view flag, const std::string& path, const Image& like,
+                           const SaveOptions& options) {
+    static std::atomic<unsigned> counter{0};
+    Image probe(1, 1, like.channels());
+    probe.set_channel_names(like.channel_names());
+    std::error_code ec;
+    const fs::path temp_folder = fs::temp_directory_path(ec);
+    if (ec) return Status::ok();  // nowhere to probe; the real write reports any problem
+    std::string probe_name = "exemplar-probe-";
+    probe_name.append(std::to_string(::getpid())).append("-").append(std::to_string(counter++));
+    probe_name.append(fs::path(path).extension().string());
+    const std::string probe_path = (temp_folder / probe_name).string();
+    const Status status = save_image(probe, probe_path, options);
+    fs::remove(probe_path, ec);
+    // Only the format's verdict matters here; trouble with the temporary folder does not.
+    if (status.is_ok() || status.code() == ErrorCode::IoError) return Status::ok();
+    std::string message = status.message();
+    const std::string prefix = probe_path + ": ";
+    if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+    return Status(status.code(), named(flag, path) + ": " + message);
+}
+
+SaveOptions output_options(const Image& reference, const std::string& path) {
+    SaveOptions options;
+    const std::string ext = lowercase_extension(path);
+    const bool png = ext == ".png";
+    const bool tiff = ext == ".tif" || ext == ".tiff";
+    if (!png && !tiff) return options;
+    const int bits = integer_grid_bits(reference);
+    if (bits == 8) {
+        options.format = PixelFormat::UInt8;
+    } else if (bits == 16 || png) {
+        options.format = PixelFormat::UInt16;
+    } else {
+        options.format = PixelFormat::Float;
+    }
+    return options;
+}
+
+Image error_map_for_file(const Image& error, const std::string& path, SaveOptions& options) {
+    const std::string ext = lowercase_extension(path);
+    if (ext == ".exr" || ext == ".tif" || ext == ".tiff") {
+        options.format = PixelFormat::Float;
+        return error;
+    }
+    // Scale so that the 99th percentile of the non-zero distances maps to 1 (a few outliers
+    // would otherwise leave the map black).
+    std::vector<float> positive;
+    for (float v : error.data()) {
+        if (v > 0.0f && std::isfinite(v)) positive.push_back(v);
+    }
+    float scale = 1.0f;
+    if (!positive.empty()) {
+        const auto nth = positive.begin() + static_cast<std::ptrdiff_t>(
+                                                static_cast<double>(positive.size() - 1) * 0.99);
+        std::nth_element(positive.begin(), nth, positive.end());
+        if (*nth > 0.0f) scale = 1.0f / *nth;
+    }
+    Image scaled = error;
+    for (float& v : scaled.data()) v = std::min(1.0f, v * scale);
+    return scaled;
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+    std::error_code ea, eb;
+    const fs::path ca = fs::weakly_canonical(a, ea);
+    const fs::path cb = fs::weakly_canonical(b, eb);
+    if (ea || eb) return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
+    return ca == cb;
+}
+
+}  // namespace exemplar::cli

@@ -1,0 +1,40 @@
+#pragma once
+// Output files of the commands: checks made before a run starts (so that a long run does not end
+// in "PNG cannot store 5 channels"), the bit depth of what is written, and the error map's scale.
+
+#include <string>
+#include <string_view>
+
+#include "exemplar/core/image.hpp"
+#include "exemplar/core/status.hpp"
+#include "exemplar/io/image_io.hpp"
+
+namespace exemplar::cli {
+
+/// Checks that `path` can be created: its folder exists and is writable, and it is not a folder.
+/// `flag` names the parameter in messages (`--output out/x.png: folder out does not exist`).
+Status check_output_path(std::string_view flag, const std::string& path);
+
+/// Checks that the format chosen by `path`'s extension can store an image with the channels of
+/// `like` in `options.format`, by writing a 1x1 image of that shape to the temporary folder.
+/// The message names `flag` and `path` (e.g. `--output x.png: PNG cannot store 5 channels ...`).
+Status check_output_format(std::string_view flag, const std::string& path, const Image& like,
+                           const SaveOptions& options);
+
+/// Sample format for writing a result computed from `reference` (the style, or apply-nnf's
+/// source) to `path`: PNG 8-bit if every value of `reference` lies on the 8-bit grid, else
+/// 16-bit; TIFF 8-bit, 16-bit or float likewise; other formats their natural choice.
+SaveOptions output_options(const Image& reference, const std::string& path);
+
+/// The error map as written to `path`: float formats (EXR, TIFF) keep the patch distances as
+/// they are (written as float); other formats hold [0, 1], so the map is scaled to put its 99th
+/// percentile at 1. Sets `options.format` accordingly.
+Image error_map_for_file(const Image& error, const std::string& path, SaveOptions& options);
+
+/// True if both paths name the same file (after resolving `.`, `..` and symbolic links).
+bool same_file(const std::string& a, const std::string& b);
+
+/// Lower-case extension with the dot (".png"), or "".
+std::string lowercase_extension(const std::string& path);
+
+}  // namespace exemplar::cli

@@ -1,0 +1,83 @@
+// `exemplar apply-nnf`: a saved NNF re-applied to the style reproduces the stylize output, keeps a
+// 16-bit source's precision, and refuses a patch size or source that do not fit the NNF.
+
+#include <limits>
+
+#include "cli_fixture.hpp"
+
+namespace exemplar::cli::testing {
+namespace {
+
+class ApplyNnf : public Cli {
+protected:
+    void SetUp() override {
+        Cli::SetUp();
+        const CliRun r =
+            run(with(stylize_args(), {"-o", path("styled.png"), "--save-nnf", path("nnf.exr")}));
+        ASSERT_EQ(r.code, 0) << r.err;
+        ASSERT_NE(r.err.find("--patch-size 3"), std::string::npos) << r.err;
+    }
+    std::vector<std::string> apply_args(const std::string& source) const {
+        return {"apply-nnf",    "--nnf", path("nnf.exr"), "--source", path(source),
+                "--patch-size", "3"};
+    }
+};
+
+TEST_F(ApplyNnf, ReproducesTheStylizeOutput) {
+    const CliRun r = run(with(apply_args("style.png"), {"-o", path("again.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("again.png") + "\n");
+    const Image out = read("styled.png");
+    const Image again = read("again.png");
+    ASSERT_TRUE(again.same_size(out));
+    ASSERT_EQ(again.channels(), out.channels());
+    EXPECT_LE(max_abs_diff(out, again), 1.0f / 255.0f);
+    EXPECT_EQ(png_bit_depth(path("again.png")), 8);
+}
+
+TEST_F(ApplyNnf, SixteenBitSourceGivesSixteenBitOutput) {
+    // The style with 16-bit precision: the re-applied result keeps it.
+    Image fine = texture(32, 28, 3, 1);
+    for (float& v : fine.data()) v = std::round(v * 65535.0f) / 65535.0f;
+    write("style16.png", fine, SaveOptions{PixelFormat::UInt16});
+    const CliRun r = run(with(apply_args("style16.png"), {"-q", "-o", path("out16.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    EXPECT_EQ(png_bit_depth(path("out16.png")), 16);
+    EXPECT_LE(max_abs_diff(read("out16.png"), read("styled.png")), 1.0f / 255.0f);
+}
+
+TEST_F(ApplyNnf, ExtraChannelsAreCarried) {
+    write("five.exr", texture(32, 28, 5, 4));
+    ASSERT_EQ(run(with(apply_args("five.exr"), {"-q", "-o", path("five_out.exr")})).code, 0);
+    const Image out = read("five_out.exr");
+    EXPECT_EQ(out.channels(), 5);
+    EXPECT_EQ(out.width(), 36);
+}
+
+TEST_F(ApplyNnf, Errors) {
+    // A patch size larger than the NNF's unmatched border allows.
+    auto args = apply_args("style.png");
+    args[6] = "5";
+    expect_failure(args, 1, "--patch-size: 5 does not fit --nnf " + path("nnf.exr"));
+    args[6] = "4";
+    expect_failure(args, 1, "patch-size: 4 is invalid (must be odd, 3..31)");
+    // A source smaller than the style the NNF points into.
+    write("small.png", texture(12, 12, 3, 5));
+    expect_failure(apply_args("small.png"), 1, "--source " + path("small.png"));
+    Image nan_source = texture(32, 28, 3, 1);
+    nan_source.at(1, 1, 1) = std::numeric_limits<float>::infinity();
+    write("nan.exr", nan_source);
+    expect_failure(apply_args("nan.exr"), 1, "--source " + path("nan.exr") + ": contains NaN");
+    expect_failure(apply_args("missing.png"), 1, path("missing.png") + ": no such file");
+    args = apply_args("style.png");
+    args[2] = path("style.png");  // not an NNF: 3 channels of colour
+    expect_failure(args, 1, "--nnf " + path("style.png"));
+    expect_failure({"apply-nnf", "--nnf", path("nnf.exr"), "--source", path("style.png")}, 2,
+                   "--patch-size is required");
+    expect_failure(with(apply_args("style.png"), {"--vote", "loudly"}), 1,
+                   "vote: 'loudly' is invalid");
+}
+
+}  // namespace
+}  // namespace exemplar::cli::testing

@@ -1,0 +1,84 @@
+// Help, version, and the CLI reference (docs/cli.md) agreeing with the option table.
+
+#include "cli_fixture.hpp"
+#include "option_help.hpp"
+
+namespace exemplar::cli::testing {
+namespace {
+
+TEST(CliHelp, StylizeHelpIsGeneratedFromTheOptionTable) {
+    const CliRun h = run({"stylize", "--help"});
+    EXPECT_EQ(h.code, 0);
+    EXPECT_TRUE(h.err.empty());
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        const std::string flag = std::string("--").append(spec.name);
+        EXPECT_NE(h.out.find(flag), std::string::npos) << flag;
+        const std::string range = std::string("[").append(format_range(spec)).append(", default ");
+        EXPECT_NE(h.out.find(range + format_default(spec) + "]"), std::string::npos) << flag;
+    }
+    for (const char* flag : {"--style",
+                             "--guide",
+                             "--weight",
+                             "--weight-map",
+                             "--output",
+                             "--config",
+                             "--usage",
+                             "--target-mask",
+                             "--source-mask",
+                             "--source-labels",
+                             "--target-labels",
+                             "--source-orientation",
+                             "--target-orientation",
+                             "--init",
+                             "--init-nnf",
+                             "--size",
+                             "--save-nnf",
+                             "--save-error",
+                             "--style-weights",
+                             "--threads",
+                             "--quiet"}) {
+        EXPECT_NE(h.out.find(flag), std::string::npos) << flag;
+    }
+    EXPECT_NE(h.out.find("a guide without --weight has weight 1"), std::string::npos);
+}
+
+TEST(CliHelp, TopLevelHelpVersionAndApplyNnfHelp) {
+    const CliRun top = run({"--help"});
+    EXPECT_EQ(top.code, 0);
+    EXPECT_NE(top.out.find("stylize"), std::string::npos);
+    EXPECT_NE(top.out.find("apply-nnf"), std::string::npos);
+    const CliRun apply = run({"apply-nnf", "--help"});
+    EXPECT_EQ(apply.code, 0);
+    EXPECT_NE(apply.out.find("--patch-size"), std::string::npos);
+    const CliRun version = run({"--version"});
+    EXPECT_EQ(version.code, 0);
+    EXPECT_EQ(version.out.rfind("exemplar ", 0), 0u) << version.out;
+}
+
+TEST(CliHelp, NumbersAreWrittenPlainly) {
+    EXPECT_EQ(format_number(5), "5");
+    EXPECT_EQ(format_number(0.95f), "0.95");
+    EXPECT_EQ(format_number(1e6), "1000000");
+    EXPECT_EQ(format_number(9007199254740992.0), "9007199254740992");
+}
+
+// docs/cli.md lists every numeric option as the table has it: a row
+// | `--name` | INT or FLOAT | doc | range | default |
+TEST(CliDocs, ReferenceAgreesWithTheOptionTable) {
+    std::ifstream in(std::string(EXEMPLAR_SOURCE_DIR) + "/docs/cli.md");
+    ASSERT_TRUE(in);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        std::string row = std::string("| `--").append(spec.name).append("` | ");
+        row.append(is_integer_option(spec) ? "INT" : "FLOAT").append(" | ");
+        row.append(spec.doc).append(" | ").append(format_range(spec)).append(" | ");
+        row.append(format_default(spec)).append(" |");
+        EXPECT_NE(std::find(lines.begin(), lines.end(), row), lines.end())
+            << "docs/cli.md should have the row\n"
+            << row;
+    }
+}
+
+}  // namespace
+}  // namespace exemplar::cli::testing
