@@ -83,7 +83,7 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     if (!all_finite(*source)) {
         return invalid_argument("--source " + source_ + ": contains NaN or infinity");
     }
-    const SaveOptions save = output_options(*source, output_);
+    const SaveOptions save = output_options(*source, source_, output_);
     EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, *source, save));
 
     auto result = apply_nnf(*nnf, *source, patch_size_, *vote, threads_);

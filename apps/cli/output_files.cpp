@@ -7,6 +7,8 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <string_view>
 #include <vector>
 
 namespace exemplar::cli {
@@ -34,6 +36,19 @@ int integer_grid_bits(const Image& image) {
         if (!on8 && !on16) return 0;
     }
     return on8 ? 8 : 16;
+}
+
+// Bit depth a PNG file declares in its header (IHDR byte 24; 1, 2 and 4-bit count as 8), or 0
+// for other files. The io module does not report the stored sample format.
+int png_bit_depth(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    char header[25] = {};
+    if (!in.read(header, sizeof header)) return 0;
+    if (std::string_view(header, 8) != std::string_view("\x89PNG\r\n\x1a\n", 8) ||
+        std::string_view(header + 12, 4) != "IHDR") {
+        return 0;
+    }
+    return header[24] == 16 ? 16 : 8;
 }
 
 }  // namespace
@@ -82,13 +97,17 @@ Status check_output_format(std::string_view flag, const std::string& path, const
     return Status(status.code(), named(flag, path) + ": " + message);
 }
 
-SaveOptions output_options(const Image& reference, const std::string& path) {
+SaveOptions output_options(const Image& reference, const std::string& reference_path,
+                           const std::string& path) {
     SaveOptions options;
     const std::string ext = lowercase_extension(path);
     const bool png = ext == ".png";
     const bool tiff = ext == ".tif" || ext == ".tiff";
     if (!png && !tiff) return options;
-    const int bits = integer_grid_bits(reference);
+    // The finer of what the file declares and what its values need (a 16-bit PNG holding 8-bit
+    // data still asks for 16 bits: the vote averages finer than its input).
+    const int grid = integer_grid_bits(reference);
+    const int bits = png_bit_depth(reference_path) == 16 && grid != 0 ? 16 : grid;
     if (bits == 8) {
         options.format = PixelFormat::UInt8;
     } else if (bits == 16 || png) {

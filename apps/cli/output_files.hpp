@@ -22,9 +22,12 @@ Status check_output_format(std::string_view flag, const std::string& path, const
                            const SaveOptions& options);
 
 /// Sample format for writing a result computed from `reference` (the style, or apply-nnf's
-/// source) to `path`: PNG 8-bit if every value of `reference` lies on the 8-bit grid, else
-/// 16-bit; TIFF 8-bit, 16-bit or float likewise; other formats their natural choice.
-SaveOptions output_options(const Image& reference, const std::string& path);
+/// source, read from `reference_path`) to `path`, so that the output keeps the input's
+/// precision: PNG 16-bit if the reference file is a 16-bit PNG or its values are finer than the
+/// 8-bit grid, else 8-bit; TIFF 8-bit, 16-bit or float likewise; other formats their natural
+/// choice (EXR: half).
+SaveOptions output_options(const Image& reference, const std::string& reference_path,
+                           const std::string& path);
 
 /// The error map as written to `path`: float formats (EXR, TIFF) keep the patch distances as
 /// they are (written as float); other formats hold [0, 1], so the map is scaled to put its 99th

@@ -93,8 +93,8 @@ Status check_output_paths(const StylizeJob& job) {
 
 // The formats of the outputs can hold what will be written (checked before the run).
 Status check_output_formats(const StylizeJob& job, const Image& style) {
-    EXEMPLAR_RETURN_IF_ERROR(
-        check_output_format("--output", job.output, style, output_options(style, job.output)));
+    EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", job.output, style,
+                                                 output_options(style, job.style, job.output)));
     if (!job.save_error.empty()) {
         SaveOptions options;
         const Image like = error_map_for_file(Image(1, 1, 1), job.save_error, options);
@@ -314,7 +314,7 @@ Status StylizeCommand::run(const Streams& streams) {
 
     // Write the outputs (each atomically).
     EXEMPLAR_RETURN_IF_ERROR(
-        save_image(result->image, job.output, output_options(input.style, job.output)));
+        save_image(result->image, job.output, output_options(input.style, job.style, job.output)));
     if (!job.save_nnf.empty()) {
         EXEMPLAR_RETURN_IF_ERROR(
             save_image(nnf_to_image(result->nnf), job.save_nnf, SaveOptions{PixelFormat::Float}));

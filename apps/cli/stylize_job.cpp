@@ -27,6 +27,9 @@ Status type_error(const std::string& file, const std::string& key, const char* e
 }  // namespace
 
 Result<StylizeJob> load_job_file(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) return io_error(path + ": no such file");
+    if (fs::is_directory(path, ec)) return io_error(path + ": is a folder, not a job file");
     std::ifstream in(path);
     if (!in) return io_error(path + ": cannot open job file");
     json doc;

@@ -45,6 +45,11 @@ TEST_F(ApplyNnf, SixteenBitSourceGivesSixteenBitOutput) {
     EXPECT_TRUE(r.out.empty());
     EXPECT_EQ(png_bit_depth(path("out16.png")), 16);
     EXPECT_LE(max_abs_diff(read("out16.png"), read("styled.png")), 1.0f / 255.0f);
+    // A 16-bit file holding 8-bit values (a converted 8-bit image) is still 16-bit in, 16 out.
+    write("style8in16.png", read("style.png"), SaveOptions{PixelFormat::UInt16});
+    ASSERT_EQ(run(with(apply_args("style8in16.png"), {"-q", "-o", path("out8in16.png")})).code, 0);
+    EXPECT_EQ(png_bit_depth(path("out8in16.png")), 16);
+    EXPECT_LE(max_abs_diff(read("out8in16.png"), read("styled.png")), 1.0f / 255.0f);
 }
 
 TEST_F(ApplyNnf, ExtraChannelsAreCarried) {

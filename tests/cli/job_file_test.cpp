@@ -58,7 +58,8 @@ TEST_F(Cli, JobFileErrorsNameTheFileAndKey) {
     std::ofstream(path("broken.json")) << "{ not json";
     expect_failure({"stylize", "--config", path("broken.json")}, 1,
                    path("broken.json") + ": not valid JSON");
-    expect_failure({"stylize", "--config", path("missing.json")}, 1, path("missing.json"));
+    expect_failure({"stylize", "--config", path("missing.json")}, 1,
+                   path("missing.json") + ": no such file");
     // A job file without an output and none on the command line.
     std::ofstream(path("no_output.json"))
         << R"({"style": "style.png", "guides": [{"source": "a.png", "target": "b.png"}]})";
