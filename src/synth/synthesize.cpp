@@ -335,7 +335,8 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
                                     std::to_string(th));
         }
         for (const Match& m : in.initial_nnf.matches()) {
-            if (m.x < 0 || m.y < 0 || m.x >= sw || m.y >= sh) {
+            const bool no_match = m.x == -1 && m.y == -1;  // border marker of saved NNFs
+            if (!no_match && (m.x < 0 || m.y < 0 || m.x >= sw || m.y >= sh)) {
                 return invalid_argument("initial nnf: refers to " + std::to_string(m.x) + "," +
                                         std::to_string(m.y) + " outside the " + size_str(in.style) +
                                         " style");

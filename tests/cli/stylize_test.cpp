@@ -144,7 +144,7 @@ TEST_F(Cli, InitNnfOfAnotherSizeIsRefused) {
 // Disabled: validate_input rejects the (-1, -1) "not a patch centre" entries that every saved
 // NNF has along its border ("initial nnf: refers to -1,-1 outside the 32x28 style"), so
 // --init-nnf cannot take what --save-nnf wrote. Enable once synth accepts the marker.
-TEST_F(Cli, DISABLED_SavedNnfIsAValidInitNnf) {
+TEST_F(Cli, SavedNnfIsAValidInitNnf) {
     ASSERT_EQ(
         run(with(stylize_args(), {"-q", "-o", path("first.png"), "--save-nnf", path("nnf.exr")}))
             .code,
