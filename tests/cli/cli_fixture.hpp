@@ -19,6 +19,7 @@
 #include "cli.hpp"
 #include "exemplar/core/image.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "test_images.hpp"
 
 namespace exemplar::cli::testing {
 
@@ -65,17 +66,7 @@ inline Image texture(int w, int h, int channels, std::uint32_t seed) {
     return im;
 }
 
-/// Two-channel position ramp (x / (w-1), y / (h-1)): a float guide.
-inline Image ramp(int w, int h) {
-    Image im(w, h, 2);
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            im.at(x, y, 0) = static_cast<float>(x) / static_cast<float>(w - 1);
-            im.at(x, y, 1) = static_cast<float>(y) / static_cast<float>(h - 1);
-        }
-    }
-    return im;
-}
+using exemplar::testing::ramp;
 
 inline std::string file_bytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

@@ -37,9 +37,12 @@ struct SynthesisInput {
     std::vector<GuidePair> guides;  ///< A_i / B_i pairs; the target size comes from them.
     int target_width = 0;           ///< Needed only when there are no guides.
     int target_height = 0;
-    Image target_mask;    ///< Synthesize only here; elsewhere keep `initial_target`.
-    Image source_mask;    ///< Only patches entirely inside may be used.
-    Image source_labels;  ///< A target pixel takes only source patches of its label.
+    Image target_mask;  ///< Synthesize only here; elsewhere keep `initial_target`.
+    Image source_mask;  ///< Only patches entirely inside may be used.
+    /// A target pixel takes only source patches of its label. Labels are compared after
+    /// rounding to integers: pass integer values, not 8-bit label images normalized to 0..1
+    /// (the CLI maps each distinct colour to one integer).
+    Image source_labels;
     Image target_labels;
     Image source_orientation;  ///< Angle field on the style grid (both or neither).
     Image target_orientation;  ///< Angle field on the target grid.
