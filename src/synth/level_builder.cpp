@@ -22,7 +22,16 @@ std::vector<Image> pyramid_or_empty(const Image& image, int levels, float ratio,
     return gaussian_pyramid(image, levels, ratio, filter, threads);
 }
 
-// Patch centres whose footprint lies inside the image and entirely inside the mask (if any).
+std::vector<float> channel0(const Image& image) {
+    std::vector<float> out(image.pixel_count());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i] = image.data()[i * static_cast<std::size_t>(image.channels())];
+    }
+    return out;
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> source_validity(int w, int h, int fr, const Image& mask) {
     std::vector<std::uint8_t> valid(static_cast<std::size_t>(w) * h, 0);
     // Summed-area table of pixels outside the mask.
@@ -52,16 +61,6 @@ std::vector<std::uint8_t> source_validity(int w, int h, int fr, const Image& mas
     }
     return valid;
 }
-
-std::vector<float> channel0(const Image& image) {
-    std::vector<float> out(image.pixel_count());
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        out[i] = image.data()[i * static_cast<std::size_t>(image.channels())];
-    }
-    return out;
-}
-
-}  // namespace
 
 void target_size(const SynthesisInput& in, int& w, int& h) {
     if (!in.guides.empty()) {

@@ -2,6 +2,7 @@
 // Builds the per-level data of a run (pyramids of all inputs, feature images, validity maps).
 // Internal to the synth module.
 
+#include <cstdint>
 #include <vector>
 
 #include "exemplar/synth/synthesize.hpp"
@@ -11,6 +12,10 @@ namespace exemplar::synth {
 
 /// Target size of a run: from the guides, else the initial target, else the given size.
 void target_size(const SynthesisInput& input, int& width, int& height);
+
+/// Per pixel of a w x h source: 1 where the square footprint of radius `footprint_radius` lies
+/// inside the image and, if `mask` is not empty, entirely inside the mask (> 0.5).
+std::vector<std::uint8_t> source_validity(int w, int h, int footprint_radius, const Image& mask);
 
 /// Automatic level count: the coarsest level keeps at least 5 patches across the smaller side of
 /// both the style and the target (StyLit: 6 levels for one megapixel at ratio 1/2).

@@ -345,19 +345,9 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
     }
     if (!in.source_mask.empty()) {
         // Some patch must fit entirely inside the mask at full resolution.
-        const int r = options.patch_size / 2;
-        bool any = false;
-        for (int y = r; y < sh - r && !any; ++y) {
-            for (int x = r; x < sw - r && !any; ++x) {
-                bool inside = true;
-                for (int dy = -r; dy <= r && inside; ++dy) {
-                    for (int dx = -r; dx <= r && inside; ++dx) {
-                        inside = in.source_mask.at(x + dx, y + dy, 0) > 0.5f;
-                    }
-                }
-                any = inside;
-            }
-        }
+        const std::vector<std::uint8_t> valid =
+            synth::source_validity(sw, sh, options.patch_size / 2, in.source_mask);
+        const bool any = std::find(valid.begin(), valid.end(), 1) != valid.end();
         if (!any) {
             return invalid_argument("source mask: no " + std::to_string(options.patch_size) + "x" +
                                     std::to_string(options.patch_size) +
