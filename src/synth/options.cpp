@@ -49,15 +49,19 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 14> kSpecs{{
+const std::array<OptionSpec, 15> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
      0, 16, &O::levels},
     {"pyramid-ratio", "Size ratio between consecutive pyramid levels (StyLit: 0.5).", "", 0.3, 0.95,
      &O::pyramid_ratio},
-    {"em-iterations", "Search+vote iterations per pyramid level (StyLit: 6).", "iterations", 1, 100,
-     &O::em_iterations},
+    {"em-iterations", "Search+vote iterations per pyramid level but the finest (StyLit: 6).",
+     "iterations", 1, 100, &O::em_iterations},
+    {"finest-em-iterations",
+     "Search+vote iterations on the finest level; 0 = em-iterations. It starts from the "
+     "upsampled coarser solution and converges fast (StyLit: 6).",
+     "iterations", 0, 100, &O::finest_em_iterations},
     {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
      "iterations", 1, 100, &O::search_iterations},
     {"warm-search-iterations",

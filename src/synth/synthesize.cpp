@@ -58,28 +58,35 @@ std::set<long> label_set(const Image& labels, const Image& mask) {
     return out;
 }
 
-// NNF of a finer level from the coarser one: same relative source position, offset within the
-// patch kept (rotated with the match). Invalid results are repaired by evaluate_field.
-Nnf upsample_nnf(const Nnf& coarse, int coarse_sw, int coarse_sh, const synth::Level& fine) {
-    Nnf out(fine.tw, fine.th);
-    const double tx_scale = static_cast<double>(coarse.width()) / fine.tw;
-    const double ty_scale = static_cast<double>(coarse.height()) / fine.th;
-    const double sx_scale = static_cast<double>(fine.sw) / coarse_sw;
-    const double sy_scale = static_cast<double>(fine.sh) / coarse_sh;
-    for (int y = 0; y < fine.th; ++y) {
-        for (int x = 0; x < fine.tw; ++x) {
-            const double u = (x + 0.5) * tx_scale - 0.5;
-            const double v = (y + 0.5) * ty_scale - 0.5;
+// A field of a finer level from the coarser one: same relative database position, offset
+// within the patch kept (rotated with the match). Serves the forward NNF (query = target,
+// database = source) and the reversed field (query = source, database = target). Invalid
+// results are repaired by evaluate_field.
+Nnf upsample_field(const Nnf& coarse, int coarse_db_w, int coarse_db_h, int fine_w, int fine_h,
+                   int fine_db_w, int fine_db_h) {
+    Nnf out(fine_w, fine_h);
+    const double qx_scale = static_cast<double>(coarse.width()) / fine_w;
+    const double qy_scale = static_cast<double>(coarse.height()) / fine_h;
+    const double dx_scale = static_cast<double>(fine_db_w) / coarse_db_w;
+    const double dy_scale = static_cast<double>(fine_db_h) / coarse_db_h;
+    for (int y = 0; y < fine_h; ++y) {
+        for (int x = 0; x < fine_w; ++x) {
+            const double u = (x + 0.5) * qx_scale - 0.5;
+            const double v = (y + 0.5) * qy_scale - 0.5;
             const int cx = std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
             const int cy = std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
             const Match& m = coarse.at(cx, cy);
+            Match& o = out.at(x, y);
+            if (m.x < 0) {
+                o = Match{-1, -1, 0.0f, 0.0f};
+                continue;
+            }
             const double du = u - cx, dv = v - cy;
             const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
             const double su = m.x + c * du - s * dv;
             const double sv = m.y + s * du + c * dv;
-            Match& o = out.at(x, y);
-            o.x = static_cast<int>(std::lround((su + 0.5) * sx_scale - 0.5));
-            o.y = static_cast<int>(std::lround((sv + 0.5) * sy_scale - 0.5));
+            o.x = static_cast<int>(std::lround((su + 0.5) * dx_scale - 0.5));
+            o.y = static_cast<int>(std::lround((sv + 0.5) * dy_scale - 0.5));
             o.angle_rad = m.angle_rad;
         }
     }
@@ -378,7 +385,8 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
     for (int l = 0; l < levels; ++l) {
         const int depth = levels - 1 - l;
         total_work += static_cast<double>(pyramid_level_size(tw, options.pyramid_ratio, depth)) *
-                      pyramid_level_size(th, options.pyramid_ratio, depth) * options.em_iterations;
+                      pyramid_level_size(th, options.pyramid_ratio, depth) *
+                      em_iterations_of_level(options, depth == 0);
     }
     if (options.final_pass_iterations > 0 && options.patch_size > 3) {
         total_work += static_cast<double>(tw) * th * options.final_pass_iterations * 9.0 /
@@ -387,8 +395,9 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
     ProgressTracker tracker{context, levels, total_work};
 
     Nnf nnf;
-    Image current;  // B' at the current level
-    int prev_sw = 0, prev_sh = 0;
+    Nnf reverse_field;  // reversed-retrieval state (usage strategies), carried across levels
+    Image current;      // B' at the current level
+    int prev_sw = 0, prev_sh = 0, prev_tw = 0, prev_th = 0;
     SynthesisResult result;
     for (int l = 0; l < levels; ++l) {
         if (context.cancelled()) return cancelled();
@@ -401,7 +410,12 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             nnf = in.initial_nnf.empty() ? unassigned_nnf(L.tw, L.th)
                                          : downscale_nnf(in.initial_nnf, in.style, L);
         } else {
-            nnf = upsample_nnf(nnf, prev_sw, prev_sh, L);
+            nnf = upsample_field(nnf, prev_sw, prev_sh, L.tw, L.th, L.sw, L.sh);
+            // The reversed-retrieval state starts from the coarser level's too.
+            if (!reverse_field.empty()) {
+                reverse_field =
+                    upsample_field(reverse_field, prev_tw, prev_th, L.sw, L.sh, L.tw, L.th);
+            }
         }
 
         // Initial B' of this level: the initial target on the coarsest level if given, else
@@ -417,12 +431,13 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             set_target_style(L, current);
         }
 
-        Nnf reverse_field;  // reversed-retrieval state, kept warm within the level
-        run_em(L, options, options.em_iterations, level_key, threads, /*warm_start=*/false, nnf,
-               reverse_field, current, tracker, debug);
+        run_em(L, options, em_iterations_of_level(options, l == levels - 1), level_key, threads,
+               /*warm_start=*/false, nnf, reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
+        prev_tw = L.tw;
+        prev_th = L.th;
 
         if (l == levels - 1) {
             // Optional final iterations with 3x3 patches restore the finest grain.

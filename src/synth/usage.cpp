@@ -60,6 +60,12 @@ public:
         rebuild_free_lists();
     }
 
+    ReverseRetrieval(const ReverseRetrieval&) = delete;
+    ReverseRetrieval& operator=(const ReverseRetrieval&) = delete;
+    ~ReverseRetrieval() {
+        if (!first_round_.empty()) reverse_ = std::move(first_round_);
+    }
+
     std::size_t free_count() const { return free_count_; }
     std::size_t active_count() const { return active_count_; }
     std::vector<std::uint8_t>& query_mask() { return query_; }
@@ -74,10 +80,15 @@ public:
         // Target features do not change between the rounds of one search, so after the first
         // round only entries whose target was taken need a new (random free) target.
         evaluate_field(problem, reverse_, key, s_.threads, /*only_invalid=*/round > 0);
-        const bool cold = round == 0 && !warm_;
+        // The first round starts from the previous EM iteration's first-round field (warm), an
+        // upsampled coarser level's field or random matches; later rounds from this search's.
+        const bool warm = round > 0 || warm_;
         run_patchmatch(problem, reverse_,
-                       cold ? s_.options.search_iterations : s_.options.warm_search_iterations,
+                       warm ? s_.options.warm_search_iterations : s_.options.search_iterations,
                        hash_keys(key, 1), s_.threads);
+        // Later rounds pull the field toward the few targets still free; the next EM
+        // iteration (all targets free again) starts better from this round's field.
+        if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;
         std::vector<Candidate> best_per_target(free_.size(), Candidate{kInf, -1, -1, 0.0f});
         for (std::size_t si = 0; si < query_.size(); ++si) {
             if (!query_[si]) continue;
@@ -156,6 +167,7 @@ private:
     std::size_t active_count_ = 0;
     Nnf own_reverse_;  // used when the caller keeps no field between iterations
     Nnf& reverse_;
+    Nnf first_round_;  // the field after the first round, kept for the next EM iteration
     bool warm_ = false;
 };
 

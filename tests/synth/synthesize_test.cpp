@@ -261,9 +261,16 @@ TEST(Synthesize, DebugSinkReceivesUsageMaps) {
         EXPECT_EQ(f.nnf->width(), f.current->width());
     };
     ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
-    EXPECT_EQ(frames, 2 * opt.em_iterations + opt.final_pass_iterations);
+    // One frame per EM iteration: the coarse level's, the finest level's, the final 3x3 pass.
+    EXPECT_EQ(frames, opt.em_iterations + opt.finest_em_iterations + opt.final_pass_iterations);
     // The last frame is the final 3x3 pass: patch centres at least 1 px from the border.
     EXPECT_EQ(last_usage_sum, 30.0f * 30.0f);
+
+    // finest-em-iterations 0: every level runs em-iterations.
+    opt.finest_em_iterations = 0;
+    frames = 0;
+    ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
+    EXPECT_EQ(frames, 2 * opt.em_iterations + opt.final_pass_iterations);
 }
 
 struct BadCase {

@@ -53,8 +53,13 @@ struct SynthesisOptions {
     int patch_size = 5;          ///< Patch width in pixels, odd.
     int levels = 0;              ///< Pyramid levels; 0 = automatic (coarsest side ≥ 5 patches).
     float pyramid_ratio = 0.5f;  ///< Size ratio between consecutive levels (StyLit: 1/2).
-    int em_iterations = 6;       ///< Search+vote iterations per level (finest level).
-    int search_iterations = 6;   ///< PatchMatch iterations per NNF search from a cold start.
+    int em_iterations = 6;       ///< Search+vote iterations per level (coarser levels).
+    /// Search+vote iterations on the finest level; 0 = em_iterations. Our deviation from
+    /// StyLit's 6: the finest level starts from the upsampled solution of the level before and
+    /// converges in a few iterations, while it costs as much as all coarser levels together
+    /// (measurements in docs/PERFORMANCE.md).
+    int finest_em_iterations = 2;
+    int search_iterations = 6;  ///< PatchMatch iterations per NNF search from a cold start.
     /// PatchMatch iterations when the search starts from the previous EM iteration's field
     /// (every EM iteration after a level's first, every reversed round after the first).
     /// StyLit uses 6 throughout; 3 keeps most of the texture at about half the time
@@ -78,6 +83,12 @@ struct SynthesisOptions {
     float occurrence_threshold = 0.0f;
     std::uint64_t seed = 1;  ///< Random seed; same seed → same output for any thread count.
 };
+
+/// EM iterations of a level: finest_em_iterations (if set) on the finest, else em_iterations.
+inline int em_iterations_of_level(const SynthesisOptions& options, bool finest) {
+    return finest && options.finest_em_iterations > 0 ? options.finest_em_iterations
+                                                      : options.em_iterations;
+}
 
 /// Description of one numeric option. `field` points into SynthesisOptions.
 struct OptionSpec {
