@@ -1,13 +1,13 @@
 #pragma once
-// One pyramid level of a synthesis run, in the form the kernels use: feature images with the
-// channel weights folded in (sqrt(weight) pre-scaling turns weighted SSD into plain SSD),
-// validity of source patch centres, labels, orientations and the target's active/fixed pixels.
-// Internal to the synth module.
+// One pyramid level of a synthesis run, in the form the kernels use: 8-bit feature images with
+// per-channel weights (features.hpp), validity of source patch centres, labels, orientations
+// and the target's active/fixed pixels. Internal to the synth module.
 
 #include <cstdint>
 #include <vector>
 
 #include "exemplar/core/image.hpp"
+#include "features.hpp"
 
 namespace exemplar::synth {
 
@@ -19,7 +19,7 @@ struct Level {
     // Source (style grid).
     int sw = 0, sh = 0;
     Image source_style;                      ///< A', unscaled style channels (what voting copies).
-    Image source_features;                   ///< F channels: scaled A' then scaled guides A_i.
+    FeatureImage source_features;            ///< F channels: A' then the guides A_i.
     std::vector<std::uint8_t> source_valid;  ///< Patch centre usable (in bounds, mask).
     /// Label group of each source pixel (index into valid_by_group); empty when labels are unused.
     std::vector<int> source_label;
@@ -27,16 +27,19 @@ struct Level {
 
     // Target.
     int tw = 0, th = 0;
-    Image target_features;  ///< F channels: scaled B' (updated by voting) then scaled guides B_i.
-    Image target_weights;   ///< Empty, or F channels of per-pixel weight multipliers.
+    FeatureImage target_features;   ///< F channels: B' (updated by voting) then the guides B_i.
+    Image target_weights;           ///< Empty, or F channels of per-pixel weight multipliers.
     std::vector<int> target_label;  ///< Label group of each target pixel; empty if unused.
     std::vector<float> target_angle;
     std::vector<std::uint8_t> target_active;  ///< Patch centres being optimized.
     std::vector<std::uint8_t> target_fixed;   ///< Pixels kept from the initial target.
     Image fixed_style;  ///< Initial target (style channels) at this level; empty if none.
 
-    int style_channels = 0;          ///< S: leading channels of the feature images that hold style.
-    std::vector<float> style_scale;  ///< sqrt(weight) per style channel.
+    int style_channels = 0;  ///< S: leading channels of the feature images that hold style.
+    std::vector<ChannelQuantizer> quantizers;  ///< Per feature channel (F), both sides.
+    /// Per feature byte (stride): channel weight * step^2, so that the weighted SSD of the codes
+    /// approximates the weighted SSD of the values; 0 on padding bytes.
+    std::vector<float> channel_weight;
     std::vector<float> pixel_weight;  ///< Patch fall-off weights (P*P), empty = flat.
 
     // Valid source centres (pixel indices) grouped by label; one group when labels are unused.

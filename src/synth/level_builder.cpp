@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <utility>
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/filters/resample.hpp"
@@ -136,43 +138,68 @@ Level LevelBuilder::build(int index, int patch_size) const {
         L.th = pyramid_level_size(th_, options_.pyramid_ratio, static_cast<int>(d));
     }
 
-    // Feature images: sqrt(weight)-scaled style then guides.
+    // Feature images: style then guides, as 8-bit codes with per-channel weights. A channel's
+    // code covers its values on both sides (the style's B' stays inside the range of A', as
+    // votes average A' values; an initial target may widen it).
     const int S = L.style_channels;
     int F = S;
     for (const GuidePair& g : input_.guides) F += g.source.channels();
-    L.style_scale.resize(static_cast<std::size_t>(S));
+    L.source_features = FeatureImage(L.sw, L.sh, F);
+    L.target_features = FeatureImage(L.tw, L.th, F);
+    L.quantizers.resize(static_cast<std::size_t>(F));
+    L.channel_weight.assign(static_cast<std::size_t>(L.source_features.stride()), 0.0f);
+    auto set_channel = [&](int c, float weight, const Image& a, int ac, const Image& b, int bc) {
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        for (const auto& [image, channel] : {std::pair{&a, ac}, std::pair{&b, bc}}) {
+            if (image->empty()) continue;
+            const int C = image->channels();
+            for (std::size_t i = 0; i < image->pixel_count(); ++i) {
+                const float v = image->data()[i * static_cast<std::size_t>(C) +
+                                              static_cast<std::size_t>(channel)];
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+        }
+        const ChannelQuantizer q = quantizer_for_range(lo, hi);
+        L.quantizers[static_cast<std::size_t>(c)] = q;
+        L.channel_weight[static_cast<std::size_t>(c)] = weight * q.step * q.step;
+    };
+    auto encode = [](const Image& image, int channel, const ChannelQuantizer& q, FeatureImage& out,
+                     int c) {
+        const int C = image.channels();
+        for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+            out.pixel(i)[c] = q.code(
+                image.data()[i * static_cast<std::size_t>(C) + static_cast<std::size_t>(channel)]);
+        }
+    };
     for (int c = 0; c < S; ++c) {
         const float w = input_.style_channel_weights.empty()
                             ? 1.0f
                             : input_.style_channel_weights[static_cast<std::size_t>(c)];
-        L.style_scale[static_cast<std::size_t>(c)] = std::sqrt(options_.style_weight * w);
+        set_channel(c, options_.style_weight * w, style, c, initial_[d], c);
+        encode(style, c, L.quantizers[static_cast<std::size_t>(c)], L.source_features, c);
     }
-    L.source_features = Image(L.sw, L.sh, F);
-    L.target_features = Image(L.tw, L.th, F);
     const bool any_map = std::any_of(weight_maps_.begin(), weight_maps_.end(),
                                      [&](const auto& p) { return !p[d].empty(); });
     if (any_map) L.target_weights = Image(L.tw, L.th, F, 1.0f);
-    for (std::size_t i = 0; i < L.source_features.pixel_count(); ++i) {
-        const float* in = style.data().data() + i * static_cast<std::size_t>(S);
-        float* out = L.source_features.data().data() + i * static_cast<std::size_t>(F);
-        for (int c = 0; c < S; ++c) out[c] = L.style_scale[static_cast<std::size_t>(c)] * in[c];
-    }
     int offset = S;
     for (std::size_t g = 0; g < input_.guides.size(); ++g) {
-        const float scale = std::sqrt(input_.guides[g].weight);
         const Image& sg = source_guides_[g][d];
         const Image& tg = target_guides_[g][d];
         const Image& map = weight_maps_[g][d];
         const int C = sg.channels();
-        for (std::size_t i = 0; i < sg.pixel_count(); ++i) {
-            for (int c = 0; c < C; ++c) {
-                L.source_features.data()[i * F + offset + c] = scale * sg.data()[i * C + c];
-            }
+        for (int c = 0; c < C; ++c) {
+            const int fc = offset + c;
+            set_channel(fc, input_.guides[g].weight, sg, c, tg, c);
+            const ChannelQuantizer& q = L.quantizers[static_cast<std::size_t>(fc)];
+            encode(sg, c, q, L.source_features, fc);
+            encode(tg, c, q, L.target_features, fc);
         }
-        for (std::size_t i = 0; i < tg.pixel_count(); ++i) {
-            for (int c = 0; c < C; ++c) {
-                L.target_features.data()[i * F + offset + c] = scale * tg.data()[i * C + c];
-                if (!map.empty()) L.target_weights.data()[i * F + offset + c] = map.data()[i];
+        if (!map.empty()) {
+            for (std::size_t i = 0; i < tg.pixel_count(); ++i) {
+                for (int c = 0; c < C; ++c) {
+                    L.target_weights.data()[i * F + offset + c] = map.data()[i];
+                }
             }
         }
         offset += C;
@@ -276,12 +303,11 @@ void set_target_style(Level& level, const Image& style) {
     EXEMPLAR_CHECK_EQ(style.width(), level.tw);
     EXEMPLAR_CHECK_EQ(style.channels(), level.style_channels);
     const int S = level.style_channels;
-    const int F = level.feature_channels();
     for (std::size_t i = 0; i < style.pixel_count(); ++i) {
-        for (int c = 0; c < S; ++c) {
-            level.target_features.data()[i * F + c] =
-                level.style_scale[static_cast<std::size_t>(c)] * style.data()[i * S + c];
-        }
+        std::uint8_t* out = level.target_features.pixel(i);
+        const float* in = style.data().data() + i * static_cast<std::size_t>(S);
+        for (int c = 0; c < S; ++c)
+            out[c] = level.quantizers[static_cast<std::size_t>(c)].code(in[c]);
     }
 }
 

@@ -25,20 +25,15 @@ float general_distance(const Level& L, int tx, int ty, int sx, int sy, float ang
         for (int dx = -r; dx <= r; ++dx, ++k) {
             const int x = std::clamp(tx + dx, 0, L.tw - 1);
             const RotatedOffset o = rotate ? rotate_offset(dx, dy, c, s) : RotatedOffset{dx, dy};
-            const float* t = L.target_features.pixel(x, y);
-            const float* src = L.source_features.pixel(sx + o.dx, sy + o.dy);
+            const std::uint8_t* t = L.target_features.pixel(x, y);
+            const std::uint8_t* src = L.source_features.pixel(sx + o.dx, sy + o.dy);
+            const float* w = L.channel_weight.data();
+            const float* map = weighted ? L.target_weights.pixel(x, y) : nullptr;
             float px = 0.0f;
-            if (weighted) {
-                const float* w = L.target_weights.pixel(x, y);
-                for (int ch = 0; ch < F; ++ch) {
-                    const float d = t[ch] - src[ch];
-                    px += w[ch] * d * d;
-                }
-            } else {
-                for (int ch = 0; ch < F; ++ch) {
-                    const float d = t[ch] - src[ch];
-                    px += d * d;
-                }
+            for (int ch = 0; ch < F; ++ch) {
+                const auto d =
+                    static_cast<float>(static_cast<int>(t[ch]) - static_cast<int>(src[ch]));
+                px += (weighted ? map[ch] * w[ch] : w[ch]) * d * d;
             }
             sum += falloff ? L.pixel_weight[k] * px : px;
         }
@@ -59,13 +54,11 @@ float patch_distance(const Level& L, int tx, int ty, int sx, int sy, float angle
     if (!interior || angle != 0.0f || !L.target_weights.empty() || !L.pixel_weight.empty()) {
         return general_distance<true>(L, tx, ty, sx, sy, angle, bound);
     }
-    // Fast path: each patch row is one contiguous run of P*F floats in both images.
-    const int F = L.feature_channels();
-    const int n = L.patch_size * F;
-    const std::size_t t_stride = static_cast<std::size_t>(L.tw) * static_cast<std::size_t>(F);
-    const std::size_t s_stride = static_cast<std::size_t>(L.sw) * static_cast<std::size_t>(F);
-    return ssd_rows(L.target_features.pixel(tx - r, ty - r), t_stride,
-                    L.source_features.pixel(sx - r, sy - r), s_stride, L.patch_size, n, bound);
+    // Fast path: each patch row is one contiguous run of P pixels in both feature images.
+    const FeatureImage& t = L.target_features;
+    const FeatureImage& s = L.source_features;
+    return ssd_rows(t.pixel(tx - r, ty - r), t.row_bytes(), s.pixel(sx - r, sy - r), s.row_bytes(),
+                    L.patch_size, L.patch_size, t.stride(), L.channel_weight.data(), bound);
 }
 
 }  // namespace exemplar::synth

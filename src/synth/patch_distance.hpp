@@ -1,7 +1,8 @@
 #pragma once
 // Patch distance: weighted sum of squared differences between a target patch and a (possibly
-// rotated) source patch over all feature channels. Channel weights are pre-folded into the
-// feature images; per-pixel target weight maps and the Gaussian fall-off are applied here.
+// rotated) source patch over all feature channels, computed on the 8-bit feature codes with the
+// level's per-channel weights (features.hpp); per-pixel target weight maps and the Gaussian
+// fall-off are applied here.
 // Source samples at rotated offsets use the nearest pixel (Bénard et al. 2013 §3.2).
 
 #include <cmath>

@@ -1,20 +1,25 @@
 #pragma once
-// Sum of squared differences over a block of rows of contiguous floats: the inner loop of the
-// patch distance. A Highway kernel with runtime dispatch (SSE4/AVX2/AVX-512, picked for the
-// running CPU) sits beside the always-compiled scalar reference; tests compare the two.
+// Weighted sum of squared differences of 8-bit feature codes over a block of rows: the inner loop
+// of the patch distance. A Highway kernel with runtime dispatch (SSE4/AVX2/AVX-512, picked for
+// the running CPU) sits beside the always-compiled scalar reference; tests compare the two.
 
 #include <cstddef>
+#include <cstdint>
 
 namespace exemplar::synth {
 
-/// Sum over `rows` rows of sum over i < n of (a[i] - b[i])^2; row r starts at a + r * a_stride
-/// and b + r * b_stride. Returns as soon as the running sum exceeds `bound` (after a row).
-float ssd_rows(const float* a, std::size_t a_stride, const float* b, std::size_t b_stride, int rows,
-               int n, float bound);
+/// Sum over `rows` rows of sum over `pixels` pixels of sum over c < stride of
+/// weights[c] * (a[c] - b[c])^2, where a row holds `pixels` consecutive pixels of `stride`
+/// bytes, row r starts at a + r * a_stride and b + r * b_stride, and stride is a multiple of 4.
+/// Returns as soon as the running sum exceeds `bound` (after a row).
+float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+               std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+               float bound);
 
 /// The scalar reference of ssd_rows (same contract).
-float ssd_rows_scalar(const float* a, std::size_t a_stride, const float* b, std::size_t b_stride,
-                      int rows, int n, float bound);
+float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                      std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+                      float bound);
 
 /// Whether ssd_rows uses the SIMD kernel (default true); false routes it to the scalar
 /// reference, for benchmarks and tests. Not thread-safe: set it before running.

@@ -13,42 +13,55 @@ namespace exemplar::synth {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-float SsdRows(const float* a, std::size_t a_stride, const float* b, std::size_t b_stride, int rows,
-              int n, float bound) {
-    const hn::ScalableTag<float> d;
-    const std::size_t lanes = hn::Lanes(d);
-    const std::size_t count = static_cast<std::size_t>(n);
+// One pixel is stride / Lanes(df) whole vectors, so lane i of the k-th vector of a pixel is
+// always byte k * Lanes + i and takes that byte's weight.
+template <class DF>
+float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+               std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+               float bound) {
+    const hn::RebindToSigned<DF> di;
+    const hn::Rebind<std::uint8_t, DF> d8;
+    const int lanes = static_cast<int>(hn::Lanes(df));
+    const int blocks = stride / lanes;
     float sum = 0.0f;
     for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride) {
-        auto acc0 = hn::Zero(d);
-        auto acc1 = hn::Zero(d);
-        std::size_t i = 0;
-        for (; i + 2 * lanes <= count; i += 2 * lanes) {
-            const auto d0 = hn::Sub(hn::LoadU(d, a + i), hn::LoadU(d, b + i));
-            const auto d1 = hn::Sub(hn::LoadU(d, a + i + lanes), hn::LoadU(d, b + i + lanes));
-            acc0 = hn::MulAdd(d0, d0, acc0);
-            acc1 = hn::MulAdd(d1, d1, acc1);
+        auto acc0 = hn::Zero(df);
+        auto acc1 = hn::Zero(df);
+        const std::uint8_t* pa = a;
+        const std::uint8_t* pb = b;
+        for (int p = 0; p < pixels; ++p) {
+            for (int k = 0; k < blocks; ++k, pa += lanes, pb += lanes) {
+                const auto d = hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, pa)),
+                                                         hn::PromoteTo(di, hn::LoadU(d8, pb))));
+                const auto wd = hn::Mul(hn::LoadU(df, weights + k * lanes), d);
+                // Two accumulators: alternate pixels, to shorten the dependency chain.
+                if (p % 2 == 0) {
+                    acc0 = hn::MulAdd(wd, d, acc0);
+                } else {
+                    acc1 = hn::MulAdd(wd, d, acc1);
+                }
+            }
         }
-        for (; i + lanes <= count; i += lanes) {
-            const auto d0 = hn::Sub(hn::LoadU(d, a + i), hn::LoadU(d, b + i));
-            acc0 = hn::MulAdd(d0, d0, acc0);
-        }
-        // Tail: 4-lane vectors, then scalars; nothing is read past the row.
-        const hn::CappedTag<float, 4> d4;
-        auto acc4 = hn::Zero(d4);
-        for (; i + 4 <= count; i += 4) {
-            const auto d0 = hn::Sub(hn::LoadU(d4, a + i), hn::LoadU(d4, b + i));
-            acc4 = hn::MulAdd(d0, d0, acc4);
-        }
-        float tail = hn::GetLane(hn::SumOfLanes(d4, acc4));
-        for (; i < count; ++i) {
-            const float diff = a[i] - b[i];
-            tail += diff * diff;
-        }
-        sum += hn::GetLane(hn::SumOfLanes(d, hn::Add(acc0, acc1))) + tail;
+        sum += hn::GetLane(hn::SumOfLanes(df, hn::Add(acc0, acc1)));
         if (sum > bound) return sum;
     }
     return sum;
+}
+
+float SsdRows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+              std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+              float bound) {
+    // The widest vectors that divide the pixel stride (a multiple of 4).
+    const hn::ScalableTag<float> df;
+    if (stride % static_cast<int>(hn::Lanes(df)) == 0) {
+        return SsdRowsT(df, a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
+    }
+    const hn::CappedTag<float, 8> d8;
+    if (stride % static_cast<int>(hn::Lanes(d8)) == 0) {
+        return SsdRowsT(d8, a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
+    }
+    const hn::CappedTag<float, 4> d4;
+    return SsdRowsT(d4, a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -64,14 +77,18 @@ namespace {
 std::atomic<bool> g_simd{true};
 }
 
-float ssd_rows_scalar(const float* a, std::size_t a_stride, const float* b, std::size_t b_stride,
-                      int rows, int n, float bound) {
+float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                      std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+                      float bound) {
     float sum = 0.0f;
     for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride) {
         float row = 0.0f;
-        for (int i = 0; i < n; ++i) {
-            const float diff = a[i] - b[i];
-            row += diff * diff;
+        for (int p = 0; p < pixels; ++p) {
+            for (int c = 0; c < stride; ++c) {
+                const int i = p * stride + c;
+                const auto d = static_cast<float>(static_cast<int>(a[i]) - static_cast<int>(b[i]));
+                row += weights[c] * d * d;
+            }
         }
         sum += row;
         if (sum > bound) return sum;
@@ -79,12 +96,14 @@ float ssd_rows_scalar(const float* a, std::size_t a_stride, const float* b, std:
     return sum;
 }
 
-float ssd_rows(const float* a, std::size_t a_stride, const float* b, std::size_t b_stride, int rows,
-               int n, float bound) {
+float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+               std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+               float bound) {
     if (!g_simd.load(std::memory_order_relaxed)) {
-        return ssd_rows_scalar(a, a_stride, b, b_stride, rows, n, bound);
+        return ssd_rows_scalar(a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
     }
-    return HWY_DYNAMIC_DISPATCH(SsdRows)(a, a_stride, b, b_stride, rows, n, bound);
+    return HWY_DYNAMIC_DISPATCH(SsdRows)(a, a_stride, b, b_stride, rows, pixels, stride, weights,
+                                         bound);
 }
 
 void set_simd_enabled(bool enabled) {

@@ -10,10 +10,17 @@
 namespace exemplar::synth {
 namespace {
 
-std::vector<float> random_floats(std::size_t n, std::uint64_t seed) {
+std::vector<std::uint8_t> random_codes(std::size_t n, std::uint64_t seed) {
+    std::vector<std::uint8_t> v(n);
+    KeyedRng rng(seed, 0);
+    for (std::uint8_t& x : v) x = static_cast<std::uint8_t>(rng.below(256));
+    return v;
+}
+
+std::vector<float> random_weights(std::size_t n, std::uint64_t seed) {
     std::vector<float> v(n);
     KeyedRng rng(seed, 0);
-    for (float& x : v) x = rng.uniform();
+    for (float& x : v) x = rng.uniform() * 1e-4f;
     return v;
 }
 
@@ -80,21 +87,50 @@ TEST(PatchDistance, IdenticalPatchesHaveZeroDistanceAndWeightsScale) {
     Level L = builder.build(0);
     set_target_style(L, in.style);
     EXPECT_EQ(patch_distance(L, 10, 10, 10, 10, 0.0f), 0.0f);
-    // Guide weight 2 doubles the squared guide difference; style weight 1.
+    // Guide weight 2 doubles the squared guide difference; style weight 1. The features are
+    // 8-bit codes: every value moves by at most half a code step (1/510 here), which bounds the
+    // difference to the float distance.
     const float d = patch_distance_reference(L, 10, 10, 11, 10, 0.0f);
-    double expected = 0.0;
+    double expected = 0.0, tolerance = 0.0;
+    const double half_step = 0.5 / 255.0;
     for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
             for (int c = 0; c < 3; ++c) {
                 const double e =
                     in.style.at(10 + dx, 10 + dy, c) - in.style.at(11 + dx, 10 + dy, c);
                 expected += e * e;
+                tolerance += 4.0 * half_step * std::abs(e) + 4.0 * half_step * half_step;
             }
             const double gx = 1.0 / 19.0;  // ramp step in x
             expected += 2.0 * gx * gx;
+            tolerance += 2.0 * (4.0 * half_step * gx + 4.0 * half_step * half_step);
         }
     }
-    EXPECT_NEAR(d, expected, 1e-4);
+    EXPECT_NEAR(d, expected, tolerance);
+    EXPECT_LT(tolerance, 0.1 * expected);  // the bound is meaningful
+}
+
+TEST(Features, EightBitInputsAreCodedExactly) {
+    // Values on the 1/255 grid (any 8-bit image) keep their exact differences.
+    const ChannelQuantizer q = quantizer_for_range(10.0f / 255.0f, 200.0f / 255.0f);
+    EXPECT_FLOAT_EQ(q.step, 1.0f / 255.0f);
+    for (int k = 10; k <= 200; ++k) {
+        EXPECT_EQ(static_cast<int>(q.code(static_cast<float>(k) / 255.0f)), k - 10);
+    }
+    // A wider (HDR) range is split into 255 steps; the ends map to 0 and 255, outside clamps.
+    const ChannelQuantizer wide = quantizer_for_range(-2.0f, 6.0f);
+    EXPECT_FLOAT_EQ(wide.step, 8.0f / 255.0f);
+    EXPECT_EQ(wide.code(-2.0f), 0);
+    EXPECT_EQ(wide.code(6.0f), 255);
+    EXPECT_EQ(wide.code(100.0f), 255);
+    EXPECT_EQ(wide.code(-100.0f), 0);
+    // A constant channel has one code.
+    const ChannelQuantizer flat = quantizer_for_range(0.3f, 0.3f);
+    EXPECT_EQ(flat.code(0.3f), 0);
+    EXPECT_EQ(padded_feature_stride(3), 4);
+    EXPECT_EQ(padded_feature_stride(6), 8);
+    EXPECT_EQ(padded_feature_stride(15), 16);
+    EXPECT_EQ(padded_feature_stride(17), 32);
 }
 
 TEST(PatchDistance, EarlyTerminationExceedsBound) {
@@ -104,18 +140,25 @@ TEST(PatchDistance, EarlyTerminationExceedsBound) {
     EXPECT_GT(patch_distance(L, 10, 10, 8, 8, 0.0f, full * 0.1f), full * 0.1f);
 }
 
-TEST(SsdRows, SimdMatchesScalarForEveryLength) {
-    const std::vector<float> a = random_floats(4096, 5), b = random_floats(4096, 6);
-    for (int n = 1; n <= 130; ++n) {
-        for (int rows : {1, 3, 5}) {
-            const float scalar = ssd_rows_scalar(a.data(), 300, b.data() + 7, 301, rows, n, 1e30f);
-            const float simd = ssd_rows(a.data(), 300, b.data() + 7, 301, rows, n, 1e30f);
-            ASSERT_NEAR(simd, scalar, 1e-5f * scalar) << "n=" << n << " rows=" << rows;
+TEST(SsdRows, SimdMatchesScalarForEveryShape) {
+    const std::vector<std::uint8_t> a = random_codes(8192, 5), b = random_codes(8192, 6);
+    const std::vector<float> w = random_weights(64, 7);
+    for (int stride : {4, 8, 16, 32, 48}) {
+        for (int pixels : {1, 2, 3, 5, 7}) {
+            for (int rows : {1, 3, 5}) {
+                const float scalar = ssd_rows_scalar(a.data(), 900, b.data() + 7, 901, rows, pixels,
+                                                     stride, w.data(), 1e30f);
+                const float simd = ssd_rows(a.data(), 900, b.data() + 7, 901, rows, pixels, stride,
+                                            w.data(), 1e30f);
+                ASSERT_GT(scalar, 0.0f);
+                ASSERT_NEAR(simd, scalar, 1e-5f * scalar)
+                    << "stride=" << stride << " pixels=" << pixels << " rows=" << rows;
+            }
         }
     }
     // Early termination: the result exceeds the bound, and is a partial sum.
-    const float full = ssd_rows(a.data(), 100, b.data(), 100, 5, 100, 1e30f);
-    const float cut = ssd_rows(a.data(), 100, b.data(), 100, 5, 100, full * 0.3f);
+    const float full = ssd_rows(a.data(), 100, b.data(), 100, 5, 5, 16, w.data(), 1e30f);
+    const float cut = ssd_rows(a.data(), 100, b.data(), 100, 5, 5, 16, w.data(), full * 0.3f);
     EXPECT_GT(cut, full * 0.3f);
     EXPECT_LT(cut, full);
     EXPECT_NE(std::string(simd_target_name()), "");
@@ -134,16 +177,19 @@ TEST(SsdRows, ScalarSwitchGivesTheSameDistances) {
 }
 
 TEST(SsdRows, EverySupportedSimdTargetMatchesScalar) {
-    const std::vector<float> a = random_floats(2048, 9), b = random_floats(2048, 10);
+    const std::vector<std::uint8_t> a = random_codes(4096, 9), b = random_codes(4096, 10);
+    const std::vector<float> w = random_weights(64, 11);
     int tested = 0;
     for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
          targets &= targets - 1) {
         const int64_t target = targets & -targets;
         hwy::SetSupportedTargetsForTest(target);
-        for (int n : {3, 15, 25, 75, 97}) {
-            const float scalar = ssd_rows_scalar(a.data(), 200, b.data(), 200, 5, n, 1e30f);
-            EXPECT_NEAR(ssd_rows(a.data(), 200, b.data(), 200, 5, n, 1e30f), scalar, 1e-5f * scalar)
-                << hwy::TargetName(target) << " n=" << n;
+        for (int stride : {4, 8, 16, 32}) {
+            const float scalar =
+                ssd_rows_scalar(a.data(), 400, b.data(), 400, 5, 5, stride, w.data(), 1e30f);
+            EXPECT_NEAR(ssd_rows(a.data(), 400, b.data(), 400, 5, 5, stride, w.data(), 1e30f),
+                        scalar, 1e-5f * scalar)
+                << hwy::TargetName(target) << " stride=" << stride;
         }
         ++tested;
     }
