@@ -65,8 +65,9 @@ const std::array<OptionSpec, 15> kSpecs{{
     {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
      "iterations", 1, 100, &O::search_iterations},
     {"warm-search-iterations",
-     "PatchMatch iterations when the search starts from the previous EM iteration's field "
-     "(StyLit: 6; fewer is faster but keeps less of the exemplar's fine texture).",
+     "PatchMatch iterations when the search starts from a close field: the previous EM "
+     "iteration's, or the previous reversed-retrieval round's (StyLit: 6; fewer is faster but "
+     "keeps less of the exemplar's fine texture).",
      "iterations", 1, 100, &O::warm_search_iterations},
     {"final-pass-iterations",
      "EM iterations with 3x3 patches after the finest level; restores fine grain. 0 = off.",

@@ -51,7 +51,7 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
             if (!valid) {
                 KeyedRng rng(key, qi);
                 int dx = 0, dy = 0;
-                if (!P.random_db(qi, rng, dx, dy)) {
+                if (!P.repair(qi, m, rng, dx, dy)) {
                     m.error = std::numeric_limits<float>::infinity();
                     continue;
                 }
@@ -158,6 +158,10 @@ struct ForwardProblem {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
     }
+    /// Replacement for an invalid entry: a random valid source centre.
+    bool repair(std::size_t qi, const Match&, KeyedRng& rng, int& sx, int& sy) const {
+        return random_db(qi, rng, sx, sy);
+    }
     bool random_db(std::size_t qi, KeyedRng& rng, int& sx, int& sy) const {
         const auto& lists = draw_lists != nullptr ? *draw_lists : L.valid_by_group;
         const auto& list = lists[static_cast<std::size_t>(L.target_group(qi))];
@@ -180,6 +184,8 @@ struct ReverseProblem {
     const std::uint8_t* query_ok;     ///< Source centres that look for a target (sw*sh).
     const std::uint8_t* target_free;  ///< Target pixels still to be assigned (tw*th).
     const std::vector<std::vector<int>>& free_by_group;  ///< Free target pixels per label group.
+    /// Optional (tw*th): the nearest free target pixel of every target pixel, or -1.
+    const int* nearest_free = nullptr;
 
     int db_width() const { return L.tw; }
     int db_height() const { return L.th; }
@@ -194,6 +200,19 @@ struct ReverseProblem {
     }
     float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {
         return patch_distance(L, tx, ty, sx, sy, -angle_rad, bound);
+    }
+    /// Replacement for an entry whose target was taken: the free target nearest to it (similar
+    /// content, so the search resumes close to its optimum), else a random free target.
+    bool repair(std::size_t si, const Match& old, KeyedRng& rng, int& tx, int& ty) const {
+        if (nearest_free != nullptr && old.x >= 0 && old.y >= 0 && old.x < L.tw && old.y < L.th) {
+            const int t = nearest_free[L.target_index(old.x, old.y)];
+            if (t >= 0 && L.target_group(static_cast<std::size_t>(t)) == L.source_group(si)) {
+                tx = t % L.tw;
+                ty = t / L.tw;
+                return true;
+            }
+        }
+        return random_db(si, rng, tx, ty);
     }
     bool random_db(std::size_t si, KeyedRng& rng, int& tx, int& ty) const {
         const auto& list = free_by_group[static_cast<std::size_t>(L.source_group(si))];

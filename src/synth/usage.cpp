@@ -75,10 +75,13 @@ public:
     // One reversed retrieval over the sources in query_mask(); returns collision-free
     // candidates (one per target, the smallest error), sorted by error.
     std::vector<Candidate> retrieve(int round) {
-        ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_};
+        // After the first round, matches whose target was taken resume at the nearest free one.
+        if (round > 0) update_nearest_free();
+        ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_,
+                               round > 0 ? nearest_free_.data() : nullptr};
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
         // Target features do not change between the rounds of one search, so after the first
-        // round only entries whose target was taken need a new (random free) target.
+        // round only entries whose target was taken need a new target.
         evaluate_field(problem, reverse_, key, s_.threads, /*only_invalid=*/round > 0);
         // The first round starts from the previous EM iteration's first-round field (warm), an
         // upsampled coarser level's field or random matches; later rounds from this search's.
@@ -114,6 +117,44 @@ public:
         --free_count_;
         nnf_[static_cast<std::size_t>(c.target)] =
             Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
+    }
+
+    // nearest_free_[t]: a free target pixel near t (t itself if free; -1 if none), by two
+    // raster passes of 8-neighbour propagation (a chamfer-style approximation of the nearest).
+    void update_nearest_free() {
+        const int w = L_.tw, h = L_.th;
+        nearest_free_.assign(free_.size(), -1);
+        for (std::size_t t = 0; t < free_.size(); ++t) {
+            if (free_[t]) nearest_free_[t] = static_cast<int>(t);
+        }
+        auto dist2 = [&](int a, int b) {
+            const int dx = a % w - b % w, dy = a / w - b / w;
+            return dx * dx + dy * dy;
+        };
+        auto relax = [&](int x, int y, int nx, int ny) {
+            if (nx < 0 || ny < 0 || nx >= w || ny >= h) return;
+            const int here = y * w + x;
+            const int cand = nearest_free_[static_cast<std::size_t>(ny * w + nx)];
+            if (cand < 0) return;
+            int& best = nearest_free_[static_cast<std::size_t>(here)];
+            if (best < 0 || dist2(here, cand) < dist2(here, best)) best = cand;
+        };
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                relax(x, y, x - 1, y);
+                relax(x, y, x - 1, y - 1);
+                relax(x, y, x, y - 1);
+                relax(x, y, x + 1, y - 1);
+            }
+        }
+        for (int y = h - 1; y >= 0; --y) {
+            for (int x = w - 1; x >= 0; --x) {
+                relax(x, y, x + 1, y);
+                relax(x, y, x + 1, y + 1);
+                relax(x, y, x, y + 1);
+                relax(x, y, x - 1, y + 1);
+            }
+        }
     }
 
     void rebuild_free_lists() {
@@ -163,6 +204,7 @@ private:
     std::vector<std::uint8_t> free_;
     std::vector<std::uint8_t> query_;
     std::vector<std::vector<int>> free_by_group_;
+    std::vector<int> nearest_free_;
     std::size_t free_count_ = 0;
     std::size_t active_count_ = 0;
     Nnf own_reverse_;  // used when the caller keeps no field between iterations

@@ -60,11 +60,11 @@ struct SynthesisOptions {
     /// (measurements in docs/PERFORMANCE.md).
     int finest_em_iterations = 2;
     int search_iterations = 6;  ///< PatchMatch iterations per NNF search from a cold start.
-    /// PatchMatch iterations when the search starts from the previous EM iteration's field
-    /// (every EM iteration after a level's first, every reversed round after the first).
-    /// StyLit uses 6 throughout; 3 keeps most of the texture at about half the time
-    /// (measurements in docs/PERFORMANCE.md).
-    int warm_search_iterations = 3;
+    /// PatchMatch iterations when the search starts from a field that is already close: the
+    /// previous EM iteration's (every EM iteration after a level's first), or the previous
+    /// round's (reversed-retrieval rounds). StyLit uses 6 throughout; with the warm starts of
+    /// the reversed field 2 keep the texture (measurements in docs/PERFORMANCE.md).
+    int warm_search_iterations = 2;
     float style_weight = 1.0f;      ///< Weight of the style (A'/B') term relative to guides.
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
