@@ -34,7 +34,8 @@ Status with_flag_names(const Status& status) {
 
 RenderCommand::RenderCommand(CLI::App& parent) {
     std::string names;
-    for (const auto& name : render::builtin_scene_names()) names += (names.empty() ? "" : ", ") + name;
+    for (const auto& name : render::builtin_scene_names())
+        names += (names.empty() ? "" : ", ") + name;
     app_ = parent.add_subcommand("render",
                                  "Path-trace a scene into light-path buffers (StyLit guides)");
     app_->footer(
@@ -45,8 +46,7 @@ RenderCommand::RenderCommand(CLI::App& parent) {
     app_->add_option("--scene", scene_, "A scene JSON file, or a built-in scene: " + names)
         ->required();
     app_->add_option("--width", options_.width, "Image width in pixels, 1..16384 (default 600)");
-    app_->add_option("--height", options_.height,
-                     "Image height in pixels, 1..16384 (default 456)");
+    app_->add_option("--height", options_.height, "Image height in pixels, 1..16384 (default 456)");
     app_->add_option("--spp", options_.samples_per_pixel,
                      "Samples (paths) per pixel, 1..65536 (default 64)");
     app_->add_option("--max-bounces", options_.max_bounces,
@@ -111,7 +111,9 @@ Status RenderCommand::run(const Streams& streams) const {
         EXEMPLAR_RETURN_IF_ERROR(render::save_buffers_to_exr(*buffers, output_));
     } else {
         fs::create_directory(output_, ec);
-        if (ec) return io_error("--output " + output_ + ": cannot create folder (" + ec.message() + ")");
+        if (ec)
+            return io_error("--output " + output_ + ": cannot create folder (" + ec.message() +
+                            ")");
         EXEMPLAR_RETURN_IF_ERROR(render::save_buffers_to_folder(
             *buffers, output_,
             format_ == "png" ? render::BufferFileFormat::Png : render::BufferFileFormat::Exr));

@@ -35,8 +35,8 @@ public:
         // scheduling.
         device_ = rtcNewDevice("threads=1");
         if (device_ == nullptr) {
-            error_ = "Embree: cannot create a device (" + code_name(rtcGetDeviceError(nullptr)) +
-                     ")";
+            error_ =
+                "Embree: cannot create a device (" + code_name(rtcGetDeviceError(nullptr)) + ")";
             return;
         }
         rtcSetDeviceErrorFunction(
@@ -118,7 +118,11 @@ LightFrame light_frame(const AreaLight& light) {
     const Vec3 ru = add(scale(u, std::cos(roll)), scale(v, std::sin(roll)));
     const Vec3 rv = cross(n, ru);
     const Vec3 eu = scale(ru, light.width), ev = scale(rv, light.height);
-    return {sub(light.center, scale(add(eu, ev), 0.5f)), eu, ev, n, light.width * light.height,
+    return {sub(light.center, scale(add(eu, ev), 0.5f)),
+            eu,
+            ev,
+            n,
+            light.width * light.height,
             light.radiance};
 }
 
@@ -137,7 +141,9 @@ public:
         // Ray offsets relative to the scene's size.
         float extent = 0.0f;
         for (const Mesh& mesh : scene.meshes) {
-            for (const Vec3& p : mesh.positions) extent = std::max(extent, max_component({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}));
+            for (const Vec3& p : mesh.positions)
+                extent = std::max(
+                    extent, max_component({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}));
         }
         epsilon_ = std::max(extent, 1.0f) * 2e-5f;
         const Camera& c = scene.camera;
@@ -149,7 +155,8 @@ public:
     }
 
     Vec3 camera_ray(float px, float py) const {
-        const float sx = (2.0f * px / static_cast<float>(options_.width) - 1.0f) * tan_half_ * aspect_;
+        const float sx =
+            (2.0f * px / static_cast<float>(options_.width) - 1.0f) * tan_half_ * aspect_;
         const float sy = (1.0f - 2.0f * py / static_cast<float>(options_.height)) * tan_half_;
         return normalize(add(forward_, add(scale(right_, sx), scale(up_, sy))));
     }
@@ -179,11 +186,14 @@ public:
         const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
         hit.position = add(origin, scale(direction, hit.t));
         hit.geometric_normal = normalize({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-        hit.shading_normal = normalize(add(scale(mesh.normals[tri[0]], w),
-                                           add(scale(mesh.normals[tri[1]], u), scale(mesh.normals[tri[2]], v))));
+        hit.shading_normal =
+            normalize(add(scale(mesh.normals[tri[0]], w),
+                          add(scale(mesh.normals[tri[1]], u), scale(mesh.normals[tri[2]], v))));
         // Two-sided surfaces: both normals face the incoming ray.
-        if (dot(hit.geometric_normal, direction) > 0.0f) hit.geometric_normal = scale(hit.geometric_normal, -1.0f);
-        if (dot(hit.shading_normal, hit.geometric_normal) < 0.0f) hit.shading_normal = scale(hit.shading_normal, -1.0f);
+        if (dot(hit.geometric_normal, direction) > 0.0f)
+            hit.geometric_normal = scale(hit.geometric_normal, -1.0f);
+        if (dot(hit.shading_normal, hit.geometric_normal) < 0.0f)
+            hit.shading_normal = scale(hit.shading_normal, -1.0f);
         return hit;
     }
 
@@ -215,13 +225,16 @@ public:
             const Hit hit = intersect(origin, direction, vertex == 1 ? 0.0f : epsilon_);
             if (!hit.found) {
                 // The sky is a light reached from vertex - 1 surface events.
-                if (vertex > 1) add_light(s, mul(throughput, scene_.sky), vertex - 1, false,
-                                          first_diffuse, second_diffuse, all_diffuse);
-                else s.fullgi = add(s.fullgi, scene_.sky);  // LE
+                if (vertex > 1)
+                    add_light(s, mul(throughput, scene_.sky), vertex - 1, false, first_diffuse,
+                              second_diffuse, all_diffuse);
+                else
+                    s.fullgi = add(s.fullgi, scene_.sky);  // LE
                 break;
             }
             if (vertex == 1) s.hit = true;
-            const Material& m = scene_.materials[static_cast<std::size_t>(scene_.meshes[static_cast<std::size_t>(hit.mesh)].material)];
+            const Material& m = scene_.materials[static_cast<std::size_t>(
+                scene_.meshes[static_cast<std::size_t>(hit.mesh)].material)];
             const Vec3 n = hit.shading_normal;
             const Vec3 wo = scale(direction, -1.0f);
             const float n_wo = dot(n, wo);
@@ -231,14 +244,16 @@ public:
             // Next-event estimation: one point on every area light, split by lobe.
             for (const LightFrame& light : lights_) {
                 const float u1 = rng.uniform(), u2 = rng.uniform();
-                const Vec3 point = add(light.corner, add(scale(light.edge_u, u1), scale(light.edge_v, u2)));
+                const Vec3 point =
+                    add(light.corner, add(scale(light.edge_u, u1), scale(light.edge_v, u2)));
                 const Vec3 to_light = sub(point, offset_origin);
                 const float dist2 = dot(to_light, to_light);
                 const float dist = std::sqrt(dist2);
                 const Vec3 wi = scale(to_light, 1.0f / dist);
                 const float cos_light = -dot(light.normal, wi);
                 const float n_wi = dot(n, wi);
-                if (cos_light <= 0.0f || n_wi <= 0.0f || dot(hit.geometric_normal, wi) <= 0.0f) continue;
+                if (cos_light <= 0.0f || n_wi <= 0.0f || dot(hit.geometric_normal, wi) <= 0.0f)
+                    continue;
                 if (occluded(offset_origin, wi, dist * (1.0f - 1e-4f))) continue;
                 const float geometry = n_wi * cos_light * light.area / dist2;
                 const Vec3 incoming = scale(mul(throughput, light.radiance), geometry);
@@ -272,15 +287,17 @@ public:
                 const float cos_h = std::pow(u1, 1.0f / (m.exponent + 1.0f));
                 const float sin_h = std::sqrt(std::max(0.0f, 1.0f - cos_h * cos_h));
                 const float phi = 2.0f * kPi * u2;
-                const Vec3 h = add(add(scale(t, sin_h * std::cos(phi)), scale(b, sin_h * std::sin(phi))),
-                                   scale(n, cos_h));
+                const Vec3 h =
+                    add(add(scale(t, sin_h * std::cos(phi)), scale(b, sin_h * std::sin(phi))),
+                        scale(n, cos_h));
                 const float wo_h = dot(wo, h);
                 if (wo_h <= 0.0f) break;
                 wi = sub(scale(h, 2.0f * wo_h), wo);
                 const float n_wi = dot(n, wi);
                 if (n_wi <= 0.0f) break;
                 // f cos / pdf with pdf = (e + 1) / (2 pi) cos_h^e / (4 wo.h).
-                const float weight = blinn_phong(n, wo, wi, m.exponent) * n_wi * 4.0f * wo_h * 2.0f * kPi /
+                const float weight = blinn_phong(n, wo, wi, m.exponent) * n_wi * 4.0f * wo_h *
+                                     2.0f * kPi /
                                      ((m.exponent + 1.0f) * std::pow(cos_h, m.exponent));
                 throughput = scale(mul(throughput, m.specular), weight / p_specular);
             }
@@ -316,8 +333,10 @@ private:
                           bool second_diffuse, bool all_diffuse) {
         s.fullgi = add(s.fullgi, c);
         if (events == 1 && area_light) {
-            if (first_diffuse) s.direct_diffuse = add(s.direct_diffuse, c);
-            else s.direct_specular = add(s.direct_specular, c);
+            if (first_diffuse)
+                s.direct_diffuse = add(s.direct_diffuse, c);
+            else
+                s.direct_specular = add(s.direct_specular, c);
         } else if (first_diffuse) {
             s.indirect_diffuse = add(s.indirect_diffuse, c);
         }
@@ -412,7 +431,8 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
         if (context.cancelled()) return;
         for (int x = 0; x < w; ++x) {
             // Geometry buffers from the ray through the pixel centre.
-            const Vec3 centre = tracer.camera_ray(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+            const Vec3 centre =
+                tracer.camera_ray(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
             const Hit hit = tracer.intersect(scene.camera.position, centre, 0.0f);
             if (hit.found) {
                 const Mesh& mesh = scene.meshes[static_cast<std::size_t>(hit.mesh)];
@@ -429,13 +449,15 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
             for (int i = 0; i < options.samples_per_pixel; ++i) {
                 KeyedRng rng(options.seed, pixel, static_cast<std::uint64_t>(i));
                 const float jx = rng.uniform(), jy = rng.uniform();
-                const Sample s = tracer.trace(static_cast<float>(x) + jx, static_cast<float>(y) + jy, rng);
+                const Sample s =
+                    tracer.trace(static_cast<float>(x) + jx, static_cast<float>(y) + jy, rng);
                 sum.fullgi = add(sum.fullgi, s.fullgi);
                 sum.direct_diffuse = add(sum.direct_diffuse, s.direct_diffuse);
                 sum.direct_specular = add(sum.direct_specular, s.direct_specular);
                 sum.indirect_diffuse = add(sum.indirect_diffuse, s.indirect_diffuse);
                 sum.diffuse_bounces = add(sum.diffuse_bounces, s.diffuse_bounces);
-                sum.diffuse_interreflection = add(sum.diffuse_interreflection, s.diffuse_interreflection);
+                sum.diffuse_interreflection =
+                    add(sum.diffuse_interreflection, s.diffuse_interreflection);
                 hits += s.hit ? 1 : 0;
             }
             const float inv = 1.0f / static_cast<float>(options.samples_per_pixel);

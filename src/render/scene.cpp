@@ -51,8 +51,8 @@ public:
         return parent.empty() ? key : parent + "." + key;
     }
 
-    Status number(const json& object, const std::string& parent, const std::string& name,
-                  float lo, float hi, bool open_lo, float& out) const {
+    Status number(const json& object, const std::string& parent, const std::string& name, float lo,
+                  float hi, bool open_lo, float& out) const {
         if (!object.contains(name)) return Status::ok();
         const json& v = object.at(name);
         const std::string key = join(parent, name);
@@ -76,8 +76,8 @@ public:
             return error(key, v.dump() + " is invalid (must be an array of 3 numbers)");
         }
         for (int i = 0; i < 3; ++i) {
-            if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || v[i].get<double>() < lo ||
-                v[i].get<double>() > hi) {
+            if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) ||
+                v[i].get<double>() < lo || v[i].get<double>() > hi) {
                 std::ostringstream range;
                 range << "must be 3 numbers in " << lo << ".." << hi;
                 return error(key, v.dump() + " is invalid (" + range.str() + ")");
@@ -123,8 +123,8 @@ Status parse_camera(const Reader& r, const json& j, Camera& camera) {
 }
 
 Status parse_light(const Reader& r, const json& j, const std::string& k, AreaLight& light) {
-    EXEMPLAR_RETURN_IF_ERROR(r.check_keys(
-        j, k, {"center", "look_at", "width", "height", "roll_deg", "radiance"}));
+    EXEMPLAR_RETURN_IF_ERROR(
+        r.check_keys(j, k, {"center", "look_at", "width", "height", "roll_deg", "radiance"}));
     EXEMPLAR_RETURN_IF_ERROR(r.require(j, k, "center"));
     EXEMPLAR_RETURN_IF_ERROR(r.require(j, k, "look_at"));
     EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "center", -kBig, kBig, light.center));
@@ -164,8 +164,8 @@ void make_sphere(int rings, Mesh& mesh) {
         const float theta = pi * static_cast<float>(i) / static_cast<float>(rings);
         for (int s = 0; s < segments; ++s) {
             const float phi = 2.0f * pi * static_cast<float>(s) / static_cast<float>(segments);
-            mesh.positions.push_back(
-                {std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi)});
+            mesh.positions.push_back({std::sin(theta) * std::cos(phi), std::cos(theta),
+                                      -std::sin(theta) * std::sin(phi)});
         }
     }
     mesh.positions.push_back({0.0f, -1.0f, 0.0f});
@@ -179,15 +179,18 @@ void make_sphere(int rings, Mesh& mesh) {
     }
     for (int i = 1; i + 1 < rings; ++i) {
         for (int s = 0; s < segments; ++s) {
-            mesh.triangles.push_back({ring_vertex(i, s), ring_vertex(i + 1, s), ring_vertex(i + 1, s + 1)});
-            mesh.triangles.push_back({ring_vertex(i, s), ring_vertex(i + 1, s + 1), ring_vertex(i, s + 1)});
+            mesh.triangles.push_back(
+                {ring_vertex(i, s), ring_vertex(i + 1, s), ring_vertex(i + 1, s + 1)});
+            mesh.triangles.push_back(
+                {ring_vertex(i, s), ring_vertex(i + 1, s + 1), ring_vertex(i, s + 1)});
         }
     }
 }
 
 // Square [-1, 1]^2 in the xz plane, facing +y.
 void make_quad(Mesh& mesh) {
-    mesh.positions = {{-1.0f, 0.0f, -1.0f}, {-1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, -1.0f}};
+    mesh.positions = {
+        {-1.0f, 0.0f, -1.0f}, {-1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 1.0f}, {1.0f, 0.0f, -1.0f}};
     mesh.triangles = {{0u, 1u, 2u}, {0u, 2u, 3u}};
 }
 
@@ -267,7 +270,8 @@ Status load_obj(const Reader& r, const std::string& key, const std::string& path
                     vi, static_cast<std::uint32_t>(group.mesh.positions.size()));
                 if (fresh) {
                     const std::size_t base = 3 * static_cast<std::size_t>(vi);
-                    group.mesh.positions.push_back({attrib.vertices[base], attrib.vertices[base + 1],
+                    group.mesh.positions.push_back({attrib.vertices[base],
+                                                    attrib.vertices[base + 1],
                                                     attrib.vertices[base + 2]});
                 }
                 triangle[static_cast<std::size_t>(v)] = slot->second;
@@ -322,7 +326,8 @@ Status parse_object(const Reader& r, const json& j, const std::string& k,
         }
     } else if (shape == "mesh") {
         EXEMPLAR_RETURN_IF_ERROR(r.require(j, k, "file"));
-        const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
+        const fs::path path =
+            fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
         EXEMPLAR_RETURN_IF_ERROR(load_obj(r, k + ".file", path.string(), groups));
     } else {
         return r.error(k + ".shape", "\"" + shape + "\" is invalid (must be sphere, quad or mesh)");
@@ -420,8 +425,9 @@ Result<Scene> parse_scene(const std::string& json_text, const std::string& sourc
     if (!objects.ok()) return objects.status();
     if (objects->empty()) return r.error("objects", "missing or empty (need at least one object)");
     for (std::size_t i = 0; i < objects->size(); ++i) {
-        EXEMPLAR_RETURN_IF_ERROR(parse_object(r, (*objects)[i], "objects[" + std::to_string(i) + "]",
-                                              base_dir, scene, static_cast<int>(i) + 1));
+        EXEMPLAR_RETURN_IF_ERROR(parse_object(r, (*objects)[i],
+                                              "objects[" + std::to_string(i) + "]", base_dir, scene,
+                                              static_cast<int>(i) + 1));
     }
     return scene;
 }

@@ -38,11 +38,11 @@ namespace exemplar::render {
 
 /// Options of one render.
 struct RenderOptions {
-    int width = 600;            ///< Image width in pixels, 1..16384. Default 600.
-    int height = 456;           ///< Image height in pixels, 1..16384. Default 456.
-    int samples_per_pixel = 64; ///< Paths per pixel, 1..65536. Default 64.
-    int max_bounces = 6;        ///< Reflections per path, 1..64. Default 6.
-    std::uint64_t seed = 1;     ///< Seed of the per-pixel random numbers. Default 1.
+    int width = 600;             ///< Image width in pixels, 1..16384. Default 600.
+    int height = 456;            ///< Image height in pixels, 1..16384. Default 456.
+    int samples_per_pixel = 64;  ///< Paths per pixel, 1..65536. Default 64.
+    int max_bounces = 6;         ///< Reflections per path, 1..64. Default 6.
+    std::uint64_t seed = 1;      ///< Seed of the per-pixel random numbers. Default 1.
 };
 
 /// Checks the options; the message names the option and its range.
@@ -58,10 +58,10 @@ struct RenderBuffers {
     Image diffuse_interreflection;  ///< RGB, L.*DDE.
     Image normal;                   ///< XYZ world-space shading normal at the pixel centre; 0 on
                                     ///< background.
-    Image depth;                    ///< Distance from the eye along the centre ray; 0 on background.
-    Image object_id;                ///< 1-based object index at the pixel centre; 0 on background.
-    Image material_id;              ///< 1-based material index; 0 on background.
-    Image alpha;                    ///< Fraction of samples hitting geometry, [0, 1].
+    Image depth;        ///< Distance from the eye along the centre ray; 0 on background.
+    Image object_id;    ///< 1-based object index at the pixel centre; 0 on background.
+    Image material_id;  ///< 1-based material index; 0 on background.
+    Image alpha;        ///< Fraction of samples hitting geometry, [0, 1].
 
     /// (name, image) of every buffer in the order above; names as the member names.
     std::vector<std::pair<std::string, const Image*>> layers() const;

@@ -37,7 +37,7 @@ struct AreaLight {
     Vec3 look_at{0.0f, 0.0f, 0.0f};  ///< The light's normal points from center to look_at.
     float width = 1.0f;              ///< Edge lengths, > 0.
     float height = 1.0f;
-    float roll_deg = 0.0f;  ///< Rotation of the rectangle about its normal.
+    float roll_deg = 0.0f;               ///< Rotation of the rectangle about its normal.
     Vec3 radiance{10.0f, 10.0f, 10.0f};  ///< Emitted radiance (linear RGB), >= 0.
 };
 
@@ -46,7 +46,8 @@ struct AreaLight {
 struct Material {
     std::string name;
     Vec3 diffuse{0.8f, 0.8f, 0.8f};  ///< Albedo, each in [0, 1].
-    Vec3 specular{0.0f, 0.0f, 0.0f};  ///< Glossy reflectance, each in [0, 1]; diffuse+specular <= 1.
+    Vec3 specular{0.0f, 0.0f,
+                  0.0f};      ///< Glossy reflectance, each in [0, 1]; diffuse+specular <= 1.
     float exponent = 100.0f;  ///< Blinn-Phong exponent, 1..100000 (larger = sharper highlight).
 };
 
