@@ -9,6 +9,7 @@ packages=(
   libtbb-dev                             # threads
   libhwy-dev                             # SIMD with runtime dispatch
   libcli11-dev nlohmann-json3-dev        # CLI, job files
+  libembree-dev libtinyobjloader-dev     # renderer: ray queries, OBJ meshes
   libfmt-dev libspdlog-dev
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   clang-format

@@ -29,6 +29,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     app.require_subcommand(1);
     StylizeCommand stylize(app);
     ApplyNnfCommand apply_nnf(app);
+    RenderCommand render(app);
     const Streams streams{out, err, err_is_terminal};
 
     Status status;
@@ -38,6 +39,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = stylize.run(streams);
         } else if (apply_nnf.parsed()) {
             status = apply_nnf.run(streams);
+        } else if (render.parsed()) {
+            status = render.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const auto subcommands = app.get_subcommands();

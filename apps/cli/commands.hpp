@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "exemplar/core/status.hpp"
+#include "exemplar/render/render.hpp"
 #include "stylize_job.hpp"
 
 namespace exemplar::cli {
@@ -72,6 +73,26 @@ private:
     CLI::App* app_ = nullptr;
     std::string nnf_, source_, output_, vote_ = "weighted";
     int patch_size_ = 0;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
+/// `exemplar render`: path-traces a built-in or JSON scene into light-path buffers.
+class RenderCommand {
+public:
+    /// Adds the `render` subcommand and its flags to `app`.
+    explicit RenderCommand(CLI::App& app);
+    RenderCommand(const RenderCommand&) = delete;
+    RenderCommand& operator=(const RenderCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string scene_, output_, format_ = "png";
+    render::RenderOptions options_;
     int threads_ = 0;
     bool quiet_ = false;
 };

@@ -1,0 +1,136 @@
+// `exemplar render` run in-process: a tiny end-to-end render, output formats, error lines.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "exemplar/io/image_io.hpp"
+
+namespace exemplar::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliResult {
+    int code;
+    std::string out, err;
+};
+
+CliResult run(std::vector<std::string> args) {
+    args.insert(args.begin(), "exemplar");
+    std::vector<const char*> argv;
+    for (const auto& a : args) argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    const int code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+    return {code, out.str(), err.str()};
+}
+
+class RenderCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("exemplar_render_cli_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    static std::vector<std::string> tiny(std::vector<std::string> more) {
+        std::vector<std::string> args = {
+            "render", "--scene", "sphere-on-table", "--width", "24", "--height", "18",
+            "--spp",  "2",       "--threads",       "2"};
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    }
+
+    void expect_failure(const std::vector<std::string>& args, int code, const std::string& part) {
+        const CliResult r = run(args);
+        EXPECT_EQ(r.code, code) << r.err;
+        EXPECT_EQ(r.err.rfind("exemplar: ", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(part), std::string::npos) << "expected '" << part << "' in " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_TRUE(fs::is_empty(dir_)) << "a failed run wrote a file";
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(RenderCli, WritesOneMultiLayerExrWithNamedLayers) {
+    const CliResult r = run(tiny({"--output", path("out.exr")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("out.exr") + "\n");
+    auto layers = read_layer_names(path("out.exr"));
+    ASSERT_TRUE(layers.ok()) << layers.status().message();
+    const std::vector<std::string> expected = {"fullgi",
+                                               "direct_diffuse",
+                                               "direct_specular",
+                                               "indirect_diffuse",
+                                               "diffuse_bounces",
+                                               "diffuse_interreflection",
+                                               "normal",
+                                               "depth",
+                                               "object_id",
+                                               "material_id",
+                                               "alpha"};
+    for (const auto& name : expected) {
+        EXPECT_NE(std::find(layers->begin(), layers->end(), name), layers->end()) << name;
+    }
+    auto fullgi = load_image_layer(path("out.exr"), "fullgi");
+    ASSERT_TRUE(fullgi.ok());
+    EXPECT_EQ(fullgi->width(), 24);
+    EXPECT_EQ(fullgi->channels(), 3);
+}
+
+TEST_F(RenderCli, WritesAFolderOfPngsOrExrs) {
+    ASSERT_EQ(run(tiny({"--output", path("png"), "--quiet"})).code, 0);
+    for (const char* name : {"fullgi", "direct_diffuse", "direct_specular", "indirect_diffuse",
+                             "normal", "depth", "object_id", "alpha"}) {
+        EXPECT_TRUE(fs::exists(path("png") + "/" + name + ".png")) << name;
+    }
+    ASSERT_EQ(run(tiny({"--output", path("exr"), "--format", "exr", "-q"})).code, 0);
+    auto depth = load_image(path("exr") + "/depth.exr");
+    ASSERT_TRUE(depth.ok());
+    EXPECT_GT(depth->at(12, 9, 0), 1.0f);  // linear distances, not normalized
+}
+
+TEST_F(RenderCli, SceneFilesRenderAndTheirErrorsNameFileAndKey) {
+    const fs::path bad =
+        fs::temp_directory_path() / ("exemplar_bad_" + std::to_string(::getpid()) + ".json");
+    std::ofstream(bad) << R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0], "zoom": 2}})";
+    expect_failure({"render", "--scene", bad.string(), "-o", path("out.exr")}, 1,
+                   bad.string() + ": camera.zoom: unknown key");
+    fs::remove(bad);
+    expect_failure({"render", "--scene", path("missing.json"), "-o", path("out.exr")}, 1,
+                   "missing.json: no such file");
+    expect_failure({"render", "--scene", "cube-on-table", "-o", path("out.exr")}, 1,
+                   "--scene: scene \"cube-on-table\" is not a built-in scene");
+}
+
+TEST_F(RenderCli, BadParametersAreNamed) {
+    const std::vector<std::string> base = {"render", "--scene", "sphere-on-table", "-o",
+                                           path("out.exr")};
+    const auto with = [&](std::vector<std::string> more) {
+        more.insert(more.begin(), base.begin(), base.end());
+        return more;
+    };
+    expect_failure(with({"--spp", "0"}), 1, "--spp: 0 is invalid");
+    expect_failure(with({"--width", "0"}), 1, "--width: 0 is invalid");
+    expect_failure(with({"--max-bounces", "99"}), 1, "--max-bounces: 99 is invalid");
+    expect_failure(with({"--threads", "-1"}), 1, "--threads: -1");
+    expect_failure(tiny({"--format", "tga", "-o", path("out")}), 1, "--format: \"tga\"");
+    expect_failure(tiny({"-o", path("no/such/out.exr")}), 1, "does not exist");
+    expect_failure({"render", "-o", path("out.exr")}, 2, "--scene is required");
+    expect_failure(with({"--spp", "many"}), 2, "--spp");
+}
+
+}  // namespace
+}  // namespace exemplar::cli
