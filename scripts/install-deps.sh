@@ -10,6 +10,7 @@ packages=(
   libhwy-dev                             # SIMD with runtime dispatch
   libcli11-dev nlohmann-json3-dev        # CLI, job files
   libfmt-dev libspdlog-dev
+  libopencv-dev libeigen3-dev libcairo2-dev  # stylit: scan alignment, PCA, PDF sheet
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   clang-format
 )
