@@ -41,7 +41,7 @@ inline double mean_abs_diff(const Image& a, const Image& b) {
     return sum / static_cast<double>(a.size());
 }
 
-inline double psnr(const Image& a, const Image& b) {
+inline double peak_snr(const Image& a, const Image& b) {
     double sum = 0.0;
     for (std::size_t i = 0; i < a.size(); ++i) {
         const double d = a.data()[i] - b.data()[i];
