@@ -121,9 +121,16 @@ StylitCommand::StylitCommand(CLI::App& parent) {
 }
 
 Status StylitCommand::run(const Streams& streams) {
-    if (sheet_->parsed()) return run_sheet(streams);
-    if (align_->parsed()) return run_align(streams);
-    return run_stylize(streams);
+    if (!sheet_->parsed() && !align_->parsed()) return run_stylize(streams);
+    // Flags of the stylize run do nothing for sheet and align: refuse rather than ignore them.
+    for (const CLI::Option* option : app_->get_options()) {
+        if (option->count() > 0) {
+            throw CLI::ValidationError(option->get_name(),
+                                       "belongs to exemplar stylit, not to its sub-command " +
+                                           std::string(sheet_->parsed() ? "sheet" : "align"));
+        }
+    }
+    return sheet_->parsed() ? run_sheet(streams) : run_align(streams);
 }
 
 Status StylitCommand::run_stylize(const Streams& streams) {

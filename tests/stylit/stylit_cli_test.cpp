@@ -101,6 +101,9 @@ TEST_F(StylitCli, SheetThenAlign) {
         {"stylit", "align", "--scan", path("style.png"), "--render", render, "-o", path("bad.png")},
         kExitFailure, "alignment marks");
     expect_failure_as_is({"stylit", "sheet", "--render", render}, kExitUsage, "--pdf");
+    expect_failure_as_is(
+        {"stylit", "--preview", "sheet", "--render", render, "--pdf", path("x.pdf")}, kExitUsage,
+        "not to its sub-command sheet");
 }
 
 }  // namespace
