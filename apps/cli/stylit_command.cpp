@@ -91,6 +91,9 @@ StylitCommand::StylitCommand(CLI::App& parent) {
 
     sheet_ = app.add_subcommand(
         "sheet", "The printable sheet: the exemplar render in low contrast with alignment marks");
+    sheet_->footer(
+        "Example: exemplar stylit sheet --render source_fullgi.png -o sheet.png --pdf sheet.pdf\n"
+        "Paint over the print, scan it, then: exemplar stylit align. See docs/stylit.md.");
     sheet_->add_option("--render,-r", sheet_render_, "The exemplar render (its full buffer)")
         ->group(kInputs);
     sheet_->add_option("--output,-o", sheet_png_, "Sheet image (PNG)")->group(kOutputs);
@@ -111,6 +114,9 @@ StylitCommand::StylitCommand(CLI::App& parent) {
         "align",
         "Find the alignment marks in a scan or photo of the painted sheet and warp it "
         "onto the render's pixel grid");
+    align_->footer(
+        "Example: exemplar stylit align --scan scan.jpg --render source_fullgi.png -o "
+        "painting.png\nThe marks are those of exemplar stylit sheet for the same render.");
     align_->add_option("--scan", scan_, "Scan or photo of the painted sheet")->group(kInputs);
     align_
         ->add_option("--render,-r", align_render_,

@@ -106,5 +106,19 @@ TEST_F(StylitCli, SheetThenAlign) {
         "not to its sub-command sheet");
 }
 
+TEST_F(StylitCli, HelpOfEachLevel) {
+    CliRun r = run({"stylit", "--help"});
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find("--exemplar"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("sheet"), std::string::npos);
+    r = run({"stylit", "sheet", "--help"});
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find("--pdf"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("--exemplar"), std::string::npos) << r.out;
+    r = run({"stylit", "align", "--bogus"});
+    EXPECT_EQ(r.code, kExitUsage);
+    EXPECT_NE(r.err.find("(see exemplar stylit align --help)"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace exemplar::cli::testing
