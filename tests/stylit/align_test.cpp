@@ -153,7 +153,10 @@ TEST_P(AlignScan, RecoversTheKnownHomographyOnTheRealPainting) {
 INSTANTIATE_TEST_SUITE_P(Scans, AlignScan,
                          ::testing::Values(Distortion{0.14, 1.3, 6e-5, -4e-5},
                                            Distortion{-0.4, 0.9, -5e-5, 3e-5},
-                                           Distortion{3.0, 1.6, 2e-5, 5e-5}));
+                                           Distortion{3.0, 1.6, 2e-5, 5e-5}),
+                         [](const ::testing::TestParamInfo<Distortion>& info) {
+                             return "Scan" + std::to_string(info.index);
+                         });
 
 TEST(AlignScanErrors, APaintingWithoutMarksIsRejectedWithWhatWasFound) {
     const Image painting = load_example("source_style.png", 2);
