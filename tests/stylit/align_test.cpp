@@ -154,8 +154,8 @@ INSTANTIATE_TEST_SUITE_P(Scans, AlignScan,
                          ::testing::Values(Distortion{0.14, 1.3, 6e-5, -4e-5},
                                            Distortion{-0.4, 0.9, -5e-5, 3e-5},
                                            Distortion{3.0, 1.6, 2e-5, 5e-5}),
-                         [](const ::testing::TestParamInfo<Distortion>& info) {
-                             return "Scan" + std::to_string(info.index);
+                         [](const ::testing::TestParamInfo<Distortion>& param) {
+                             return "Scan" + std::to_string(param.index);
                          });
 
 TEST(AlignScanErrors, APaintingWithoutMarksIsRejectedWithWhatWasFound) {
