@@ -195,7 +195,8 @@ TEST_F(Comparison, ErrorBudgetAvoidsWashOutAndKeepsHighlights) {
     EXPECT_LT(none.distinct_patches, 0.6);                            // measured 0.490
     EXPECT_GT(budget.distinct_patches, none.distinct_patches + 0.1);  // measured 0.699
     EXPECT_GT(uniform.distinct_patches, 0.9);                         // measured 1.000
-    EXPECT_GT(budget.object_texture, none.object_texture * 1.05);     // measured 1.086x
+    // Measured 1.086x here, 1.06x with main's engine of 43abd41 (2 finest EM iterations).
+    EXPECT_GT(budget.object_texture, none.object_texture * 1.03);
 
     EXPECT_GT(budget.highlight_fidelity, 0.9);                               // measured 0.959
     EXPECT_GT(budget.highlight_fidelity, uniform.highlight_fidelity + 0.1);  // measured 0.784
