@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev        # CLI, job files
   libembree-dev libtinyobjloader-dev     # renderer: ray queries, OBJ meshes
   libfmt-dev libspdlog-dev
+  libopencv-dev libeigen3-dev libcairo2-dev  # stylit: scan alignment, PCA, PDF sheet
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   clang-format
 )

@@ -19,6 +19,25 @@ std::string one_line(std::string text) {
     return text;
 }
 
+// The innermost parsed subcommand (`stylit sheet`), or nullptr: its help is the one asked for.
+const CLI::App* innermost(const CLI::App& app) {
+    const CLI::App* found = nullptr;
+    for (const CLI::App* level = &app; !level->get_subcommands().empty();) {
+        level = level->get_subcommands().front();
+        found = level;
+    }
+    return found;
+}
+
+// "exemplar stylit sheet": the command path of a subcommand.
+std::string command_path(const CLI::App* sub) {
+    std::string path;
+    for (; sub != nullptr && sub->get_parent() != nullptr; sub = sub->get_parent()) {
+        path.insert(0, " " + sub->get_name());
+    }
+    return "exemplar" + path;
+}
+
 }  // namespace
 
 // The one place where errors become exit codes.
@@ -30,6 +49,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     StylizeCommand stylize(app);
     ApplyNnfCommand apply_nnf(app);
     RenderCommand render(app);
+    StylitCommand stylit(app);
     const Streams streams{out, err, err_is_terminal};
 
     Status status;
@@ -41,10 +61,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = apply_nnf.run(streams);
         } else if (render.parsed()) {
             status = render.run(streams);
+        } else if (stylit.parsed()) {
+            status = stylit.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
-        const auto subcommands = app.get_subcommands();
-        out << (subcommands.empty() ? app.help() : subcommands.front()->help());
+        const CLI::App* sub = innermost(app);
+        out << (sub == nullptr ? app.help() : sub->help());
         return kExitOk;
     } catch (const CLI::CallForAllHelp&) {
         out << app.help("", CLI::AppFormatMode::All);
@@ -53,10 +75,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         out << e.what() << '\n';
         return kExitOk;
     } catch (const CLI::ParseError& e) {
-        const auto subcommands = app.get_subcommands();
-        const std::string help = subcommands.empty()
-                                     ? std::string("exemplar --help")
-                                     : "exemplar " + subcommands.front()->get_name() + " --help";
+        const std::string help = command_path(innermost(app)) + " --help";
         err << "exemplar: " << one_line(e.what()) << " (see " << help << ")\n";
         return kExitUsage;
     } catch (const std::bad_alloc&) {

@@ -5,6 +5,7 @@
 // exit code 2 with the rest; every other problem is the returned Status (exit code 1).
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <map>
 #include <ostream>
 #include <string>
@@ -95,6 +96,39 @@ private:
     render::RenderOptions options_;
     int threads_ = 0;
     bool quiet_ = false;
+};
+
+/// `exemplar stylit` (+ `stylit sheet`, `stylit align`): the StyLit workflow; see docs/stylit.md.
+class StylitCommand {
+public:
+    /// Adds the `stylit` subcommand, its sub-subcommands and their flags to `app`.
+    explicit StylitCommand(CLI::App& app);
+    StylitCommand(const StylitCommand&) = delete;
+    StylitCommand& operator=(const StylitCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command (stylize, sheet or align).
+    Status run(const Streams& streams);
+
+private:
+    Status run_stylize(const Streams& streams);
+    Status run_sheet(const Streams& streams);
+    Status run_align(const Streams& streams);
+
+    CLI::App* app_ = nullptr;
+    CLI::App* sheet_ = nullptr;
+    CLI::App* align_ = nullptr;
+    std::string exemplar_, output_, preset_ = "exemplar", layers_, usage_;
+    std::vector<std::string> source_, target_;
+    float guidance_weight_ = 2.0f;
+    std::uint64_t seed_ = 1;
+    bool preview_ = false;
+    int threads_ = 0;
+    bool quiet_ = false;
+    std::string sheet_render_, sheet_png_, sheet_pdf_, paper_ = "a4";
+    double dpi_ = 0.0;
+    std::vector<float> grey_range_ = {0.72f, 0.95f};
+    std::string scan_, align_render_, align_output_;
 };
 
 }  // namespace exemplar::cli

@@ -1,0 +1,160 @@
+// The painting sheet as a one-page PDF (Cairo's PDF surface): the sheet image centred on the
+// paper at a chosen or the largest fitting resolution.
+
+#include <cairo-pdf.h>
+#include <cairo.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "exemplar/stylit/sheet.hpp"
+
+namespace exemplar {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPointsPerInch = 72.0;
+constexpr double kBorderPt = 10.0 / 25.4 * kPointsPerInch;  // 10 mm unprinted border
+
+struct Paper {
+    const char* name;
+    double width_pt;  // portrait
+    double height_pt;
+};
+constexpr Paper kPapers[] = {
+    {"a4", 595.276, 841.890}, {"a3", 841.890, 1190.551}, {"letter", 612.0, 792.0}};
+
+cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+}
+
+// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
+Status write_atomically(const std::string& bytes, const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path target(path);
+    fs::path folder = target.parent_path();
+    if (folder.empty()) folder = ".";
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string&&.
+    std::string name(1, '.');
+    name.append(target.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
+    name.append("-").append(std::to_string(counter++));
+    const fs::path temp = folder / name;
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        out.close();
+        if (!out) {
+            std::error_code ec;
+            fs::remove(temp, ec);
+            std::string reason = "folder " + folder.string() + " does not exist";
+            if (fs::is_directory(folder, ec)) reason = "folder not writable or disk full";
+            return io_error(path + ": cannot write (" + reason + ")");
+        }
+    }
+    std::error_code ec;
+    fs::rename(temp, target, ec);
+    if (ec) {
+        fs::remove(temp, ec);
+        return io_error(path + ": cannot write (" + ec.message() + ")");
+    }
+    return Status::ok();
+}
+
+}  // namespace
+
+Status save_sheet_pdf(const Image& sheet, const std::string& path, const PdfOptions& options) {
+    const Paper* paper = nullptr;
+    for (const Paper& p : kPapers) {
+        if (options.paper == p.name) paper = &p;
+    }
+    if (paper == nullptr) {
+        return invalid_argument("--paper " + options.paper + ": unknown (use a4, a3 or letter)");
+    }
+    if (!(options.dpi >= 0.0 && options.dpi <= 4800.0)) {
+        return invalid_argument("--dpi " + std::to_string(options.dpi) +
+                                ": is invalid (must be 0..4800; 0 = fit the paper)");
+    }
+    if (sheet.empty() || (sheet.channels() != 1 && sheet.channels() != 3)) {
+        return invalid_argument(path + ": a sheet must have 1 or 3 channels");
+    }
+
+    // Orientation and scale: the sheet as large as fits, unless a resolution is given.
+    const bool landscape = sheet.width() > sheet.height();
+    const double page_w = landscape ? paper->height_pt : paper->width_pt;
+    const double page_h = landscape ? paper->width_pt : paper->height_pt;
+    const double fit_pt_per_px = std::min((page_w - 2 * kBorderPt) / sheet.width(),
+                                          (page_h - 2 * kBorderPt) / sheet.height());
+    double pt_per_px = fit_pt_per_px;
+    if (options.dpi > 0.0) {
+        pt_per_px = kPointsPerInch / options.dpi;
+        if (pt_per_px > fit_pt_per_px * (1.0 + 1e-9)) {
+            const double min_dpi = std::ceil(kPointsPerInch / fit_pt_per_px);
+            return invalid_argument("--dpi " + std::to_string(static_cast<int>(options.dpi)) +
+                                    ": the " + std::to_string(sheet.width()) + "x" +
+                                    std::to_string(sheet.height()) + " px sheet does not fit " +
+                                    options.paper + " paper (use at least " +
+                                    std::to_string(static_cast<int>(min_dpi)) + " dpi)");
+        }
+    }
+
+    // The sheet as an RGB24 Cairo image.
+    using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+    SurfacePtr image(cairo_image_surface_create(CAIRO_FORMAT_RGB24, sheet.width(), sheet.height()),
+                     &cairo_surface_destroy);
+    if (cairo_surface_status(image.get()) != CAIRO_STATUS_SUCCESS) {
+        return io_error(path + ": cannot create the sheet image (Cairo)");
+    }
+    cairo_surface_flush(image.get());
+    unsigned char* bytes = cairo_image_surface_get_data(image.get());
+    const int stride = cairo_image_surface_get_stride(image.get());
+    const auto to_byte = [](float v) {
+        return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    };
+    for (int y = 0; y < sheet.height(); ++y) {
+        auto* row = reinterpret_cast<std::uint32_t*>(bytes + static_cast<std::size_t>(y) * stride);
+        for (int x = 0; x < sheet.width(); ++x) {
+            const float* px = sheet.pixel(x, y);
+            const std::uint32_t r = to_byte(px[0]);
+            const std::uint32_t g = sheet.channels() == 3 ? to_byte(px[1]) : r;
+            const std::uint32_t b = sheet.channels() == 3 ? to_byte(px[2]) : r;
+            row[x] = (r << 16) | (g << 8) | b;
+        }
+    }
+    cairo_surface_mark_dirty(image.get());
+
+    // One page, the image centred.
+    std::string pdf;
+    {
+        SurfacePtr surface(cairo_pdf_surface_create_for_stream(&append, &pdf, page_w, page_h),
+                           &cairo_surface_destroy);
+        cairo_t* cr = cairo_create(surface.get());
+        const double w = sheet.width() * pt_per_px;
+        const double h = sheet.height() * pt_per_px;
+        cairo_translate(cr, (page_w - w) / 2.0, (page_h - h) / 2.0);
+        cairo_scale(cr, pt_per_px, pt_per_px);
+        cairo_set_source_surface(cr, image.get(), 0.0, 0.0);
+        cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+        cairo_paint(cr);
+        cairo_show_page(cr);
+        const cairo_status_t status = cairo_status(cr);
+        cairo_destroy(cr);
+        cairo_surface_finish(surface.get());
+        if (status != CAIRO_STATUS_SUCCESS ||
+            cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
+            return io_error(path + ": Cairo could not draw the PDF (" +
+                            cairo_status_to_string(status) + ")");
+        }
+    }
+    return write_atomically(pdf, path);
+}
+
+}  // namespace exemplar
