@@ -25,10 +25,11 @@ constexpr const char* kRun = "Run";
 
 constexpr const char* kFooter =
     "Buffers are listed in the same order for --source and --target (full render, direct\n"
-    "diffuse, direct specular, indirect), or given as one multi-layer EXR each whose layers\n"
-    "--preset names (exemplar, cycles, arnold) or --layers lists. Example:\n"
+    "diffuse, direct specular, indirect), or given as one multi-layer EXR or one folder each\n"
+    "(exemplar render --output) whose layers or files --preset names (exemplar: fullgi,\n"
+    "direct_diffuse, direct_specular, indirect_diffuse; cycles; arnold) or --layers lists:\n"
     "  exemplar stylit --exemplar painting.png --source s_full.png s_dirdif.png s_dirspc.png \\\n"
-    "      s_indirb.png --target t_full.png t_dirdif.png t_dirspc.png t_indirb.png -o out.png\n"
+    "      s_indirb.png --target out/spot -o out.png\n"
     "Workflow and presets: docs/stylit.md. Sub-commands: stylit sheet, stylit align.";
 
 void require(const CLI::App& app, bool given, const char* flag, const char* what) {
@@ -60,17 +61,21 @@ StylitCommand::StylitCommand(CLI::App& parent) {
                    "The artist's painting, aligned to the exemplar render (A')")
         ->group(kInputs);
     app.add_option("--source", source_,
-                   "Buffers of the exemplar render: files in guide order, or one multi-layer EXR")
+                   "Buffers of the exemplar render: files in guide order, one multi-layer EXR, or "
+                   "one folder of exemplar render")
         ->group(kInputs);
     app.add_option("--target", target_,
-                   "Buffers of the target render, in the same order (or one multi-layer EXR)")
+                   "Buffers of the target render, in the same order (or one multi-layer EXR or "
+                   "folder)")
         ->group(kInputs);
     app.add_option("--preset", preset_,
-                   "EXR layer names: exemplar (default), cycles (Combined, DiffDir, GlossDir, "
+                   "EXR layer or folder file names: exemplar (default; fullgi, direct_diffuse, "
+                   "direct_specular, indirect_diffuse), cycles (Combined, DiffDir, GlossDir, "
                    "DiffInd) or arnold (RGBA, diffuse_direct, specular_direct, diffuse_indirect)")
         ->group(kInputs);
     app.add_option("--layers", layers_,
-                   "EXR layer names in guide order, comma-separated (instead of --preset)")
+                   "EXR layer (or folder file) names in guide order, comma-separated (instead of "
+                   "--preset)")
         ->group(kInputs);
     app.add_option("--output,-o", output_, "Output image; format from the extension")
         ->group(kOutputs);

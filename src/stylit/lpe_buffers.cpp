@@ -85,11 +85,53 @@ Result<std::vector<LpeBuffer>> load_exr_layers(const std::string& path,
     return buffers;
 }
 
+// A folder of one file per buffer (what `exemplar render --output DIR` writes): the files named
+// `<layer>.<ext>` after the preset, for the extensions `exemplar render` writes.
+Result<std::vector<LpeBuffer>> load_folder(const std::string& folder, const LayerPreset& preset) {
+    namespace fs = std::filesystem;
+    constexpr const char* kExtensions[] = {".png", ".exr"};
+    std::vector<LpeBuffer> buffers;
+    for (std::size_t i = 0; i < preset.layers.size(); ++i) {
+        std::vector<std::string> found, tried;
+        for (const std::string& name : preset.layers[i]) {
+            if (name.empty()) continue;
+            for (const char* extension : kExtensions) {
+                const std::string file = name + extension;
+                tried.push_back(file);
+                std::error_code ec;
+                if (fs::is_regular_file(fs::path(folder) / file, ec)) found.push_back(file);
+            }
+            if (!found.empty()) break;
+        }
+        if (found.empty()) {
+            std::string wanted;
+            for (const std::string& file : tried) wanted += (wanted.empty() ? "" : " or ") + file;
+            return io_error(folder + ": no file " + wanted + " (" + role(i) + ", preset " +
+                            std::string(preset.name) + ")");
+        }
+        if (found.size() > 1) {
+            return invalid_argument(folder + ": " + join(found) + " (" + role(i) +
+                                    ") is ambiguous; list the files instead of the folder");
+        }
+        const std::string path = (fs::path(folder) / found.front()).string();
+        auto image = load_image(path);
+        if (!image.ok()) return image.status();
+        buffers.push_back({found.front(), path, without_alpha(std::move(image).value())});
+    }
+    return buffers;
+}
+
 }  // namespace
 
 const std::vector<LayerPreset>& layer_presets() {
     static const std::vector<LayerPreset> presets = {
-        {"exemplar", {{"full"}, {"direct_diffuse"}, {"direct_specular"}, {"indirect"}}},
+        // `exemplar render`'s buffer names; "full" and "indirect" are the names of the first
+        // version of this preset.
+        {"exemplar",
+         {{"fullgi", "full"},
+          {"direct_diffuse"},
+          {"direct_specular"},
+          {"indirect_diffuse", "indirect"}}},
         {"cycles", {{"Combined", "Image"}, {"DiffDir"}, {"GlossDir"}, {"DiffInd"}}},
         {"arnold",
          {{"RGBA", "beauty", ""}, {"diffuse_direct"}, {"specular_direct"}, {"diffuse_indirect"}}},
@@ -128,7 +170,12 @@ Result<std::vector<LpeBuffer>> load_lpe_buffers(const std::vector<std::string>& 
                                                 const LayerPreset& preset) {
     if (paths.empty()) return invalid_argument("no buffers given");
     std::vector<LpeBuffer> buffers;
-    if (paths.size() == 1 && is_exr(paths.front())) {
+    std::error_code ec;
+    if (paths.size() == 1 && std::filesystem::is_directory(paths.front(), ec)) {
+        auto loaded = load_folder(paths.front(), preset);
+        if (!loaded.ok()) return loaded.status();
+        buffers = std::move(loaded).value();
+    } else if (paths.size() == 1 && is_exr(paths.front())) {
         auto layers = read_layer_names(paths.front());
         if (!layers.ok()) return layers.status();
         if (layers->size() > 1) {

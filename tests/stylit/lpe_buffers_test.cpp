@@ -1,6 +1,6 @@
-// Loading LPE buffer sets: PNG lists, multi-layer EXRs with each preset (written here), and the
-// errors a user meets: a missing layer (the message lists the file's layers), buffers of
-// different sizes, unpaired buffers.
+// Loading LPE buffer sets: PNG lists, multi-layer EXRs with each preset (written here), folders
+// of `exemplar render`, and the errors a user meets: a missing layer (the message lists the
+// file's layers), buffers of different sizes, unpaired buffers.
 
 #include "exemplar/stylit/lpe_buffers.hpp"
 
@@ -73,12 +73,58 @@ TEST_F(LpeBuffers, PngListKeepsTheOrder) {
     }
 }
 
-TEST_F(LpeBuffers, ExemplarPreset) {
+TEST_F(LpeBuffers, ExemplarPresetReadsTheRenderersLayerNames) {
+    // The layers `exemplar render --output x.exr` writes, in its order, with the extra buffers.
     const std::string exr =
-        write_layers("ours.exr", {"full", "direct_diffuse", "direct_specular", "indirect"});
+        write_layers("ours.exr", {"fullgi", "direct_diffuse", "direct_specular", "indirect_diffuse",
+                                  "diffuse_bounces", "diffuse_interreflection"});
     auto buffers = load_lpe_buffers({exr}, *find_layer_preset("exemplar"));
     ASSERT_TRUE(buffers.ok()) << buffers.status().message();
     expect_guide_order(*buffers);
+    EXPECT_EQ((*buffers)[3].name, "indirect_diffuse");
+    // The names of the preset's first version still work.
+    const std::string old =
+        write_layers("old.exr", {"full", "direct_diffuse", "direct_specular", "indirect"});
+    buffers = load_lpe_buffers({old}, *find_layer_preset("exemplar"));
+    ASSERT_TRUE(buffers.ok()) << buffers.status().message();
+    expect_guide_order(*buffers);
+}
+
+TEST_F(LpeBuffers, FolderOfOneFilePerBuffer) {
+    // What `exemplar render --output DIR` writes: <buffer>.png, picked by the preset's names.
+    fs::create_directories(dir_ / "render");
+    const std::vector<std::string> names = {"alpha", "direct_specular", "fullgi",
+                                            "indirect_diffuse", "direct_diffuse"};
+    const std::vector<float> values = {0.9f, 0.6f, 0.2f, 0.8f, 0.4f};
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        ASSERT_TRUE(
+            save_image(constant(8, 6, 3, values[i]), path("render/" + names[i] + ".png")).is_ok());
+    }
+    auto buffers = load_lpe_buffers({path("render")}, *find_layer_preset("exemplar"));
+    ASSERT_TRUE(buffers.ok()) << buffers.status().message();
+    ASSERT_EQ(buffers->size(), 4u);
+    const float expected[] = {0.2f, 0.4f, 0.6f, 0.8f};
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_NEAR((*buffers)[i].image.at(1, 1, 0), expected[i], 1.0f / 255.0f) << i;
+    }
+    EXPECT_EQ((*buffers)[0].origin, path("render/fullgi.png"));
+
+    // A missing buffer names the folder and the files looked for; .png and .exr of one buffer
+    // are ambiguous.
+    fs::remove(path("render/direct_specular.png"));
+    buffers = load_lpe_buffers({path("render")}, *find_layer_preset("exemplar"));
+    ASSERT_FALSE(buffers.ok());
+    EXPECT_EQ(buffers.status().code(), ErrorCode::IoError);
+    EXPECT_NE(buffers.status().message().find(path("render") + ": no file direct_specular.png or "
+                                                               "direct_specular.exr"),
+              std::string::npos)
+        << buffers.status().message();
+    ASSERT_TRUE(save_image(constant(8, 6, 3, 0.6f), path("render/direct_specular.png")).is_ok());
+    ASSERT_TRUE(save_image(constant(8, 6, 3, 0.6f), path("render/direct_specular.exr")).is_ok());
+    buffers = load_lpe_buffers({path("render")}, *find_layer_preset("exemplar"));
+    ASSERT_FALSE(buffers.ok());
+    EXPECT_NE(buffers.status().message().find("ambiguous"), std::string::npos)
+        << buffers.status().message();
 }
 
 TEST_F(LpeBuffers, CyclesPresetWithViewLayerPrefixAndOtherPasses) {

@@ -4,8 +4,9 @@
 /// §8.3.2): the full global-illumination image plus buffers that isolate lighting effects
 /// (direct diffuse LDE, direct specular LSE, indirect diffuse L.*DDE, ...).
 ///
-/// A buffer set comes either from a list of image files (one buffer per file, any format), or
-/// from one multi-layer EXR whose layers are picked by name. Layer names follow a preset (our
+/// A buffer set comes from a list of image files (one buffer per file, any format), from one
+/// multi-layer EXR whose layers are picked by name, or from a folder of one file per buffer
+/// (`exemplar render --output DIR`) whose files are picked by name. Names follow a preset (our
 /// renderer's names, Blender Cycles' pass names, Arnold's AOV names) or an explicit list; the
 /// mapping of each preset to the four StyLit guides is documented in docs/stylit.md.
 
@@ -33,7 +34,8 @@ struct LayerPreset {
     std::vector<std::vector<std::string>> layers;
 };
 
-/// The presets: "exemplar" (full, direct_diffuse, direct_specular, indirect), "cycles"
+/// The presets: "exemplar" (the buffer names of `exemplar render`: fullgi, direct_diffuse,
+/// direct_specular, indirect_diffuse; "full" and "indirect" are accepted too), "cycles"
 /// (Combined, DiffDir, GlossDir, DiffInd) and "arnold" (RGBA or beauty, diffuse_direct,
 /// specular_direct, diffuse_indirect).
 const std::vector<LayerPreset>& layer_presets();
@@ -50,6 +52,10 @@ Result<LayerPreset> custom_layer_preset(std::string_view comma_separated);
 ///   preset's order. A layer matches a name if it is the name or ends in ".name" (Blender
 ///   prefixes the view layer: "ViewLayer.DiffDir"). A missing layer fails with IoError naming
 ///   the file, the wanted layer and the layers the file has; two matches fail as ambiguous.
+/// - One path that is a folder: per guide, the file `<name>.png` or `<name>.exr` for the first
+///   name of the preset entry that has one (as `exemplar render --output DIR` writes them). A
+///   missing file fails with IoError naming the folder and the files looked for; both a .png
+///   and an .exr of one name fail as ambiguous.
 /// - Otherwise: one buffer per path, in the given order (`preset` is not used).
 /// A channel named "A" (alpha) is dropped from buffers that have other channels: coverage is
 /// not lighting. Every buffer must have the size of the first (InvalidArgument naming both).
