@@ -50,6 +50,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     ApplyNnfCommand apply_nnf(app);
     RenderCommand render(app);
     StylitCommand stylit(app);
+    FlowCommand flow(app);
     const Streams streams{out, err, err_is_terminal};
 
     Status status;
@@ -63,6 +64,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = render.run(streams);
         } else if (stylit.parsed()) {
             status = stylit.run(streams);
+        } else if (flow.parsed()) {
+            status = flow.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

@@ -131,4 +131,23 @@ private:
     std::string scan_, align_render_, align_output_;
 };
 
+/// `exemplar flow`: optical flow between two frames, backward flow and occlusion mask.
+class FlowCommand {
+public:
+    /// Adds the `flow` subcommand and its flags to `app`.
+    explicit FlowCommand(CLI::App& app);
+    FlowCommand(const FlowCommand&) = delete;
+    FlowCommand& operator=(const FlowCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string from_, to_, output_, backward_, occlusion_, preset_ = "medium";
+    float epsilon_ = 2.0f;
+    bool quiet_ = false;
+};
+
 }  // namespace exemplar::cli

@@ -1,0 +1,47 @@
+// `exemplar flow`: the FlyingChairs pair end to end, and one-line errors for bad inputs.
+
+#include "cli_fixture.hpp"
+#include "exemplar/io/flow_io.hpp"
+
+namespace exemplar::cli::testing {
+namespace {
+
+const std::string kChairs = std::string(EXEMPLAR_SHARED_DATA_DIR) + "/flow/flyingchairs/";
+
+TEST_F(Cli, FlowWritesForwardBackwardAndOcclusion) {
+    const CliRun r = run({"flow", "--from", kChairs + "0000000-img0.ppm", "--to",
+                          kChairs + "0000000-img1.ppm", "-o", path("fwd.flo"), "--backward",
+                          path("bwd.exr"), "--occlusion", path("occ.png"), "--epsilon", "8"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("fwd.flo") + "\n" + path("bwd.exr") + "\n" + path("occ.png") + "\n");
+    auto forward = load_flow(path("fwd.flo"));
+    auto backward = load_flow(path("bwd.exr"));
+    ASSERT_TRUE(forward.ok() && backward.ok());
+    EXPECT_EQ(forward->width(), 512);
+    EXPECT_EQ(backward->height(), 384);
+    const Image occlusion = read("occ.png");
+    ASSERT_EQ(occlusion.channels(), 1);
+    double occluded = 0.0;
+    for (float v : occlusion.data()) occluded += v;
+    occluded /= static_cast<double>(occlusion.pixel_count());
+    EXPECT_GT(occluded, 0.2);  // 28.6% measured, see tests/video/flow_test.cpp
+    EXPECT_LT(occluded, 0.35);
+}
+
+TEST_F(Cli, FlowRejectsBadInputs) {
+    const std::string a = path("a.png"), b = path("b.png"), out = path("out.flo");
+    expect_failure_as_is({"flow", "--from", a, "--to", b, "-o", out}, 1,
+                         "--from " + a + " is 32x28 but --to " + b + " is 36x30");
+    expect_failure_as_is({"flow", "--from", path("none.png"), "--to", b, "-o", out}, 1,
+                         "none.png: no such file");
+    expect_failure_as_is({"flow", "--from", a, "--to", a, "-o", out, "--epsilon", "0"}, 1,
+                         "--epsilon: 0");
+    expect_failure_as_is({"flow", "--from", a, "--to", a, "-o", out, "--preset", "slow"}, 1,
+                         "--preset");
+    expect_failure_as_is({"flow", "--from", a, "--to", a, "-o", path("out.png")}, 1,
+                         "use .flo or .exr");
+    expect_failure_as_is({"flow", "--from", a, "--to", a}, 2, "--output");
+}
+
+}  // namespace
+}  // namespace exemplar::cli::testing

@@ -1,0 +1,145 @@
+// Middlebury .flo and EXR flow files: round trips, known values of a FlyingChairs ground truth,
+// and one-line errors for bad magic, truncated and oversized files.
+
+#include "exemplar/io/flow_io.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "exemplar/io/image_io.hpp"
+
+namespace exemplar {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kChairsFlow =
+    std::string(EXEMPLAR_SHARED_DATA_DIR) + "/flow/flyingchairs/0000000-gt.flo";
+
+class FlowIo : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("exemplar_flow_io_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::string bytes(const std::string& file) const {
+        std::ifstream in(file, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+    void write_bytes(const std::string& name, const std::string& data) const {
+        std::ofstream(path(name), std::ios::binary) << data;
+    }
+    std::size_t entries() const {
+        return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), {}));
+    }
+    fs::path dir_;
+};
+
+TEST_F(FlowIo, ReadsFlyingChairsGroundTruth) {
+    auto flow = load_flo(kChairsFlow);
+    ASSERT_TRUE(flow.ok()) << flow.status().message();
+    EXPECT_EQ(flow->width(), 512);
+    EXPECT_EQ(flow->height(), 384);
+    ASSERT_EQ(flow->channels(), 2);
+    EXPECT_EQ(flow->channel_names(), (std::vector<std::string>{"u", "v"}));
+    // Values read with an independent script (struct.unpack of the raw file).
+    EXPECT_FLOAT_EQ(flow->at(0, 0, 0), -19.5f);
+    EXPECT_FLOAT_EQ(flow->at(0, 0, 1), 13.75f);
+    EXPECT_FLOAT_EQ(flow->at(100, 50, 0), 2.71875f);
+    EXPECT_FLOAT_EQ(flow->at(100, 50, 1), -22.1875f);
+    EXPECT_FLOAT_EQ(flow->at(511, 383, 0), -0.59375f);
+    EXPECT_FLOAT_EQ(flow->at(511, 383, 1), -1.34375f);
+}
+
+TEST_F(FlowIo, FloRoundTripIsByteExact) {
+    auto flow = load_flo(kChairsFlow);
+    ASSERT_TRUE(flow.ok());
+    ASSERT_TRUE(save_flo(*flow, path("copy.flo")).is_ok());
+    EXPECT_EQ(bytes(path("copy.flo")), bytes(kChairsFlow));
+    EXPECT_EQ(entries(), 1u) << "no temporary file left behind";
+}
+
+TEST_F(FlowIo, ExrRoundTripIsExactAndLoadsThroughLayers) {
+    auto flow = load_flo(kChairsFlow);
+    ASSERT_TRUE(flow.ok());
+    ASSERT_TRUE(save_flow(*flow, path("flow.exr")).is_ok());
+    auto back = load_flow(path("flow.exr"));
+    ASSERT_TRUE(back.ok()) << back.status().message();
+    ASSERT_EQ(back->size(), flow->size());
+    EXPECT_EQ(std::memcmp(back->data().data(), flow->data().data(), flow->size() * 4), 0);
+
+    // A renderer's multi-layer EXR: the flow in layer "motion" beside the colour.
+    Image colour(flow->width(), flow->height(), 3, 0.5f);
+    Image motion = *flow;
+    motion.set_channel_names({"x", "y"});
+    ASSERT_TRUE(save_exr_layers({{"", &colour}, {"motion", &motion}}, path("render.exr"),
+                                {PixelFormat::Float})
+                    .is_ok());
+    auto layer = load_flow(path("render.exr"), "motion");
+    ASSERT_TRUE(layer.ok()) << layer.status().message();
+    EXPECT_EQ(layer->channel_names(), (std::vector<std::string>{"u", "v"}));
+    EXPECT_FLOAT_EQ(layer->at(100, 50, 1), -22.1875f);
+
+    auto colour_layer = load_flow(path("render.exr"), "");
+    ASSERT_FALSE(colour_layer.ok());
+    EXPECT_NE(colour_layer.status().message().find("has 3 channels"), std::string::npos)
+        << colour_layer.status().message();
+}
+
+TEST_F(FlowIo, RejectsBadFiles) {
+    const std::string good = bytes(kChairsFlow);
+    write_bytes("magic.flo", "XXXX" + good.substr(4));
+    write_bytes("truncated.flo", good.substr(0, good.size() - 100));
+    write_bytes("oversized.flo", good + "0123");
+    write_bytes("header.flo", good.substr(0, 6));
+    std::string huge = good.substr(0, 12);
+    const std::int32_t side = 1 << 20;
+    std::memcpy(huge.data() + 4, &side, 4);
+    write_bytes("huge.flo", huge);
+
+    const std::pair<const char*, const char*> cases[] = {
+        {"magic.flo", "bad magic number"},
+        {"truncated.flo", "truncated .flo file: 1572776 bytes, but a 512x384 flow needs 1572876"},
+        {"oversized.flo", "oversized .flo file"},
+        {"header.flo", "the header alone has 12"},
+        {"huge.flo", "corrupt .flo header: size 1048576x384"},
+        {"missing.flo", "no such file"},
+    };
+    for (const auto& [name, part] : cases) {
+        auto flow = load_flo(path(name));
+        ASSERT_FALSE(flow.ok()) << name;
+        EXPECT_EQ(flow.status().code(), ErrorCode::IoError) << name;
+        const std::string& message = flow.status().message();
+        EXPECT_EQ(message.rfind(path(name), 0), 0u) << message;
+        EXPECT_NE(message.find(part), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+}
+
+TEST_F(FlowIo, RejectsNonFlowImagesAndFormats) {
+    Image rgb(4, 4, 3);
+    const Status bad = save_flo(rgb, path("x.flo"));
+    EXPECT_EQ(bad.code(), ErrorCode::InvalidArgument);
+    EXPECT_NE(bad.message().find("needs 2 channels"), std::string::npos) << bad.message();
+    const Status png = save_flow(Image(4, 4, 2), path("x.png"));
+    EXPECT_EQ(png.code(), ErrorCode::Unsupported) << png.message();
+    const Status folder = save_flo(Image(4, 4, 2), path("nope/x.flo"));
+    EXPECT_EQ(folder.code(), ErrorCode::IoError) << folder.message();
+    EXPECT_EQ(entries(), 0u);
+    auto layered = load_flow(kChairsFlow, "motion");
+    EXPECT_EQ(layered.status().code(), ErrorCode::InvalidArgument);
+}
+
+}  // namespace
+}  // namespace exemplar
