@@ -24,21 +24,6 @@
 namespace exemplar::synth {
 
 inline constexpr int kBandRows = 8;
-/// Upper bound of random-search candidates per query and iteration (log2 of 2^30 + 1 + 1).
-inline constexpr int kMaxRandomCandidates = 34;
-
-/// Prefetches the rows of the patch centred at (x, y) of `features` (clamped to the image).
-inline void prefetch_patch(const FeatureImage& features, int radius, int x, int y) {
-    x = std::clamp(x, radius, std::max(radius, features.width() - 1 - radius));
-    y = std::clamp(y, radius, std::max(radius, features.height() - 1 - radius));
-    const std::uint8_t* row = features.pixel(x - radius, y - radius);
-    const std::size_t bytes =
-        static_cast<std::size_t>(2 * radius + 1) * static_cast<std::size_t>(features.stride());
-    for (int r = 0; r <= 2 * radius; ++r, row += features.row_bytes()) {
-        for (std::size_t b = 0; b < bytes; b += 64) __builtin_prefetch(row + b);
-        __builtin_prefetch(row + bytes - 1);
-    }
-}
 
 /// Offset of a one-pixel step (dx, dy) in a neighbour's match rotated by its angle.
 inline RotatedOffset rotated_step(float angle_rad, int dx, int dy) {
@@ -131,30 +116,19 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         }
                     }
 
-                    // Random search in windows halving from the full size around the match
-                    // after propagation (v0 of Barnes et al. 2009), plus one candidate drawn
-                    // from everything this query may use. The candidates are drawn first and
-                    // their patches prefetched together, so that their (mostly cache-missing)
-                    // reads overlap instead of waiting on each other.
+                    // Random search in shrinking windows around the best match.
                     KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
-                    int cand_x[kMaxRandomCandidates], cand_y[kMaxRandomCandidates];
-                    int count = 0;
-                    auto add = [&](int cx, int cy) {
-                        if (count == kMaxRandomCandidates || !P.db_ok(qi, cx, cy)) return;
-                        P.prefetch(cx, cy);
-                        cand_x[count] = cx;
-                        cand_y[count] = cy;
-                        ++count;
-                    };
-                    const int cx0 = best.x, cy0 = best.y;
                     for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
                          radius /= 2) {
-                        add(std::clamp(cx0 + rng.range(-radius, radius), 0, P.db_width() - 1),
-                            std::clamp(cy0 + rng.range(-radius, radius), 0, P.db_height() - 1));
+                        const int cx =
+                            std::clamp(best.x + rng.range(-radius, radius), 0, P.db_width() - 1);
+                        const int cy =
+                            std::clamp(best.y + rng.range(-radius, radius), 0, P.db_height() - 1);
+                        try_candidate(cx, cy);
                     }
+                    // One candidate drawn from everything this query may use.
                     int rx = 0, ry = 0;
-                    if (P.random_db(qi, rng, rx, ry)) add(rx, ry);
-                    for (int i = 0; i < count; ++i) try_candidate(cand_x[i], cand_y[i]);
+                    if (P.random_db(qi, rng, rx, ry)) try_candidate(rx, ry);
 
                     field[qi] = best;
                 }
@@ -184,7 +158,6 @@ struct ForwardProblem {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
     }
-    void prefetch(int sx, int sy) const { prefetch_patch(L.source_features, L.radius, sx, sy); }
     /// Replacement for an invalid entry: a random valid source centre.
     bool repair(std::size_t qi, const Match&, KeyedRng& rng, int& sx, int& sy) const {
         return random_db(qi, rng, sx, sy);
@@ -228,7 +201,6 @@ struct ReverseProblem {
     float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {
         return patch_distance(L, tx, ty, sx, sy, -angle_rad, bound);
     }
-    void prefetch(int tx, int ty) const { prefetch_patch(L.target_features, L.radius, tx, ty); }
     /// Replacement for an entry whose target was taken: the free target nearest to it (similar
     /// content, so the search resumes close to its optimum), else a random free target.
     bool repair(std::size_t si, const Match& old, KeyedRng& rng, int& tx, int& ty) const {
