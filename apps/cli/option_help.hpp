@@ -8,6 +8,12 @@
 
 namespace exemplar::cli {
 
+/// Group headings of `--help`, shared by the subcommands so their help reads alike.
+inline constexpr const char* kInputs = "Inputs";
+inline constexpr const char* kOutputs = "Outputs";
+inline constexpr const char* kSynthesis = "Synthesis options";
+inline constexpr const char* kRun = "Run";
+
 /// A number as a person writes it: integers without exponent or decimals ("9007199254740992",
 /// "1000000"), others with up to 6 significant digits ("0.95").
 std::string format_number(double value);

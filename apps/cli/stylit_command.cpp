@@ -11,17 +11,13 @@
 #include "exemplar/stylit/align.hpp"
 #include "exemplar/stylit/sheet.hpp"
 #include "exemplar/stylit/stylit.hpp"
+#include "option_help.hpp"
 #include "output_files.hpp"
 #include "progress_bar.hpp"
 
 namespace exemplar::cli {
 
 namespace {
-
-constexpr const char* kInputs = "Inputs";
-constexpr const char* kOutputs = "Outputs";
-constexpr const char* kSynthesis = "Synthesis options";
-constexpr const char* kRun = "Run";
 
 constexpr const char* kFooter =
     "Buffers are listed in the same order for --source and --target (full render, direct\n"

@@ -16,11 +16,6 @@ namespace exemplar::cli {
 
 namespace {
 
-constexpr const char* kInputs = "Inputs";
-constexpr const char* kOutputs = "Outputs";
-constexpr const char* kSynthesis = "Synthesis options";
-constexpr const char* kRun = "Run";
-
 constexpr const char* kFooter =
     "Guides follow ebsynth's order: each --weight (and --weight-map) applies to the --guide\n"
     "before it; a guide without --weight has weight 1. Example:\n"

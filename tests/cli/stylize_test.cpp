@@ -269,6 +269,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "patch-size: 31 is too large for the 32x28 style");
     expect_failure(with(stylize_args(), {"--pyramid-ratio", "2"}), 1,
                    "pyramid-ratio: 2 is invalid (must be 0.3..0.95)");
+    expect_failure(with(stylize_args(), {"--finest-em-iterations", "-1"}), 1,
+                   "finest-em-iterations: -1 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--usage", "sometimes"}), 1,
                    "usage: 'sometimes' is invalid");
     expect_failure(with(stylize_args(), {"--weight", "-1"}), 1, "weight -1");
