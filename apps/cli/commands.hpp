@@ -92,7 +92,8 @@ public:
 
 private:
     CLI::App* app_ = nullptr;
-    std::string scene_, output_, format_ = "png";
+    std::string scene_, output_, format_ = "png", frames_;
+    int frame_ = 0;
     render::RenderOptions options_;
     int threads_ = 0;
     bool quiet_ = false;
