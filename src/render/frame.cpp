@@ -86,7 +86,7 @@ float screen_orientation(const CameraModel& camera, const Vec3& position, const 
     return angle;
 }
 
-Image geometry_lines(const Image& depth, const Image& object_id, const Image& normal) {
+Image geometry_lines(const Image& depth, const Image& object_id, const Image& facet_normal) {
     const int w = depth.width(), h = depth.height();
     Image lines(w, h, 1);
     lines.set_channel_names({"L"});
@@ -105,9 +105,10 @@ Image geometry_lines(const Image& depth, const Image& object_id, const Image& no
                     line = id(qx, qy) <= 0.0f || d(x, y) < d(qx, qy);
                     continue;
                 }
-                // Crease: normals apart by more than 45 degrees; the nearer side.
-                const float* n = normal.pixel(x, y);
-                const float* m = normal.pixel(qx, qy);
+                // Crease: facet normals apart by more than 45 degrees (smooth shading normals
+                // would round a cube's edges away); the nearer side.
+                const float* n = facet_normal.pixel(x, y);
+                const float* m = facet_normal.pixel(qx, qy);
                 if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < kCreaseCos && d(x, y) <= d(qx, qy)) {
                     line = true;
                 }

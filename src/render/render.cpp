@@ -313,6 +313,7 @@ Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& 
         *rgb = Image(w, h, 3);
     }
     out.normal = Image(w, h, 3);
+    Image facet_normal(w, h, 3);  // geometric normal facing the eye: creases of the lines buffer
     out.normal.set_channel_names({"X", "Y", "Z"});
     out.depth = Image(w, h, 1);
     out.depth.set_channel_names({"Z"});
@@ -338,6 +339,7 @@ Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& 
             if (hit.found) {
                 const Mesh& mesh = scene.meshes[static_cast<std::size_t>(hit.mesh)];
                 put(out.normal, x, y, hit.shading_normal);
+                put(facet_normal, x, y, hit.geometric_normal);
                 out.depth.at(x, y, 0) = hit.t;
                 out.object_id.at(x, y, 0) = static_cast<float>(mesh.object_id);
                 out.material_id.at(x, y, 0) = static_cast<float>(mesh.material + 1);
@@ -390,7 +392,7 @@ Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& 
         context.report(event);
     }
     if (context.cancelled()) return cancelled();
-    out.lines = geometry_lines(out.depth, out.object_id, out.normal);
+    out.lines = geometry_lines(out.depth, out.object_id, facet_normal);
     return out;
 }
 

@@ -27,7 +27,7 @@ Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& 
 float screen_orientation(const CameraModel& camera, const Vec3& position, const Vec3& normal,
                          const Vec3& ray);
 
-// The lines buffer from the centre-ray depth, object id and normal buffers.
-Image geometry_lines(const Image& depth, const Image& object_id, const Image& normal);
+// The lines buffer from the centre-ray depth, object id and geometric (facet) normals.
+Image geometry_lines(const Image& depth, const Image& object_id, const Image& facet_normal);
 
 }  // namespace exemplar::render

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -383,6 +385,133 @@ TEST(Animation, LinesMarkTheNearSideOfSilhouettes) {
         }
     }
     EXPECT_GT(outline, 60);
+}
+
+// One OBJ mesh (one object id) in a temporary folder.
+Animation mesh_scene(const std::string& obj, const std::string& camera) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("exemplar_lines_" +
+                      std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::create_directories(dir);
+    std::ofstream((dir / "mesh.obj").string()) << obj;
+    auto a = parse_animation(R"({"camera": )" + camera + R"(, "materials": [{"name": "m"}],
+        "objects": [{"shape": "mesh", "file": "mesh.obj", "material": "m"}]})",
+                             "lines.json", dir.string());
+    std::filesystem::remove_all(dir);
+    EXPECT_TRUE(a.ok()) << a.status().message();
+    return a.ok() ? std::move(a).value() : Animation{};
+}
+
+// Two parts of one mesh (same object id): a small square 1 unit in front of a large one. The
+// depth step is marked on the near part only; the flat interiors are not.
+TEST(Animation, LinesMarkDepthStepsWithinOneObject) {
+    const Animation a =
+        mesh_scene(R"(v -1 -1 0
+v 1 -1 0
+v 1 1 0
+v -1 1 0
+v -0.4 -0.4 1
+v 0.4 -0.4 1
+v 0.4 0.4 1
+v -0.4 0.4 1
+f 1 2 3 4
+f 5 6 7 8
+)",
+                   R"({"position": [0, 0, 5], "look_at": [0, 0, 0], "fov_deg": 30})");
+    const int w = 64, h = 64;
+    const RenderBuffers b = frame(a, 0, w, h);
+    int steps = 0;
+    for (int y = 1; y + 1 < h; ++y) {
+        for (int x = 1; x + 1 < w; ++x) {
+            if (b.object_id.at(x, y, 0) != 1.0f) continue;
+            const bool front = b.depth.at(x, y, 0) < 4.5f;
+            bool next_to_back = false, next_to_sky = false;
+            for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                next_to_sky = next_to_sky || b.object_id.at(x + dx, y + dy, 0) == 0.0f;
+                next_to_back = next_to_back || b.depth.at(x + dx, y + dy, 0) > 4.5f;
+            }
+            const bool expected = next_to_sky || (front && next_to_back);
+            EXPECT_EQ(b.lines.at(x, y, 0), expected ? 1.0f : 0.0f) << x << "," << y;
+            steps += front && next_to_back ? 1 : 0;
+        }
+    }
+    EXPECT_GT(steps, 40);
+}
+
+// A cube with shared vertices (so its shading normals are smooth across the edges): the edges
+// between its visible faces are creases by the facet normals.
+TEST(Animation, LinesMarkTheCreasesOfACube) {
+    const Animation a =
+        mesh_scene(R"(v -1 -1 -1
+v 1 -1 -1
+v 1 1 -1
+v -1 1 -1
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 4 8 7 3
+f 1 5 8 4
+f 2 3 7 6
+)",
+                   R"({"position": [3, 2.5, 4], "look_at": [0, 0, 0], "fov_deg": 40})");
+    const int w = 80, h = 80;
+    const RenderBuffers b = frame(a, 0, w, h);
+    // Which face of the cube the ray through a pixel centre hits (the axis of the largest
+    // coordinate of the hit point), from the depth buffer and an independent camera model.
+    const double eye[3] = {3.0, 2.5, 4.0};
+    double f[3] = {-3.0, -2.5, -4.0};
+    const double fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (double& c : f) c /= fl;
+    double r[3] = {f[1] * 0.0 - f[2] * 1.0, f[2] * 0.0 - f[0] * 0.0, f[0] * 1.0 - f[1] * 0.0};
+    const double rl = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    for (double& c : r) c /= rl;
+    const double u[3] = {r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2],
+                         r[0] * f[1] - r[1] * f[0]};
+    const double t = std::tan(20.0 * kPi / 180.0);
+    const auto face = [&](int x, int y) {
+        if (b.object_id.at(x, y, 0) != 1.0f) return -1;
+        const double sx = (2.0 * (x + 0.5) / w - 1.0) * t, sy = (1.0 - 2.0 * (y + 0.5) / h) * t;
+        double d[3], len = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            d[i] = f[i] + sx * r[i] + sy * u[i];
+            len += d[i] * d[i];
+        }
+        int best = 0;
+        double p[3];
+        for (int i = 0; i < 3; ++i) {
+            p[i] = eye[i] + b.depth.at(x, y, 0) * d[i] / std::sqrt(len);
+            if (std::fabs(p[i]) > std::fabs(p[best])) best = i;
+        }
+        return best;
+    };
+    int creases = 0;
+    for (int y = 1; y + 1 < h; ++y) {
+        for (int x = 1; x + 1 < w; ++x) {
+            const int own = face(x, y);
+            if (own < 0) continue;
+            bool edge = false, sky = false;
+            for (auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int other = face(x + dx, y + dy);
+                sky = sky || other < 0;
+                if (other >= 0 && other != own) {
+                    edge = true;
+                    // At least one side of every crease is marked.
+                    EXPECT_TRUE(b.lines.at(x, y, 0) == 1.0f ||
+                                b.lines.at(x + dx, y + dy, 0) == 1.0f)
+                        << x << "," << y;
+                }
+            }
+            if (!edge && !sky) {
+                EXPECT_EQ(b.lines.at(x, y, 0), 0.0f) << x << "," << y;
+            }
+            creases += edge ? 1 : 0;
+        }
+    }
+    EXPECT_GT(creases, 60);
 }
 
 TEST(Animation, BadKeyframesAreNamed) {

@@ -71,8 +71,8 @@ struct RenderBuffers {
     /// Channel "L": 1 on the near side of a silhouette or crease, else 0. A pixel is marked
     /// when a 4-neighbour has another object id (or is background), lies much deeper (the
     /// second difference of depth exceeds 2% of depth: a depth discontinuity, not a slanted
-    /// plane), or its shading normal differs by more than 45 degrees (a crease); of the two
-    /// pixels of a discontinuity the one nearer the eye is marked.
+    /// plane), or its facet (geometric) normal differs by more than 45 degrees (a crease); of the
+    /// two pixels of a discontinuity the one nearer the eye is marked.
     Image lines;
 
     /// Motion buffers, written by `render_frame` only (empty for `render`). Flows have channels
