@@ -514,6 +514,24 @@ f 2 3 7 6
     EXPECT_GT(creases, 60);
 }
 
+// The bundled turntable example: Spot turns once in its 48 frames.
+TEST(Animation, TheTurntableExampleTurnsSpotOnce) {
+    auto a = load_animation(EXEMPLAR_SOURCE_DIR "/examples/render/spot-turntable.json");
+    ASSERT_TRUE(a.ok()) << a.status().message();
+    EXPECT_TRUE(a->is_animated());
+    ASSERT_TRUE(a->frames.has_value());
+    EXPECT_EQ(a->frames->first, 0);
+    EXPECT_EQ(a->frames->second, 47);
+    const Scene first = a->at(0), turned = a->at(48);
+    ASSERT_EQ(first.meshes.size(), turned.meshes.size());
+    for (std::size_t i = 0; i < first.meshes[0].positions.size(); i += 97) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(first.meshes[0].positions[i][c], turned.meshes[0].positions[i][c], 1e-4f);
+        }
+    }
+    EXPECT_NE(a->at(12).meshes[0].positions[0], first.meshes[0].positions[0]);
+}
+
 TEST(Animation, BadKeyframesAreNamed) {
     const auto error = [](const std::string& object, const std::string& extra = "") {
         const std::string json = R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},)" +
