@@ -1,7 +1,8 @@
 // Fits the sphere-on-table set-up (camera, wall, light, exposure, materials) to the StyLit
 // authors' buffers by coordinate descent on the mean absolute error of our sRGB-encoded buffers
 // (tests/render/calibration.hpp). Small renders with a fixed seed make the objective
-// deterministic. Prints the fitted scene JSON; examples/render/sphere-on-table.json was made so.
+// deterministic. Prints the fitted scene JSON. The first sphere-on-table.json started from it;
+// the current albedos, sky and light came from descents over render_calibrate (docs/render.md).
 //
 //   render_fit [rounds]
 

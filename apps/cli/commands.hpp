@@ -92,7 +92,8 @@ public:
 
 private:
     CLI::App* app_ = nullptr;
-    std::string scene_, output_, format_ = "png";
+    std::string scene_, output_, format_ = "png", frames_;
+    int frame_ = 0;
     render::RenderOptions options_;
     int threads_ = 0;
     bool quiet_ = false;
@@ -112,6 +113,7 @@ public:
 
 private:
     Status run_stylize(const Streams& streams);
+    Status apply_job_file();
     Status run_sheet(const Streams& streams);
     Status run_align(const Streams& streams);
 
@@ -119,6 +121,7 @@ private:
     CLI::App* sheet_ = nullptr;
     CLI::App* align_ = nullptr;
     std::string exemplar_, output_, preset_ = "exemplar", layers_, usage_;
+    std::string save_nnf_, save_error_, config_;
     std::vector<std::string> source_, target_;
     float guidance_weight_ = 2.0f;
     std::uint64_t seed_ = 1;

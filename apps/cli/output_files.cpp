@@ -142,6 +142,63 @@ Image error_map_for_file(const Image& error, const std::string& path, SaveOption
     return scaled;
 }
 
+Status check_output_paths(const SynthesisOutputs& outputs) {
+    const std::vector<std::pair<const char*, const std::string*>> files = {
+        {"--output", &outputs.output},
+        {"--save-nnf", &outputs.save_nnf},
+        {"--save-error", &outputs.save_error}};
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const auto& [flag, path] = files[i];
+        if (path->empty()) continue;
+        EXEMPLAR_RETURN_IF_ERROR(check_output_path(flag, *path));
+        for (std::size_t j = 0; j < i; ++j) {
+            if (!files[j].second->empty() && same_file(*files[j].second, *path)) {
+                return invalid_argument(std::string(flag) + " " + *path + ": is also the " +
+                                        files[j].first + " file");
+            }
+        }
+    }
+    if (!outputs.save_nnf.empty() && lowercase_extension(outputs.save_nnf) != ".exr") {
+        return invalid_argument("--save-nnf " + outputs.save_nnf +
+                                ": must be an .exr file (the NNF holds float source positions)");
+    }
+    return Status::ok();
+}
+
+Status check_output_formats(const SynthesisOutputs& outputs, const Image& reference,
+                            const std::string& reference_path) {
+    EXEMPLAR_RETURN_IF_ERROR(
+        check_output_format("--output", outputs.output, reference,
+                            output_options(reference, reference_path, outputs.output)));
+    if (!outputs.save_error.empty()) {
+        SaveOptions options;
+        const Image like = error_map_for_file(Image(1, 1, 1), outputs.save_error, options);
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_output_format("--save-error", outputs.save_error, like, options));
+    }
+    return Status::ok();
+}
+
+Status save_nnf_and_error(const SynthesisResult& result, const SynthesisOutputs& outputs) {
+    if (!outputs.save_nnf.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(save_image(nnf_to_image(result.nnf), outputs.save_nnf,
+                                            SaveOptions{PixelFormat::Float}));
+    }
+    if (!outputs.save_error.empty()) {
+        SaveOptions options;
+        const Image error = error_map_for_file(result.error, outputs.save_error, options);
+        EXEMPLAR_RETURN_IF_ERROR(save_image(error, outputs.save_error, options));
+    }
+    return Status::ok();
+}
+
+std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outputs) {
+    if (outputs.save_nnf.empty()) return "";
+    return "exemplar: note: " + outputs.save_nnf + " was made with patch size " +
+           std::to_string(result.nnf_patch_size) + " (apply-nnf --patch-size " +
+           std::to_string(result.nnf_patch_size) + ")\n";
+}
+
 bool same_file(const std::string& a, const std::string& b) {
     std::error_code ea, eb;
     const fs::path ca = fs::weakly_canonical(a, ea);

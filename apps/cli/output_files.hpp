@@ -8,6 +8,7 @@
 #include "exemplar/core/image.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/synth/synthesize.hpp"
 
 namespace exemplar::cli {
 
@@ -33,6 +34,28 @@ SaveOptions output_options(const Image& reference, const std::string& reference_
 /// they are (written as float); other formats hold [0, 1], so the map is scaled to put its 99th
 /// percentile at 1. Sets `options.format` accordingly.
 Image error_map_for_file(const Image& error, const std::string& path, SaveOptions& options);
+
+/// The files a synthesis run writes (`stylize`, `stylit`); empty = not written.
+struct SynthesisOutputs {
+    std::string output;      ///< --output: the stylized image.
+    std::string save_nnf;    ///< --save-nnf: the final NNF (EXR only).
+    std::string save_error;  ///< --save-error: the per-pixel patch error.
+};
+
+/// Checks made before the run: each file's folder is writable, no file is named twice, the NNF
+/// is an .exr file. Messages name the flag and the path.
+Status check_output_paths(const SynthesisOutputs& outputs);
+
+/// Checks that --output can hold an image like `reference` (read from `reference_path`, see
+/// `output_options`) and --save-error an error map, before the run.
+Status check_output_formats(const SynthesisOutputs& outputs, const Image& reference,
+                            const std::string& reference_path);
+
+/// Writes the --save-nnf and --save-error files of `result` (each atomically).
+Status save_nnf_and_error(const SynthesisResult& result, const SynthesisOutputs& outputs);
+
+/// The note printed after a run that saved an NNF: the patch size to give apply-nnf.
+std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outputs);
 
 /// True if both paths name the same file (after resolving `.`, `..` and symbolic links).
 bool same_file(const std::string& a, const std::string& b);

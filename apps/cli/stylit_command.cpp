@@ -26,7 +26,9 @@ constexpr const char* kFooter =
     "direct_diffuse, direct_specular, indirect_diffuse; cycles; arnold) or --layers lists:\n"
     "  exemplar stylit --exemplar painting.png --source s_full.png s_dirdif.png s_dirspc.png \\\n"
     "      s_indirb.png --target out/spot -o out.png\n"
-    "Workflow and presets: docs/stylit.md. Sub-commands: stylit sheet, stylit align.";
+    "Job files (--config job.json) take the same options as JSON keys, e.g.\n"
+    "examples/stylit/stylit_job.json. Workflow and presets: docs/stylit.md.\n"
+    "Sub-commands: stylit sheet, stylit align.";
 
 void require(const CLI::App& app, bool given, const char* flag, const char* what) {
     if (!given) {
@@ -73,7 +75,19 @@ StylitCommand::StylitCommand(CLI::App& parent) {
                    "EXR layer (or folder file) names in guide order, comma-separated (instead of "
                    "--preset)")
         ->group(kInputs);
+    app.add_option("--config", config_,
+                   "JSON job file with the same options (long names as keys; source and target "
+                   "as arrays); flags override it")
+        ->group(kInputs);
     app.add_option("--output,-o", output_, "Output image; format from the extension")
+        ->group(kOutputs);
+    app.add_option("--save-nnf", save_nnf_,
+                   "Write the final NNF (EXR: x, y, angle, error) for apply-nnf (half size with "
+                   "--preview)")
+        ->group(kOutputs);
+    app.add_option("--save-error", save_error_,
+                   "Write the per-pixel patch error (EXR/TIFF: as is; PNG etc.: scaled, 99th "
+                   "percentile = white)")
         ->group(kOutputs);
     app.add_option("--guidance-weight", guidance_weight_,
                    "Total weight of the buffers against the painting (mu of the paper), split "
@@ -140,7 +154,48 @@ Status StylitCommand::run(const Streams& streams) {
     return sheet_->parsed() ? run_sheet(streams) : run_align(streams);
 }
 
+// Values of the --config file for every flag not given on the command line.
+Status StylitCommand::apply_job_file() {
+    std::string exemplar, output, preset, layers, usage, save_nnf, save_error;
+    std::vector<std::string> source, target;
+    double guidance_weight = 0.0;
+    long long seed = 0, threads = 0;
+    bool preview = false, quiet = false;
+    JobFields fields;
+    fields.paths = {{"exemplar", &exemplar},
+                    {"output", &output},
+                    {"save-nnf", &save_nnf},
+                    {"save-error", &save_error}};
+    fields.path_lists = {{"source", &source}, {"target", &target}};
+    fields.words = {{"preset", &preset}, {"layers", &layers}, {"usage", &usage}};
+    fields.numbers = {{"guidance-weight", &guidance_weight}};
+    fields.integers = {{"seed", &seed}, {"threads", &threads}};
+    fields.flags = {{"preview", &preview}, {"quiet", &quiet}};
+    std::vector<std::string> given;
+    EXEMPLAR_RETURN_IF_ERROR(read_job_file(config_, fields, &given));
+    if (seed < 0) return invalid_argument(config_ + ": key 'seed' must be >= 0");
+    for (const std::string& key : given) {
+        if (app_->get_option("--" + key)->count() > 0) continue;  // the flag wins
+        if (key == "exemplar") exemplar_ = exemplar;
+        if (key == "output") output_ = output;
+        if (key == "save-nnf") save_nnf_ = save_nnf;
+        if (key == "save-error") save_error_ = save_error;
+        if (key == "source") source_ = source;
+        if (key == "target") target_ = target;
+        if (key == "preset") preset_ = preset;
+        if (key == "layers") layers_ = layers;
+        if (key == "usage") usage_ = usage;
+        if (key == "guidance-weight") guidance_weight_ = static_cast<float>(guidance_weight);
+        if (key == "seed") seed_ = static_cast<std::uint64_t>(seed);
+        if (key == "threads") threads_ = static_cast<int>(threads);
+        if (key == "preview") preview_ = preview;
+        if (key == "quiet") quiet_ = quiet;
+    }
+    return Status::ok();
+}
+
 Status StylitCommand::run_stylize(const Streams& streams) {
+    if (!config_.empty()) EXEMPLAR_RETURN_IF_ERROR(apply_job_file());
     require(*app_, !exemplar_.empty(), "--exemplar", "the painting");
     require(*app_, !source_.empty(), "--source", "the exemplar render's buffers");
     require(*app_, !target_.empty(), "--target", "the target render's buffers");
@@ -160,7 +215,8 @@ Status StylitCommand::run_stylize(const Streams& streams) {
     EXEMPLAR_RETURN_IF_ERROR(check_threads(threads_));
     auto preset = layers_.empty() ? find_layer_preset(preset_) : custom_layer_preset(layers_);
     if (!preset.ok()) return preset.status();
-    EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", output_));
+    const SynthesisOutputs outputs{output_, save_nnf_, save_error_};
+    EXEMPLAR_RETURN_IF_ERROR(check_output_paths(outputs));
 
     // Inputs.
     auto exemplar = load_image(exemplar_);
@@ -172,8 +228,7 @@ Status StylitCommand::run_stylize(const Streams& streams) {
     auto input = stylit_input(*exemplar, *source, *target, options);
     if (!input.ok()) return input.status();
     EXEMPLAR_RETURN_IF_ERROR(validate_input(*input, options.synthesis));
-    const SaveOptions save = output_options(*exemplar, exemplar_, output_);
-    EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, *exemplar, save));
+    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs, *exemplar, exemplar_));
 
     // Run.
     ProgressBar bar(streams.err, options.preview ? "stylit preview" : "stylit",
@@ -184,9 +239,12 @@ Status StylitCommand::run_stylize(const Streams& streams) {
     bar.finish();
     if (!result.ok()) return result.status();
 
-    EXEMPLAR_RETURN_IF_ERROR(save_image(result->synthesis.image, output_, save));
+    EXEMPLAR_RETURN_IF_ERROR(save_image(result->synthesis.image, output_,
+                                        output_options(*exemplar, exemplar_, output_)));
+    EXEMPLAR_RETURN_IF_ERROR(save_nnf_and_error(result->synthesis, outputs));
     if (!quiet_) {
         streams.out << output_ << '\n';
+        streams.err << nnf_note(result->synthesis, outputs);
         if (options.preview) {
             std::ostringstream note;
             note.precision(3);

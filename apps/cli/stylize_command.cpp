@@ -62,41 +62,8 @@ Status build_options(const StylizeJob& job, SynthesisOptions& options) {
     return Status::ok();
 }
 
-// Output paths: writable folders, an NNF only as EXR, and no file written twice.
-Status check_output_paths(const StylizeJob& job) {
-    const std::vector<std::pair<const char*, const std::string*>> outputs = {
-        {"--output", &job.output},
-        {"--save-nnf", &job.save_nnf},
-        {"--save-error", &job.save_error}};
-    for (std::size_t i = 0; i < outputs.size(); ++i) {
-        const auto& [flag, path] = outputs[i];
-        if (path->empty()) continue;
-        EXEMPLAR_RETURN_IF_ERROR(check_output_path(flag, *path));
-        for (std::size_t j = 0; j < i; ++j) {
-            if (!outputs[j].second->empty() && same_file(*outputs[j].second, *path)) {
-                return invalid_argument(std::string(flag) + " " + *path + ": is also the " +
-                                        outputs[j].first + " file");
-            }
-        }
-    }
-    if (!job.save_nnf.empty() && lowercase_extension(job.save_nnf) != ".exr") {
-        return invalid_argument("--save-nnf " + job.save_nnf +
-                                ": must be an .exr file (the NNF holds float source positions)");
-    }
-    return Status::ok();
-}
-
-// The formats of the outputs can hold what will be written (checked before the run).
-Status check_output_formats(const StylizeJob& job, const Image& style) {
-    EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", job.output, style,
-                                                 output_options(style, job.style, job.output)));
-    if (!job.save_error.empty()) {
-        SaveOptions options;
-        const Image like = error_map_for_file(Image(1, 1, 1), job.save_error, options);
-        EXEMPLAR_RETURN_IF_ERROR(
-            check_output_format("--save-error", job.save_error, like, options));
-    }
-    return Status::ok();
+SynthesisOutputs outputs_of(const StylizeJob& job) {
+    return {job.output, job.save_nnf, job.save_error};
 }
 
 Status with_names(const Status& status, const StylizeInput& loaded) {
@@ -289,14 +256,14 @@ Status StylizeCommand::run(const Streams& streams) {
         return invalid_argument("--threads: " + std::to_string(threads) +
                                 " is invalid (must be >= 0; 0 = all cores)");
     }
-    EXEMPLAR_RETURN_IF_ERROR(check_output_paths(job));
+    EXEMPLAR_RETURN_IF_ERROR(check_output_paths(outputs_of(job)));
 
     // The input files, then the library's semantic checks, then the output formats.
     auto loaded = load_stylize_input(job);
     if (!loaded.ok()) return loaded.status();
     const SynthesisInput& input = loaded->input;
     EXEMPLAR_RETURN_IF_ERROR(with_names(validate_input(input, options), *loaded));
-    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(job, input.style));
+    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs_of(job), input.style, job.style));
 
     // Run.
     const bool quiet = job.quiet.value_or(false);
@@ -310,22 +277,10 @@ Status StylizeCommand::run(const Streams& streams) {
     // Write the outputs (each atomically).
     EXEMPLAR_RETURN_IF_ERROR(
         save_image(result->image, job.output, output_options(input.style, job.style, job.output)));
-    if (!job.save_nnf.empty()) {
-        EXEMPLAR_RETURN_IF_ERROR(
-            save_image(nnf_to_image(result->nnf), job.save_nnf, SaveOptions{PixelFormat::Float}));
-    }
-    if (!job.save_error.empty()) {
-        SaveOptions error_options;
-        const Image error = error_map_for_file(result->error, job.save_error, error_options);
-        EXEMPLAR_RETURN_IF_ERROR(save_image(error, job.save_error, error_options));
-    }
+    EXEMPLAR_RETURN_IF_ERROR(save_nnf_and_error(*result, outputs_of(job)));
     if (!quiet) {
         streams.out << job.output << '\n';
-        if (!job.save_nnf.empty()) {
-            streams.err << "exemplar: note: " << job.save_nnf << " was made with patch size "
-                        << result->nnf_patch_size << " (apply-nnf --patch-size "
-                        << result->nnf_patch_size << ")\n";
-        }
+        streams.err << nnf_note(*result, outputs_of(job));
     }
     return Status::ok();
 }

@@ -1,7 +1,9 @@
 #include "stylize_job.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "exemplar/synth/options.hpp"
@@ -24,9 +26,12 @@ Status type_error(const std::string& file, const std::string& key, const char* e
     return invalid_argument(file + ": key '" + key + "' must be " + expected);
 }
 
-}  // namespace
+// Every key of the job file `path` goes to `visit(raw_key, canonical_key, value, resolve)`.
+using Resolver = std::function<std::string(const std::string&)>;
+using KeyVisitor =
+    std::function<Status(const std::string&, const std::string&, const json&, const Resolver&)>;
 
-Result<StylizeJob> load_job_file(const std::string& path) {
+Status visit_job_file(const std::string& path, const KeyVisitor& visit) {
     std::error_code ec;
     if (!fs::exists(path, ec)) return io_error(path + ": no such file");
     if (fs::is_directory(path, ec)) return io_error(path + ": is a folder, not a job file");
@@ -44,85 +49,142 @@ Result<StylizeJob> load_job_file(const std::string& path) {
     }
     if (!doc.is_object()) return invalid_argument(path + ": must hold a JSON object");
     const fs::path base = fs::path(path).parent_path();
-    auto resolve = [&](const std::string& p) {
+    const Resolver resolve = [&](const std::string& p) {
         if (p.empty() || fs::path(p).is_absolute()) return p;
         return (base / p).lexically_normal().string();
     };
-
-    StylizeJob job;
-    const std::map<std::string, std::string StylizeJob::*> paths = {
-        {"style", &StylizeJob::style},
-        {"output", &StylizeJob::output},
-        {"target-mask", &StylizeJob::target_mask},
-        {"source-mask", &StylizeJob::source_mask},
-        {"source-labels", &StylizeJob::source_labels},
-        {"target-labels", &StylizeJob::target_labels},
-        {"source-orientation", &StylizeJob::source_orientation},
-        {"target-orientation", &StylizeJob::target_orientation},
-        {"init", &StylizeJob::init},
-        {"init-nnf", &StylizeJob::init_nnf},
-        {"save-nnf", &StylizeJob::save_nnf},
-        {"save-error", &StylizeJob::save_error},
-    };
-    const std::map<std::string, std::string StylizeJob::*> words = {
-        {"usage", &StylizeJob::usage}, {"vote", &StylizeJob::vote}, {"size", &StylizeJob::size}};
-
     for (const auto& [raw_key, value] : doc.items()) {
-        const std::string key = canonical_key(raw_key);
-        if (auto it = paths.find(key); it != paths.end()) {
-            if (!value.is_string()) return type_error(path, raw_key, "a string (a file path)");
-            job.*(it->second) = resolve(value.get<std::string>());
-        } else if (auto w = words.find(key); w != words.end()) {
-            if (!value.is_string()) return type_error(path, raw_key, "a string");
-            job.*(w->second) = value.get<std::string>();
-        } else if (key == "guides") {
-            if (!value.is_array()) return type_error(path, raw_key, "an array of guides");
-            for (const json& g : value) {
-                if (!g.is_object() || !g.contains("source") || !g.contains("target") ||
-                    !g["source"].is_string() || !g["target"].is_string()) {
-                    return type_error(path, raw_key,
-                                      "an array of {\"source\": ..., \"target\": ..., "
-                                      "\"weight\": ...} objects");
-                }
-                GuideSpec spec;
-                for (const auto& [gk_raw, gv] : g.items()) {
-                    const std::string gk = canonical_key(gk_raw);
-                    if (gk == "source" || gk == "target") continue;
-                    if (gk == "weight") {
-                        if (!gv.is_number()) return type_error(path, "guides.weight", "a number");
-                        spec.weight = gv.get<float>();
-                    } else if (gk == "weight-map") {
-                        if (!gv.is_string()) return type_error(path, "guides.weight-map", "a path");
-                        spec.weight_map = resolve(gv.get<std::string>());
-                    } else {
-                        return invalid_argument(path + ": unknown key 'guides." + gk_raw +
-                                                "' (guides take source, target, weight, "
-                                                "weight-map)");
-                    }
-                }
-                spec.source = resolve(g["source"].get<std::string>());
-                spec.target = resolve(g["target"].get<std::string>());
-                job.guides.push_back(std::move(spec));
-            }
-        } else if (key == "style-weights") {
-            if (!value.is_array()) return type_error(path, raw_key, "an array of numbers");
-            for (const json& v : value) {
-                if (!v.is_number()) return type_error(path, raw_key, "an array of numbers");
-                job.style_weights.push_back(v.get<float>());
-            }
-        } else if (key == "threads") {
-            if (!value.is_number_integer()) return type_error(path, raw_key, "an integer");
-            job.threads = value.get<int>();
-        } else if (key == "quiet") {
-            if (!value.is_boolean()) return type_error(path, raw_key, "true or false");
-            job.quiet = value.get<bool>();
-        } else if (find_option(key) != nullptr) {
-            if (!value.is_number()) return type_error(path, raw_key, "a number");
-            job.numeric[std::string(find_option(key)->name)] = value.get<double>();
-        } else {
+        EXEMPLAR_RETURN_IF_ERROR(visit(raw_key, canonical_key(raw_key), value, resolve));
+    }
+    return Status::ok();
+}
+
+// The keys of `fields`; Unsupported (not an error yet) if `key` is not one of them.
+Status read_field(const std::string& path, const JobFields& fields, const std::string& raw_key,
+                  const std::string& key, const json& value, const Resolver& resolve) {
+    if (auto it = fields.paths.find(key); it != fields.paths.end()) {
+        if (!value.is_string()) return type_error(path, raw_key, "a string (a file path)");
+        *it->second = resolve(value.get<std::string>());
+    } else if (auto list = fields.path_lists.find(key); list != fields.path_lists.end()) {
+        const bool strings =
+            value.is_string() ||
+            (value.is_array() && !value.empty() &&
+             std::all_of(value.begin(), value.end(), [](const json& v) { return v.is_string(); }));
+        if (!strings) return type_error(path, raw_key, "a file path or an array of file paths");
+        list->second->clear();
+        for (const json& v : value.is_string() ? json::array({value}) : value) {
+            list->second->push_back(resolve(v.get<std::string>()));
+        }
+    } else if (auto w = fields.words.find(key); w != fields.words.end()) {
+        if (!value.is_string()) return type_error(path, raw_key, "a string");
+        *w->second = value.get<std::string>();
+    } else if (auto n = fields.numbers.find(key); n != fields.numbers.end()) {
+        if (!value.is_number()) return type_error(path, raw_key, "a number");
+        *n->second = value.get<double>();
+    } else if (auto i = fields.integers.find(key); i != fields.integers.end()) {
+        if (!value.is_number_integer()) return type_error(path, raw_key, "an integer");
+        *i->second = value.get<long long>();
+    } else if (auto f = fields.flags.find(key); f != fields.flags.end()) {
+        if (!value.is_boolean()) return type_error(path, raw_key, "true or false");
+        *f->second = value.get<bool>();
+    } else {
+        return Status(ErrorCode::Unsupported, key);
+    }
+    return Status::ok();
+}
+
+}  // namespace
+
+Status read_job_file(const std::string& path, const JobFields& fields,
+                     std::vector<std::string>* given) {
+    return visit_job_file(path, [&](const std::string& raw_key, const std::string& key,
+                                    const json& value, const Resolver& resolve) {
+        const Status status = read_field(path, fields, raw_key, key, value, resolve);
+        if (status.code() == ErrorCode::Unsupported) {
             return invalid_argument(path + ": unknown key '" + raw_key + "'");
         }
-    }
+        if (status.is_ok() && given != nullptr) given->push_back(key);
+        return status;
+    });
+}
+
+Result<StylizeJob> load_job_file(const std::string& path) {
+    StylizeJob job;
+    JobFields fields;
+    fields.paths = {
+        {"style", &job.style},
+        {"output", &job.output},
+        {"target-mask", &job.target_mask},
+        {"source-mask", &job.source_mask},
+        {"source-labels", &job.source_labels},
+        {"target-labels", &job.target_labels},
+        {"source-orientation", &job.source_orientation},
+        {"target-orientation", &job.target_orientation},
+        {"init", &job.init},
+        {"init-nnf", &job.init_nnf},
+        {"save-nnf", &job.save_nnf},
+        {"save-error", &job.save_error},
+    };
+    fields.words = {{"usage", &job.usage}, {"vote", &job.vote}, {"size", &job.size}};
+
+    const Status status = visit_job_file(
+        path,
+        [&](const std::string& raw_key, const std::string& key, const json& value,
+            const Resolver& resolve) -> Status {
+            const Status field = read_field(path, fields, raw_key, key, value, resolve);
+            if (field.code() != ErrorCode::Unsupported) return field;
+            if (key == "guides") {
+                if (!value.is_array()) return type_error(path, raw_key, "an array of guides");
+                for (const json& g : value) {
+                    if (!g.is_object() || !g.contains("source") || !g.contains("target") ||
+                        !g["source"].is_string() || !g["target"].is_string()) {
+                        return type_error(path, raw_key,
+                                          "an array of {\"source\": ..., \"target\": ..., "
+                                          "\"weight\": ...} objects");
+                    }
+                    GuideSpec spec;
+                    for (const auto& [gk_raw, gv] : g.items()) {
+                        const std::string gk = canonical_key(gk_raw);
+                        if (gk == "source" || gk == "target") continue;
+                        if (gk == "weight") {
+                            if (!gv.is_number())
+                                return type_error(path, "guides.weight", "a number");
+                            spec.weight = gv.get<float>();
+                        } else if (gk == "weight-map") {
+                            if (!gv.is_string())
+                                return type_error(path, "guides.weight-map", "a path");
+                            spec.weight_map = resolve(gv.get<std::string>());
+                        } else {
+                            return invalid_argument(path + ": unknown key 'guides." + gk_raw +
+                                                    "' (guides take source, target, weight, "
+                                                    "weight-map)");
+                        }
+                    }
+                    spec.source = resolve(g["source"].get<std::string>());
+                    spec.target = resolve(g["target"].get<std::string>());
+                    job.guides.push_back(std::move(spec));
+                }
+            } else if (key == "style-weights") {
+                if (!value.is_array()) return type_error(path, raw_key, "an array of numbers");
+                for (const json& v : value) {
+                    if (!v.is_number()) return type_error(path, raw_key, "an array of numbers");
+                    job.style_weights.push_back(v.get<float>());
+                }
+            } else if (key == "threads") {
+                if (!value.is_number_integer()) return type_error(path, raw_key, "an integer");
+                job.threads = value.get<int>();
+            } else if (key == "quiet") {
+                if (!value.is_boolean()) return type_error(path, raw_key, "true or false");
+                job.quiet = value.get<bool>();
+            } else if (find_option(key) != nullptr) {
+                if (!value.is_number()) return type_error(path, raw_key, "a number");
+                job.numeric[std::string(find_option(key)->name)] = value.get<double>();
+            } else {
+                return invalid_argument(path + ": unknown key '" + raw_key + "'");
+            }
+            return Status::ok();
+        });
+    if (!status.is_ok()) return status;
     return job;
 }
 

@@ -13,8 +13,14 @@ namespace exemplar::render {
 namespace {
 
 bool is_light_buffer(const std::string& name) {
-    return name != "normal" && name != "depth" && name != "object_id" && name != "material_id" &&
-           name != "alpha";
+    return name == "fullgi" || name == "direct_diffuse" || name == "direct_specular" ||
+           name == "indirect_diffuse" || name == "diffuse_bounces" ||
+           name == "diffuse_interreflection";
+}
+
+// Buffers of float data that 8-bit files cannot hold: written as EXR even in PNG folders.
+bool is_float_buffer(const std::string& name) {
+    return name == "orientation" || name == "forward_flow" || name == "backward_flow";
 }
 
 // The 8-bit-file version of a buffer (see BufferFileFormat::Png).
@@ -53,10 +59,10 @@ Status save_buffers_to_folder(const RenderBuffers& buffers, const std::string& f
         return io_error(folder + ": no such folder");
     }
     for (const auto& [name, image] : buffers.layers()) {
-        const std::string path = (std::filesystem::path(folder) /
-                                  (name + (format == BufferFileFormat::Png ? ".png" : ".exr")))
-                                     .string();
-        if (format == BufferFileFormat::Png) {
+        const bool png = format == BufferFileFormat::Png && !is_float_buffer(name);
+        const std::string path =
+            (std::filesystem::path(folder) / (name + (png ? ".png" : ".exr"))).string();
+        if (png) {
             EXEMPLAR_RETURN_IF_ERROR(save_image(for_png(name, *image), path));
         } else {
             EXEMPLAR_RETURN_IF_ERROR(save_image(*image, path, {PixelFormat::Float}));

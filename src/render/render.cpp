@@ -9,16 +9,13 @@
 
 #include "exemplar/render/render.hpp"
 
-#include <embree3/rtcore.h>
-
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <memory>
-#include <mutex>
 
+#include "embree_scene.hpp"
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
+#include "render_internal.hpp"
 #include "vec_math.hpp"
 
 namespace exemplar::render {
@@ -26,71 +23,6 @@ namespace exemplar::render {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-
-// Embree device + scene, released on destruction. Errors are collected, never printed.
-class EmbreeScene {
-public:
-    explicit EmbreeScene(const Scene& scene) {
-        // One build thread: the BVH (and so tie-breaking between equal hits) never depends on
-        // scheduling.
-        device_ = rtcNewDevice("threads=1");
-        if (device_ == nullptr) {
-            error_ =
-                "Embree: cannot create a device (" + code_name(rtcGetDeviceError(nullptr)) + ")";
-            return;
-        }
-        rtcSetDeviceErrorFunction(
-            device_,
-            [](void* self, RTCError, const char* message) {
-                auto* me = static_cast<EmbreeScene*>(self);
-                const std::lock_guard<std::mutex> lock(me->mutex_);
-                if (me->error_.empty()) me->error_ = std::string("Embree: ") + message;
-            },
-            this);
-        scene_ = rtcNewScene(device_);
-        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-        for (const Mesh& mesh : scene.meshes) {
-            RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* vertices = static_cast<float*>(
-                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                        3 * sizeof(float), mesh.positions.size()));
-            auto* indices = static_cast<unsigned*>(
-                rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                        3 * sizeof(unsigned), mesh.triangles.size()));
-            if (vertices == nullptr || indices == nullptr) {
-                rtcReleaseGeometry(geometry);
-                break;
-            }
-            for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-                std::copy(mesh.positions[i].begin(), mesh.positions[i].end(), vertices + 3 * i);
-            }
-            for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-                std::copy(mesh.triangles[i].begin(), mesh.triangles[i].end(), indices + 3 * i);
-            }
-            rtcCommitGeometry(geometry);
-            rtcAttachGeometry(scene_, geometry);  // IDs 0, 1, ... = mesh index
-            rtcReleaseGeometry(geometry);
-        }
-        rtcCommitScene(scene_);
-    }
-    ~EmbreeScene() {
-        if (scene_ != nullptr) rtcReleaseScene(scene_);
-        if (device_ != nullptr) rtcReleaseDevice(device_);
-    }
-    EmbreeScene(const EmbreeScene&) = delete;
-    EmbreeScene& operator=(const EmbreeScene&) = delete;
-
-    const std::string& error() const { return error_; }
-    RTCScene handle() const { return scene_; }
-
-private:
-    static std::string code_name(RTCError code) { return "error " + std::to_string(code); }
-
-    RTCDevice device_ = nullptr;
-    RTCScene scene_ = nullptr;
-    std::mutex mutex_;
-    std::string error_;
-};
 
 // Per-sample accumulators of the light buffers.
 struct Sample {
@@ -126,17 +58,13 @@ LightFrame light_frame(const AreaLight& light) {
             light.radiance};
 }
 
-struct Hit {
-    bool found = false;
-    float t = 0.0f;
-    Vec3 position{}, geometric_normal{}, shading_normal{};
-    int mesh = -1;
-};
-
 class Tracer {
 public:
     Tracer(const Scene& scene, RTCScene handle, const RenderOptions& options)
-        : scene_(scene), handle_(handle), options_(options) {
+        : scene_(scene),
+          handle_(handle),
+          options_(options),
+          camera_(scene.camera, options.width, options.height) {
         for (const AreaLight& light : scene.lights) lights_.push_back(light_frame(light));
         // Ray offsets relative to the scene's size.
         float extent = 0.0f;
@@ -146,79 +74,23 @@ public:
                     extent, max_component({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])}));
         }
         epsilon_ = std::max(extent, 1.0f) * 2e-5f;
-        const Camera& c = scene.camera;
-        forward_ = normalize(sub(c.look_at, c.position));
-        right_ = normalize(cross(forward_, c.up));
-        up_ = cross(right_, forward_);
-        tan_half_ = std::tan(c.fov_deg * kPi / 360.0f);
-        aspect_ = static_cast<float>(options.width) / static_cast<float>(options.height);
     }
 
-    Vec3 camera_ray(float px, float py) const {
-        const float sx =
-            (2.0f * px / static_cast<float>(options_.width) - 1.0f) * tan_half_ * aspect_;
-        const float sy = (1.0f - 2.0f * py / static_cast<float>(options_.height)) * tan_half_;
-        return normalize(add(forward_, add(scale(right_, sx), scale(up_, sy))));
-    }
+    const CameraModel& camera() const { return camera_; }
 
     Hit intersect(const Vec3& origin, const Vec3& direction, float tnear) const {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRayHit rh{};
-        rh.ray.org_x = origin[0];
-        rh.ray.org_y = origin[1];
-        rh.ray.org_z = origin[2];
-        rh.ray.dir_x = direction[0];
-        rh.ray.dir_y = direction[1];
-        rh.ray.dir_z = direction[2];
-        rh.ray.tnear = tnear;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(handle_, &context, &rh);
-        Hit hit;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
-        hit.found = true;
-        hit.t = rh.ray.tfar;
-        hit.mesh = static_cast<int>(rh.hit.geomID);
-        const Mesh& mesh = scene_.meshes[rh.hit.geomID];
-        const auto& tri = mesh.triangles[rh.hit.primID];
-        const float u = rh.hit.u, v = rh.hit.v, w = 1.0f - u - v;
-        hit.position = add(origin, scale(direction, hit.t));
-        hit.geometric_normal = normalize({rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
-        hit.shading_normal =
-            normalize(add(scale(mesh.normals[tri[0]], w),
-                          add(scale(mesh.normals[tri[1]], u), scale(mesh.normals[tri[2]], v))));
-        // Two-sided surfaces: both normals face the incoming ray.
-        if (dot(hit.geometric_normal, direction) > 0.0f)
-            hit.geometric_normal = scale(hit.geometric_normal, -1.0f);
-        if (dot(hit.shading_normal, hit.geometric_normal) < 0.0f)
-            hit.shading_normal = scale(hit.shading_normal, -1.0f);
-        return hit;
+        return render::intersect(scene_, handle_, origin, direction, tnear);
     }
 
     bool occluded(const Vec3& origin, const Vec3& direction, float tfar) const {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRay ray{};
-        ray.org_x = origin[0];
-        ray.org_y = origin[1];
-        ray.org_z = origin[2];
-        ray.dir_x = direction[0];
-        ray.dir_y = direction[1];
-        ray.dir_z = direction[2];
-        ray.tnear = 0.0f;
-        ray.tfar = tfar;
-        ray.mask = 0xFFFFFFFFu;
-        rtcOccluded1(handle_, &context, &ray);
-        return ray.tfar < 0.0f;
+        return render::occluded(handle_, origin, direction, tfar);
     }
 
     // One path through pixel position (px, py).
     Sample trace(float px, float py, KeyedRng& rng) const {
         Sample s;
         Vec3 origin = scene_.camera.position;
-        Vec3 direction = camera_ray(px, py);
+        Vec3 direction = camera_.ray(px, py);
         Vec3 throughput{1.0f, 1.0f, 1.0f};
         bool first_diffuse = false, second_diffuse = false, all_diffuse = true;
         for (int vertex = 1; vertex <= options_.max_bounces; ++vertex) {
@@ -350,9 +222,8 @@ private:
     RTCScene handle_;
     const RenderOptions& options_;
     std::vector<LightFrame> lights_;
+    CameraModel camera_;
     float epsilon_ = 1e-4f;
-    Vec3 forward_{}, right_{}, up_{};
-    float tan_half_ = 0.0f, aspect_ = 1.0f;
 };
 
 Status check_range(const char* name, long long value, long long lo, long long hi) {
@@ -382,22 +253,32 @@ Status validate(const RenderOptions& options) {
 }
 
 std::vector<std::pair<std::string, const Image*>> RenderBuffers::layers() const {
-    return {{"fullgi", &fullgi},
-            {"direct_diffuse", &direct_diffuse},
-            {"direct_specular", &direct_specular},
-            {"indirect_diffuse", &indirect_diffuse},
-            {"diffuse_bounces", &diffuse_bounces},
-            {"diffuse_interreflection", &diffuse_interreflection},
-            {"normal", &normal},
-            {"depth", &depth},
-            {"object_id", &object_id},
-            {"material_id", &material_id},
-            {"alpha", &alpha}};
+    const std::vector<std::pair<std::string, const Image*>> all = {
+        {"fullgi", &fullgi},
+        {"direct_diffuse", &direct_diffuse},
+        {"direct_specular", &direct_specular},
+        {"indirect_diffuse", &indirect_diffuse},
+        {"diffuse_bounces", &diffuse_bounces},
+        {"diffuse_interreflection", &diffuse_interreflection},
+        {"normal", &normal},
+        {"depth", &depth},
+        {"object_id", &object_id},
+        {"material_id", &material_id},
+        {"alpha", &alpha},
+        {"orientation", &orientation},
+        {"lines", &lines},
+        {"forward_flow", &forward_flow},
+        {"backward_flow", &backward_flow},
+        {"occlusion", &occlusion},
+        {"disocclusion", &disocclusion}};
+    std::vector<std::pair<std::string, const Image*>> out;
+    for (const auto& layer : all) {
+        if (!layer.second->empty()) out.push_back(layer);
+    }
+    return out;
 }
 
-Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
-                             const RunContext& context) {
-    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+Status check_scene(const Scene& scene) {
     if (scene.meshes.empty()) return invalid_argument(scene.source + ": scene has no meshes");
     for (const Mesh& mesh : scene.meshes) {
         if (mesh.material < 0 || mesh.material >= static_cast<int>(scene.materials.size()) ||
@@ -406,9 +287,24 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
                                     " has no valid material or normals");
         }
     }
+    const Camera& c = scene.camera;
+    const Vec3 forward = sub(c.look_at, c.position);
+    if (!(length(forward) > 0.0f) ||
+        !(length(cross(forward, c.up)) > 1e-6f * length(forward) * length(c.up))) {
+        return invalid_argument(scene.source +
+                                ": camera: look_at equals position or up is parallel to the view");
+    }
+    return Status::ok();
+}
+
+Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& options,
+                                       const RunContext& context, std::vector<CentreHit>* hits) {
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    EXEMPLAR_RETURN_IF_ERROR(check_scene(scene));
     const EmbreeScene embree(scene);
     if (!embree.error().empty()) return Status(ErrorCode::Internal, embree.error());
     const Tracer tracer(scene, embree.handle(), options);
+    const CameraModel& camera = tracer.camera();
 
     const int w = options.width, h = options.height;
     RenderBuffers out;
@@ -417,6 +313,7 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
         *rgb = Image(w, h, 3);
     }
     out.normal = Image(w, h, 3);
+    Image facet_normal(w, h, 3);  // geometric normal facing the eye: creases of the lines buffer
     out.normal.set_channel_names({"X", "Y", "Z"});
     out.depth = Image(w, h, 1);
     out.depth.set_channel_names({"Z"});
@@ -426,24 +323,36 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
     out.material_id.set_channel_names({"id"});
     out.alpha = Image(w, h, 1);
     out.alpha.set_channel_names({"A"});
+    out.orientation = Image(w, h, 1);
+    out.orientation.set_channel_names({"angle"});
+    if (hits != nullptr) {
+        hits->assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), CentreHit{});
+    }
 
     const auto render_row = [&](int y) {
         if (context.cancelled()) return;
         for (int x = 0; x < w; ++x) {
             // Geometry buffers from the ray through the pixel centre.
             const Vec3 centre =
-                tracer.camera_ray(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
-            const Hit hit = tracer.intersect(scene.camera.position, centre, 0.0f);
+                camera.ray(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+            const Hit hit = tracer.intersect(camera.position(), centre, 0.0f);
             if (hit.found) {
                 const Mesh& mesh = scene.meshes[static_cast<std::size_t>(hit.mesh)];
                 put(out.normal, x, y, hit.shading_normal);
+                put(facet_normal, x, y, hit.geometric_normal);
                 out.depth.at(x, y, 0) = hit.t;
                 out.object_id.at(x, y, 0) = static_cast<float>(mesh.object_id);
                 out.material_id.at(x, y, 0) = static_cast<float>(mesh.material + 1);
+                out.orientation.at(x, y, 0) =
+                    screen_orientation(camera, hit.position, hit.shading_normal, centre);
+                if (hits != nullptr) {
+                    (*hits)[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                            static_cast<std::size_t>(x)] = {hit.mesh, hit.primitive, hit.u, hit.v};
+                }
             }
             // Light buffers: the mean of samples_per_pixel paths, keyed by (seed, pixel, sample).
             Sample sum;
-            int hits = 0;
+            int hit_count = 0;
             const auto pixel = static_cast<std::uint64_t>(y) * static_cast<std::uint64_t>(w) +
                                static_cast<std::uint64_t>(x);
             for (int i = 0; i < options.samples_per_pixel; ++i) {
@@ -458,7 +367,7 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
                 sum.diffuse_bounces = add(sum.diffuse_bounces, s.diffuse_bounces);
                 sum.diffuse_interreflection =
                     add(sum.diffuse_interreflection, s.diffuse_interreflection);
-                hits += s.hit ? 1 : 0;
+                hit_count += s.hit ? 1 : 0;
             }
             const float inv = 1.0f / static_cast<float>(options.samples_per_pixel);
             put(out.fullgi, x, y, scale(sum.fullgi, inv));
@@ -467,7 +376,7 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
             put(out.indirect_diffuse, x, y, scale(sum.indirect_diffuse, inv));
             put(out.diffuse_bounces, x, y, scale(sum.diffuse_bounces, inv));
             put(out.diffuse_interreflection, x, y, scale(sum.diffuse_interreflection, inv));
-            out.alpha.at(x, y, 0) = static_cast<float>(hits) * inv;
+            out.alpha.at(x, y, 0) = static_cast<float>(hit_count) * inv;
         }
     };
 
@@ -483,7 +392,13 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
         context.report(event);
     }
     if (context.cancelled()) return cancelled();
+    out.lines = geometry_lines(out.depth, out.object_id, facet_normal);
     return out;
+}
+
+Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
+                             const RunContext& context) {
+    return render_with_hits(scene, options, context, nullptr);
 }
 
 }  // namespace exemplar::render

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,6 +16,7 @@
 #include <sstream>
 
 #include "builtin_scenes.hpp"
+#include "exemplar/render/animation.hpp"
 #include "vec_math.hpp"
 
 namespace exemplar::render {
@@ -106,21 +108,8 @@ private:
 };
 
 constexpr float kBig = 1e6f;
-
-Status parse_camera(const Reader& r, const json& j, Camera& camera) {
-    const std::string k = "camera";
-    EXEMPLAR_RETURN_IF_ERROR(r.check_keys(j, k, {"position", "look_at", "up", "fov_deg"}));
-    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "position", -kBig, kBig, camera.position));
-    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "look_at", -kBig, kBig, camera.look_at));
-    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "up", -kBig, kBig, camera.up));
-    EXEMPLAR_RETURN_IF_ERROR(r.number(j, k, "fov_deg", 0.0f, 179.0f, true, camera.fov_deg));
-    const Vec3 forward = sub(camera.look_at, camera.position);
-    if (length(forward) <= 0.0f) return r.error("camera.look_at", "equals camera.position");
-    if (length(cross(forward, camera.up)) <= 1e-6f * length(forward) * length(camera.up)) {
-        return r.error("camera.up", "is parallel to the view direction (or zero)");
-    }
-    return Status::ok();
-}
+constexpr float kAngle = 100000.0f;  // degrees; keyframes may turn many times
+constexpr long long kMaxFrame = 1000000;
 
 Status parse_light(const Reader& r, const json& j, const std::string& k, AreaLight& light) {
     EXEMPLAR_RETURN_IF_ERROR(
@@ -194,33 +183,6 @@ void make_quad(Mesh& mesh) {
     mesh.triangles = {{0u, 1u, 2u}, {0u, 2u, 3u}};
 }
 
-// Area-weighted vertex normals.
-void compute_normals(Mesh& mesh) {
-    mesh.normals.assign(mesh.positions.size(), Vec3{0.0f, 0.0f, 0.0f});
-    for (const auto& t : mesh.triangles) {
-        const Vec3 n = cross(sub(mesh.positions[t[1]], mesh.positions[t[0]]),
-                             sub(mesh.positions[t[2]], mesh.positions[t[0]]));
-        for (std::uint32_t v : t) mesh.normals[v] = add(mesh.normals[v], n);
-    }
-    for (Vec3& n : mesh.normals) {
-        const float len = length(n);
-        n = len > 0.0f ? scale(n, 1.0f / len) : Vec3{0.0f, 1.0f, 0.0f};
-    }
-}
-
-Vec3 rotate_xyz(Vec3 p, const Vec3& angles_deg) {
-    const float to_rad = 3.14159265358979f / 180.0f;
-    for (int axis = 0; axis < 3; ++axis) {
-        const float a = angles_deg[axis] * to_rad;
-        const float c = std::cos(a), s = std::sin(a);
-        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
-        const float pi = p[i], pj = p[j];
-        p[i] = c * pi - s * pj;
-        p[j] = s * pi + c * pj;
-    }
-    return p;
-}
-
 struct ObjGroup {
     Mesh mesh;
     std::string material;  // OBJ material name, "" if none
@@ -283,11 +245,119 @@ Status load_obj(const Reader& r, const std::string& key, const std::string& path
     return Status::ok();
 }
 
+Status parse_interpolation(const Reader& r, const json& j, const std::string& k,
+                           Interpolation& out) {
+    std::string name = "linear";
+    EXEMPLAR_RETURN_IF_ERROR(r.string(j, k, "interpolation", name));
+    if (name == "linear") {
+        out = Interpolation::Linear;
+    } else if (name == "smooth") {
+        out = Interpolation::Smooth;
+    } else {
+        return r.error(Reader::join(k, "interpolation"),
+                       "\"" + name + "\" is invalid (must be linear or smooth)");
+    }
+    return Status::ok();
+}
+
+// The `keyframes` array of `j`: each element is checked by `parse_key(element, key, frame)`;
+// frames must increase strictly.
+template <typename ParseKey>
+Status parse_keyframes(const Reader& r, const json& j, const std::string& k, ParseKey parse_key) {
+    if (!j.contains("keyframes")) return Status::ok();
+    const json& keys = j.at("keyframes");
+    const std::string key = Reader::join(k, "keyframes");
+    if (!keys.is_array() || keys.empty()) return r.error(key, "must be a non-empty array");
+    float previous = 0.0f;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        const std::string ki = key + "[" + std::to_string(i) + "]";
+        EXEMPLAR_RETURN_IF_ERROR(r.require(keys[i], ki, "frame"));
+        float frame = 0.0f;
+        EXEMPLAR_RETURN_IF_ERROR(r.number(keys[i], ki, "frame", -kBig, kBig, false, frame));
+        if (i > 0 && !(frame > previous)) {
+            return r.error(ki + ".frame", "must be larger than the previous keyframe's");
+        }
+        previous = frame;
+        const Status status = parse_key(keys[i], ki, static_cast<double>(frame));
+        if (!status.is_ok()) return status;
+    }
+    return Status::ok();
+}
+
+// An optional Vec3 of a keyframe, appended to `track` if present.
+Status key_vec3(const Reader& r, const json& j, const std::string& k, const std::string& name,
+                float lo, float hi, double frame, Track<Vec3>& track) {
+    if (!j.contains(name)) return Status::ok();
+    Vec3 value{};
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, name, lo, hi, value));
+    track.keys.emplace_back(frame, value);
+    return Status::ok();
+}
+
+// `scale`: a positive number or three.
+Status parse_scale(const Reader& r, const json& j, const std::string& k, Vec3& out) {
+    if (j.contains("scale") && j.at("scale").is_number()) {
+        float s = 1.0f;
+        EXEMPLAR_RETURN_IF_ERROR(r.number(j, k, "scale", 0.0f, kBig, true, s));
+        out = {s, s, s};
+        return Status::ok();
+    }
+    return r.vec3(j, k, "scale", 1e-6f, kBig, out);
+}
+
+Status check_camera(const Reader& r, const std::string& k, const Camera& camera) {
+    const Vec3 forward = sub(camera.look_at, camera.position);
+    if (length(forward) <= 0.0f) return r.error(k + ".look_at", "equals the camera position");
+    if (length(cross(forward, camera.up)) <= 1e-6f * length(forward) * length(camera.up)) {
+        return r.error(k + ".up", "is parallel to the view direction (or zero)");
+    }
+    return Status::ok();
+}
+
+Status parse_camera(const Reader& r, const json& j, CameraAnimation& animation) {
+    const std::string k = "camera";
+    Camera& camera = animation.camera;
+    EXEMPLAR_RETURN_IF_ERROR(
+        r.check_keys(j, k, {"position", "look_at", "up", "fov_deg", "keyframes", "interpolation"}));
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "position", -kBig, kBig, camera.position));
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "look_at", -kBig, kBig, camera.look_at));
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "up", -kBig, kBig, camera.up));
+    EXEMPLAR_RETURN_IF_ERROR(r.number(j, k, "fov_deg", 0.0f, 179.0f, true, camera.fov_deg));
+    EXEMPLAR_RETURN_IF_ERROR(parse_interpolation(r, j, k, animation.interpolation));
+    EXEMPLAR_RETURN_IF_ERROR(check_camera(r, k, camera));
+    const auto camera_key = [&](const json& key, const std::string& ki, double frame) {
+        EXEMPLAR_RETURN_IF_ERROR(
+            r.check_keys(key, ki, {"frame", "position", "look_at", "up", "fov_deg"}));
+        EXEMPLAR_RETURN_IF_ERROR(
+            key_vec3(r, key, ki, "position", -kBig, kBig, frame, animation.position));
+        EXEMPLAR_RETURN_IF_ERROR(
+            key_vec3(r, key, ki, "look_at", -kBig, kBig, frame, animation.look_at));
+        EXEMPLAR_RETURN_IF_ERROR(key_vec3(r, key, ki, "up", -kBig, kBig, frame, animation.up));
+        if (key.contains("fov_deg")) {
+            float fov = 0.0f;
+            EXEMPLAR_RETURN_IF_ERROR(r.number(key, ki, "fov_deg", 0.0f, 179.0f, true, fov));
+            animation.fov_deg.keys.emplace_back(frame, fov);
+        }
+        return Status::ok();
+    };
+    EXEMPLAR_RETURN_IF_ERROR(parse_keyframes(r, j, k, camera_key));
+    // The camera at every key must be valid (in between, render_frame checks).
+    if (j.contains("keyframes")) {
+        const json& keys = j.at("keyframes");
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            EXEMPLAR_RETURN_IF_ERROR(check_camera(r, "camera.keyframes[" + std::to_string(i) + "]",
+                                                  animation.at(keys[i].at("frame").get<double>())));
+        }
+    }
+    return Status::ok();
+}
+
 Status parse_object(const Reader& r, const json& j, const std::string& k,
-                    const std::string& base_dir, Scene& scene, int object_id) {
-    EXEMPLAR_RETURN_IF_ERROR(r.check_keys(j, k,
-                                          {"name", "shape", "file", "material", "subdivisions",
-                                           "normalize", "scale", "rotate_deg", "translate"}));
+                    const std::string& base_dir, Animation& animation, int object_id) {
+    EXEMPLAR_RETURN_IF_ERROR(
+        r.check_keys(j, k,
+                     {"name", "shape", "file", "material", "subdivisions", "normalize", "scale",
+                      "rotate_deg", "translate", "keyframes", "interpolation", "turntable"}));
     EXEMPLAR_RETURN_IF_ERROR(r.require(j, k, "shape"));
     std::string name = "object" + std::to_string(object_id), shape, file, material;
     EXEMPLAR_RETURN_IF_ERROR(r.string(j, k, "name", name));
@@ -303,16 +373,38 @@ Status parse_object(const Reader& r, const json& j, const std::string& k,
         }
         normalize = j.at("normalize").get<bool>();
     }
-    Vec3 scale3{1.0f, 1.0f, 1.0f}, rotate{0.0f, 0.0f, 0.0f}, translate{0.0f, 0.0f, 0.0f};
-    if (j.contains("scale") && j.at("scale").is_number()) {
-        float s = 1.0f;
-        EXEMPLAR_RETURN_IF_ERROR(r.number(j, k, "scale", 0.0f, kBig, true, s));
-        scale3 = {s, s, s};
-    } else {
-        EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "scale", 1e-6f, kBig, scale3));
+    ObjectAnimation object;
+    object.name = name;
+    Transform& transform = object.transform;
+    EXEMPLAR_RETURN_IF_ERROR(parse_scale(r, j, k, transform.scale));
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "rotate_deg", -kAngle, kAngle, transform.rotate_deg));
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "translate", -kBig, kBig, transform.translate));
+    EXEMPLAR_RETURN_IF_ERROR(parse_interpolation(r, j, k, object.interpolation));
+    const auto object_key = [&](const json& key, const std::string& ki, double frame) {
+        EXEMPLAR_RETURN_IF_ERROR(
+            r.check_keys(key, ki, {"frame", "translate", "rotate_deg", "scale"}));
+        EXEMPLAR_RETURN_IF_ERROR(
+            key_vec3(r, key, ki, "translate", -kBig, kBig, frame, object.translate));
+        EXEMPLAR_RETURN_IF_ERROR(
+            key_vec3(r, key, ki, "rotate_deg", -kAngle, kAngle, frame, object.rotate_deg));
+        if (key.contains("scale")) {
+            Vec3 value{};
+            EXEMPLAR_RETURN_IF_ERROR(parse_scale(r, key, ki, value));
+            object.scale.keys.emplace_back(frame, value);
+        }
+        return Status::ok();
+    };
+    EXEMPLAR_RETURN_IF_ERROR(parse_keyframes(r, j, k, object_key));
+    if (j.contains("turntable")) {
+        const std::string kt = k + ".turntable";
+        const json& t = j.at("turntable");
+        EXEMPLAR_RETURN_IF_ERROR(r.check_keys(t, kt, {"frames", "degrees"}));
+        EXEMPLAR_RETURN_IF_ERROR(r.require(t, kt, "frames"));
+        EXEMPLAR_RETURN_IF_ERROR(
+            r.number(t, kt, "frames", 0.0f, kBig, true, object.turntable_frames));
+        EXEMPLAR_RETURN_IF_ERROR(
+            r.number(t, kt, "degrees", -kAngle, kAngle, false, object.turntable_degrees));
     }
-    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "rotate_deg", -360.0f, 360.0f, rotate));
-    EXEMPLAR_RETURN_IF_ERROR(r.vec3(j, k, "translate", -kBig, kBig, translate));
 
     // Geometry in object space, one group per material.
     std::vector<ObjGroup> groups;
@@ -348,38 +440,36 @@ Status parse_object(const Reader& r, const json& j, const std::string& k,
 
     for (auto& g : groups) {
         Mesh& mesh = g.mesh;
-        for (Vec3& p : mesh.positions) {
-            if (normalize) p = scale(add(p, offset), 1.0f / size);
-            p = {p[0] * scale3[0], p[1] * scale3[1], p[2] * scale3[2]};
-            p = add(rotate_xyz(p, rotate), translate);
+        if (normalize) {
+            for (Vec3& p : mesh.positions) p = scale(add(p, offset), 1.0f / size);
         }
-        compute_normals(mesh);
         mesh.name = g.material.empty() ? name : name + "/" + g.material;
         mesh.object_id = object_id;
         // The object's material, or the OBJ's own (added to the scene under "<name>/<mtl>").
         if (!material.empty()) {
-            auto it = std::find_if(scene.materials.begin(), scene.materials.end(),
+            auto it = std::find_if(animation.materials.begin(), animation.materials.end(),
                                    [&](const Material& m) { return m.name == material; });
-            if (it == scene.materials.end()) {
+            if (it == animation.materials.end()) {
                 return r.error(k + ".material", "\"" + material + "\" is not defined in materials");
             }
-            mesh.material = static_cast<int>(it - scene.materials.begin());
+            mesh.material = static_cast<int>(it - animation.materials.begin());
         } else if (!g.material.empty()) {
             g.mtl.name = mesh.name;
-            scene.materials.push_back(g.mtl);
-            mesh.material = static_cast<int>(scene.materials.size() - 1);
+            animation.materials.push_back(g.mtl);
+            mesh.material = static_cast<int>(animation.materials.size() - 1);
         } else {
             return r.error(k + ".material", "missing (required unless the OBJ has materials)");
         }
-        scene.meshes.push_back(std::move(mesh));
+        object.meshes.push_back(std::move(mesh));
     }
+    animation.objects.push_back(std::move(object));
     return Status::ok();
 }
 
 }  // namespace
 
-Result<Scene> parse_scene(const std::string& json_text, const std::string& source,
-                          const std::string& base_dir) {
+Result<Animation> parse_animation(const std::string& json_text, const std::string& source,
+                                  const std::string& base_dir) {
     const Reader r(source);
     json root;
     try {
@@ -389,13 +479,25 @@ Result<Scene> parse_scene(const std::string& json_text, const std::string& sourc
         std::replace(what.begin(), what.end(), '\n', ' ');
         return invalid_argument(source + ": not valid JSON (" + what + ")");
     }
-    EXEMPLAR_RETURN_IF_ERROR(
-        r.check_keys(root, "", {"camera", "sky", "lights", "materials", "objects", "comment"}));
-    Scene scene;
-    scene.source = source;
+    EXEMPLAR_RETURN_IF_ERROR(r.check_keys(
+        root, "", {"camera", "sky", "lights", "materials", "objects", "frames", "comment"}));
+    Animation animation;
+    animation.source = source;
     EXEMPLAR_RETURN_IF_ERROR(r.require(root, "", "camera"));
-    EXEMPLAR_RETURN_IF_ERROR(parse_camera(r, root.at("camera"), scene.camera));
-    EXEMPLAR_RETURN_IF_ERROR(r.vec3(root, "", "sky", 0.0f, kBig, scene.sky));
+    EXEMPLAR_RETURN_IF_ERROR(parse_camera(r, root.at("camera"), animation.camera));
+    EXEMPLAR_RETURN_IF_ERROR(r.vec3(root, "", "sky", 0.0f, kBig, animation.sky));
+    if (root.contains("frames")) {
+        const json& f = root.at("frames");
+        if (!f.is_array() || f.size() != 2 || !f[0].is_number_integer() ||
+            !f[1].is_number_integer() || f[0].get<long long>() > f[1].get<long long>() ||
+            std::llabs(f[0].get<long long>()) > kMaxFrame ||
+            std::llabs(f[1].get<long long>()) > kMaxFrame) {
+            return r.error("frames", f.dump() +
+                                         " is invalid (must be [FIRST, LAST], integers with "
+                                         "FIRST <= LAST, |frame| <= 1000000)");
+        }
+        animation.frames = {f[0].get<int>(), f[1].get<int>()};
+    }
     const auto array = [&](const std::string& key) -> Result<json> {
         if (!root.contains(key)) return json::array();
         if (!root.at(key).is_array()) return r.error(key, "must be an array");
@@ -407,7 +509,7 @@ Result<Scene> parse_scene(const std::string& json_text, const std::string& sourc
         AreaLight light;
         EXEMPLAR_RETURN_IF_ERROR(
             parse_light(r, (*lights)[i], "lights[" + std::to_string(i) + "]", light));
-        scene.lights.push_back(light);
+        animation.lights.push_back(light);
     }
     auto materials = array("materials");
     if (!materials.ok()) return materials.status();
@@ -419,20 +521,27 @@ Result<Scene> parse_scene(const std::string& json_text, const std::string& sourc
         if (!names.insert(m.name).second) {
             return r.error(key + ".name", "\"" + m.name + "\" is defined twice");
         }
-        scene.materials.push_back(m);
+        animation.materials.push_back(m);
     }
     auto objects = array("objects");
     if (!objects.ok()) return objects.status();
     if (objects->empty()) return r.error("objects", "missing or empty (need at least one object)");
     for (std::size_t i = 0; i < objects->size(); ++i) {
         EXEMPLAR_RETURN_IF_ERROR(parse_object(r, (*objects)[i],
-                                              "objects[" + std::to_string(i) + "]", base_dir, scene,
-                                              static_cast<int>(i) + 1));
+                                              "objects[" + std::to_string(i) + "]", base_dir,
+                                              animation, static_cast<int>(i) + 1));
     }
-    return scene;
+    return animation;
 }
 
-Result<Scene> load_scene(const std::string& path) {
+Result<Scene> parse_scene(const std::string& json_text, const std::string& source,
+                          const std::string& base_dir) {
+    auto animation = parse_animation(json_text, source, base_dir);
+    if (!animation.ok()) return animation.status();
+    return animation->at(animation->frames ? animation->frames->first : 0);
+}
+
+Result<Animation> load_animation(const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) return io_error(path + ": no such file");
     std::ifstream in(path, std::ios::binary);
@@ -440,7 +549,13 @@ Result<Scene> load_scene(const std::string& path) {
     std::ostringstream text;
     text << in.rdbuf();
     if (!in.good() && !in.eof()) return io_error(path + ": cannot read");
-    return parse_scene(text.str(), path, fs::path(path).parent_path().string());
+    return parse_animation(text.str(), path, fs::path(path).parent_path().string());
+}
+
+Result<Scene> load_scene(const std::string& path) {
+    auto animation = load_animation(path);
+    if (!animation.ok()) return animation.status();
+    return animation->at(animation->frames ? animation->frames->first : 0);
 }
 
 std::vector<std::string> builtin_scene_names() {
@@ -459,11 +574,17 @@ Result<std::string> builtin_scene_json(const std::string& name) {
                             ")");
 }
 
-Result<Scene> builtin_scene(const std::string& name, const std::string& mesh_dir) {
+Result<Animation> builtin_animation(const std::string& name, const std::string& mesh_dir) {
     auto text = builtin_scene_json(name);
     if (!text.ok()) return text.status();
-    return parse_scene(*text, "builtin:" + name,
-                       mesh_dir.empty() ? std::string(detail::kBuiltinMeshDir) : mesh_dir);
+    return parse_animation(*text, "builtin:" + name,
+                           mesh_dir.empty() ? std::string(detail::kBuiltinMeshDir) : mesh_dir);
+}
+
+Result<Scene> builtin_scene(const std::string& name, const std::string& mesh_dir) {
+    auto animation = builtin_animation(name, mesh_dir);
+    if (!animation.ok()) return animation.status();
+    return animation->at(animation->frames ? animation->frames->first : 0);
 }
 
 }  // namespace exemplar::render

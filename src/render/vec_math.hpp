@@ -48,4 +48,31 @@ inline void basis(const Vec3& n, Vec3& t, Vec3& b) {
     b = {c, sign + n[1] * n[1] * a, -n[1]};
 }
 
+// Area-weighted vertex normals.
+inline void compute_normals(Mesh& mesh) {
+    mesh.normals.assign(mesh.positions.size(), Vec3{0.0f, 0.0f, 0.0f});
+    for (const auto& t : mesh.triangles) {
+        const Vec3 n = cross(sub(mesh.positions[t[1]], mesh.positions[t[0]]),
+                             sub(mesh.positions[t[2]], mesh.positions[t[0]]));
+        for (std::uint32_t v : t) mesh.normals[v] = add(mesh.normals[v], n);
+    }
+    for (Vec3& n : mesh.normals) {
+        const float len = length(n);
+        n = len > 0.0f ? scale(n, 1.0f / len) : Vec3{0.0f, 1.0f, 0.0f};
+    }
+}
+
+inline Vec3 rotate_xyz(Vec3 p, const Vec3& angles_deg) {
+    const float to_rad = 3.14159265358979f / 180.0f;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float a = angles_deg[axis] * to_rad;
+        const float c = std::cos(a), s = std::sin(a);
+        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+        const float pi = p[i], pj = p[j];
+        p[i] = c * pi - s * pj;
+        p[j] = s * pi + c * pj;
+    }
+    return p;
+}
+
 }  // namespace exemplar::render

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 
 namespace exemplar::cli {
@@ -130,6 +131,89 @@ TEST_F(RenderCli, BadParametersAreNamed) {
     expect_failure(tiny({"-o", path("no/such/out.exr")}), 1, "does not exist");
     expect_failure({"render", "-o", path("out.exr")}, 2, "--scene is required");
     expect_failure(with({"--spp", "many"}), 2, "--spp");
+}
+
+// A small animated scene file (outside the output folder, which failed runs must leave empty).
+class AnimationCli : public RenderCli {
+protected:
+    void SetUp() override {
+        RenderCli::SetUp();
+        scene_ = fs::temp_directory_path() /
+                 ("exemplar_anim_" + std::to_string(::getpid()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".json");
+        write_scene(R"("frames": [0, 3],)");
+    }
+    void TearDown() override {
+        fs::remove(scene_);
+        RenderCli::TearDown();
+    }
+    void write_scene(const std::string& extra) const {
+        std::ofstream(scene_) << "{" << extra << R"(
+            "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov_deg": 40},
+            "sky": [0.2, 0.2, 0.2],
+            "materials": [{"name": "m"}],
+            "objects": [{"shape": "sphere", "material": "m", "subdivisions": 16,
+                         "keyframes": [{"frame": 0, "translate": [0, 0, 0]},
+                                       {"frame": 10, "translate": [1, 0, 0]}]}]})";
+    }
+    std::vector<std::string> anim(std::vector<std::string> more) const {
+        std::vector<std::string> args = {"render",   "--scene", scene_.string(), "--width", "32",
+                                         "--height", "24",      "--spp",         "1",       "-j",
+                                         "2"};
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    }
+    fs::path scene_;
+};
+
+TEST_F(AnimationCli, FramesGoToAPatternWithFlowLayersThatLoadFlowReads) {
+    const CliResult r = run(anim({"--frames", "1-2", "-o", path("f_%03d.exr")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("f_001.exr") + "\n" + path("f_002.exr") + "\n");
+    EXPECT_FALSE(fs::exists(path("f_000.exr")));
+    auto layers = read_layer_names(path("f_002.exr"));
+    ASSERT_TRUE(layers.ok()) << layers.status().message();
+    for (const char* name : {"fullgi", "orientation", "lines", "forward_flow", "backward_flow",
+                             "occlusion", "disocclusion"}) {
+        EXPECT_NE(std::find(layers->begin(), layers->end(), name), layers->end()) << name;
+    }
+    auto forward = load_flow(path("f_001.exr"), "forward_flow");
+    auto backward = load_flow(path("f_001.exr"), "backward_flow");
+    ASSERT_TRUE(forward.ok()) << forward.status().message();
+    ASSERT_TRUE(backward.ok()) << backward.status().message();
+    ASSERT_EQ(forward->width(), 32);
+    // The sphere moves right by 0.1 per frame at constant depth: the same step forward and
+    // backward.
+    EXPECT_GT(forward->at(16, 12, 0), 0.5f);
+    EXPECT_NEAR(forward->at(16, 12, 0), -backward->at(16, 12, 0), 1e-3f);
+    EXPECT_EQ(forward->at(0, 0, 0), 0.0f);  // the sky of a still camera
+}
+
+TEST_F(AnimationCli, OneFrameToAFolderWritesFlowsAsExrAndMasksAsPng) {
+    ASSERT_EQ(run(anim({"--frame", "2", "-o", path("frame"), "-q"})).code, 0);
+    for (const char* name : {"forward_flow.exr", "backward_flow.exr", "orientation.exr",
+                             "occlusion.png", "disocclusion.png", "lines.png", "fullgi.png"}) {
+        EXPECT_TRUE(fs::exists(path("frame") + "/" + name)) << name;
+    }
+    EXPECT_TRUE(load_flow(path("frame") + "/forward_flow.exr").ok());
+    // The scene's own range (0-3) when no --frames is given.
+    ASSERT_EQ(run(anim({"-o", path("all_%d"), "-q"})).code, 0);
+    for (int f = 0; f <= 3; ++f) EXPECT_TRUE(fs::is_directory(path("all_" + std::to_string(f))));
+}
+
+TEST_F(AnimationCli, BadFramesAndPatternsAreNamed) {
+    expect_failure(anim({"--frames", "3-1", "-o", path("f_%d.exr")}), 1,
+                   "--frames: \"3-1\" is invalid");
+    expect_failure(anim({"--frames", "a", "-o", path("f_%d.exr")}), 1, "--frames: \"a\"");
+    expect_failure(anim({"--frame", "-2", "-o", path("f.exr")}), 1, "--frame: \"-2\"");
+    expect_failure(anim({"--frames", "1-2", "--frame", "1", "-o", path("f_%d.exr")}), 1,
+                   "--frame: cannot be combined with --frames");
+    expect_failure(anim({"--frames", "0-3", "-o", path("f.exr")}), 1,
+                   "needs a frame number pattern");
+    expect_failure(anim({"--frames", "0-3", "-o", path("f_%d_%d.exr")}), 1, "--output");
+    expect_failure(tiny({"-o", path("still_%04d.exr")}), 1, "the scene is a still");
+    write_scene("");
+    expect_failure(anim({"-o", path("f_%d.exr")}), 1, "--frames: required");
 }
 
 }  // namespace

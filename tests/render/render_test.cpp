@@ -197,10 +197,13 @@ TEST(Render, SphereOnTableMatchesTheStyLitBuffers) {
     const RenderBuffers b = run(*scene, 150, 114, 32);
     auto errors = testing::calibration_errors(b, EXEMPLAR_SOURCE_DIR "/examples/stylit");
     ASSERT_TRUE(errors.ok()) << errors.status().message();
-    const std::vector<double> limits = {0.095, 0.093, 0.004, 0.133};
+    const std::vector<double> limits = {0.056, 0.062, 0.0022, 0.055};
     for (std::size_t i = 0; i < errors->size(); ++i) {
         EXPECT_LT((*errors)[i].mean_abs, limits[i]) << (*errors)[i].ours;
     }
+    // The indirect light is as bright as theirs (it was 23% brighter with white albedo 0.8).
+    EXPECT_NEAR((*errors)[3].our_mean, (*errors)[3].reference_mean,
+                0.05 * (*errors)[3].reference_mean);
 }
 
 }  // namespace

@@ -62,8 +62,32 @@ struct RenderBuffers {
     Image object_id;    ///< 1-based object index at the pixel centre; 0 on background.
     Image material_id;  ///< 1-based material index; 0 on background.
     Image alpha;        ///< Fraction of samples hitting geometry, [0, 1].
+    /// Channel "angle": screen direction, radians in [0, pi) counter-clockwise (x right, y up
+    /// on screen), of the surface tangent perpendicular to the view ray at the pixel centre
+    /// (n x d for shading normal n and ray direction d): it runs along silhouettes and along
+    /// the isophotes of n.d. Undefined (0) where the surface faces the camera head-on (|n x d| <
+    /// 1e-6) and on background.
+    Image orientation;
+    /// Channel "L": 1 on the near side of a silhouette or crease, else 0. A pixel is marked
+    /// when a 4-neighbour has another object id (or is background), lies much deeper (the
+    /// second difference of depth exceeds 2% of depth: a depth discontinuity, not a slanted
+    /// plane), or its facet (geometric) normal differs by more than 45 degrees (a crease); of the
+    /// two pixels of a discontinuity the one nearer the eye is marked.
+    Image lines;
 
-    /// (name, image) of every buffer in the order above; names as the member names.
+    /// Motion buffers, written by `render_frame` only (empty for `render`). Flows have channels
+    /// "u", "v" in pixels (x right, y down): forward_flow of frame t maps pixel x to x + f(x)
+    /// in frame t+1, backward_flow maps x to x + b(x) in frame t-1; background pixels follow
+    /// the sky (infinitely far). occlusion ("occluded"): 1 where the point seen at the pixel
+    /// centre is hidden (ray depth test) or off-screen in frame t+1; disocclusion: the same for
+    /// frame t-1 (the point was not visible before). "Off-screen" uses the rule of
+    /// exemplar/video/warp.hpp: outside -0.5 <= x <= W - 0.5, -0.5 <= y <= H - 0.5.
+    Image forward_flow;
+    Image backward_flow;
+    Image occlusion;
+    Image disocclusion;
+
+    /// (name, image) of every non-empty buffer in the order above; names as the member names.
     std::vector<std::pair<std::string, const Image*>> layers() const;
 };
 
@@ -75,7 +99,8 @@ Result<RenderBuffers> render(const Scene& scene, const RenderOptions& options,
 /// How buffers are written to files.
 enum class BufferFileFormat {
     Png,  ///< One 8-bit PNG per buffer; light buffers sRGB-encoded (clipped to [0, 1]), normals
-          ///< as 0.5 + 0.5 n, depth divided by its maximum, ids as value / 255, alpha as is.
+          ///< as 0.5 + 0.5 n, depth divided by its maximum, ids as value / 255, alpha, lines
+          ///< and occlusion masks as they are; flows and orientation (float data) as EXR.
     Exr,  ///< One float EXR per buffer, linear values as rendered.
 };
 

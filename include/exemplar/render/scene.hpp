@@ -73,6 +73,8 @@ struct Scene {
 
 /// Parses a scene from JSON text. `source` names it in messages; relative mesh paths are resolved
 /// against `base_dir`. Fails with InvalidArgument (bad JSON, key or value) or IoError (mesh file).
+/// A file with keyframes or turntables gives the scene at its first frame (`frames`[0], else
+/// frame 0); `parse_animation` (exemplar/render/animation.hpp) keeps the animation.
 Result<Scene> parse_scene(const std::string& json_text, const std::string& source,
                           const std::string& base_dir);
 
