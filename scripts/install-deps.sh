@@ -13,6 +13,7 @@ packages=(
   libfmt-dev libspdlog-dev
   libopencv-dev libeigen3-dev libcairo2-dev  # stylit: scan alignment, PCA, PDF sheet
   libgtest-dev libbenchmark-dev          # tests and benchmarks
+  libpoppler-cpp-dev zlib1g-dev          # tests: the PDF sheet read back
   clang-format
 )
 

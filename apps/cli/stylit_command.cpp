@@ -283,12 +283,14 @@ Status StylitCommand::run_sheet(const Streams& streams) {
     auto render = load_image(sheet_render_);
     if (!render.ok()) return render.status();
     const SheetLayout layout = sheet_layout(render->width(), render->height());
-    auto sheet = make_sheet(low_contrast(*render, low, high), layout);
+    const Image light = low_contrast(*render, low, high);
+    auto sheet = make_sheet(light, layout);
     if (!sheet.ok()) return sheet.status();
 
     // Both outputs are checked before either is written.
     const PdfOptions pdf{paper_, dpi_};
-    if (!sheet_pdf_.empty()) EXEMPLAR_RETURN_IF_ERROR(save_sheet_pdf(*sheet, sheet_pdf_, pdf));
+    if (!sheet_pdf_.empty())
+        EXEMPLAR_RETURN_IF_ERROR(save_sheet_pdf(light, layout, sheet_pdf_, pdf));
     if (!sheet_png_.empty()) EXEMPLAR_RETURN_IF_ERROR(save_image(*sheet, sheet_png_));
     if (!quiet_) {
         if (!sheet_png_.empty()) streams.out << sheet_png_ << '\n';
