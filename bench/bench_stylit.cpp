@@ -2,6 +2,7 @@
 // at 1200x912: full quality and preview (half resolution, PCA buffers). Loading is not timed.
 //
 // Usage: bench_stylit [full|preview|all] [threads] [repeats] [options...]
+//        bench_stylit compare A.png B.png [blur]   (compare_preview of A against B)
 //   --set NAME=VALUE   an engine option (see `exemplar stylize --help`) on top of the mode's
 //                      defaults (the preview's are preview_synthesis_options of the full ones)
 //   --usage NAME       patch-usage strategy of both modes
@@ -154,8 +155,29 @@ bool parse_options(int argc, char** argv, int first, Settings& settings) {
 
 }  // namespace
 
+// Prints compare_preview(a, b, blur): how two results differ (b may be larger).
+int compare_files(const std::string& a, const std::string& b, int blur) {
+    auto first = load_image(a);
+    auto second = load_image(b);
+    if (!first.ok() || !second.ok()) {
+        std::fprintf(stderr, "%s\n",
+                     (first.ok() ? second.status() : first.status()).message().c_str());
+        return 1;
+    }
+    auto similarity = compare_preview(*first, *second, blur);
+    if (!similarity.ok()) {
+        std::fprintf(stderr, "%s\n", similarity.status().message().c_str());
+        return 1;
+    }
+    std::printf("%s vs %s: colour difference %.4f, texture ratio %.3f\n", a.c_str(), b.c_str(),
+                similarity->colour_difference, similarity->texture_ratio);
+    return 0;
+}
+
 int main(int argc, char** argv) {
     const std::string which = argc > 1 ? argv[1] : "all";
+    if (which == "compare" && argc >= 4)
+        return compare_files(argv[2], argv[3], argc > 4 ? std::stoi(argv[4]) : 4);
     Settings settings;
     int first_option = 2;
     if (argc > 2 && argv[2][0] != '-') {
