@@ -1,0 +1,56 @@
+// End tangent alignment (§7.3.1): for a snapped endpoint, the angle between the path's tangent
+// there and the tangent of the point it is attached to (as undirected lines, so a stroke may
+// continue or turn back along the target). The path is rotated about that endpoint to align
+// exactly; the other endpoint must be free. Fixes the direction.
+
+#include <cmath>
+#include <numbers>
+
+#include "rule_util.hpp"
+#include "rules.hpp"
+
+namespace exemplar::sketch::rules {
+
+namespace {
+
+class TangentRule final : public Rule {
+public:
+    const char* name() const override { return "tangent"; }
+    double threshold(const BeautifyOptions& o) const override { return o.tangent.threshold; }
+
+    std::vector<RuleOutput> apply(const Candidate& input,
+                                  const RuleContext& context) const override {
+        std::vector<RuleOutput> out;
+        if (input.fixed.direction || input.kind == ShapeKind::Circle) return out;
+        for (bool at_start : {true, false}) {
+            const std::optional<Attachment>& a =
+                at_start ? input.start_attachment : input.end_attachment;
+            const bool other_fixed = at_start ? input.fixed.end : input.fixed.start;
+            if (!a || other_fixed || norm(a->tangent) == 0.0) continue;
+            const Vec2 own = at_start ? start_tangent(input.path) : end_tangent(input.path);
+            // Smallest signed rotation making `own` parallel (either way) to the target tangent.
+            double rotation = wrap_angle(std::atan2(cross(own, a->tangent), dot(own, a->tangent)));
+            if (std::abs(rotation) > std::numbers::pi / 2) {
+                rotation = wrap_angle(rotation + std::numbers::pi);
+            }
+            const double likelihood = falloff(std::abs(rotation), context.options->tangent.tolerance);
+            if (likelihood < context.options->tangent.threshold) continue;
+            const Vec2 center = at_start ? input.path.start() : input.path.end();
+            Candidate c = moved(input, Affine::rotation(rotation, center));
+            c.fixed.direction = true;
+            const std::string which = at_start ? "start" : "end";
+            const int stroke = stroke_of(context, a->path);
+            Relation r{name(), "tangent-" + which, {stroke}, likelihood,
+                       which + std::string(" tangent aligned with stroke ") + std::to_string(stroke) +
+                           std::string(" (was ") + degrees(std::abs(rotation)) + "° off)"};
+            out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
+        }
+        return out;
+    }
+};
+
+}  // namespace
+
+std::unique_ptr<Rule> make_tangent_rule() { return std::make_unique<TangentRule>(); }
+
+}  // namespace exemplar::sketch::rules

@@ -1,0 +1,63 @@
+// Every TU-Berlin sketch (../shared/data/strokes/tu-berlin, CC BY 4.0, Eitz, Hays and Alexa 2012)
+// replayed stroke by stroke: no stroke moves further than a bound relative to its size, and the
+// relations enforced are reported.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include "exemplar/sketch/beautify.hpp"
+#include "exemplar/sketch/svg.hpp"
+
+namespace exemplar::sketch {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> sketches() {
+    std::vector<std::string> files;
+    const fs::path root = fs::path(EXEMPLAR_SHARED_DATA_DIR) / "strokes" / "tu-berlin";
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
+        if (entry.path().extension() == ".svg") files.push_back(entry.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// A stroke may move by at most 25% of its size plus the snapping radius (10 view px).
+constexpr double kRelativeBound = 0.25;
+constexpr double kAbsoluteBoundPx = 10.0;
+
+TEST(SketchTuBerlin, EverySketchStaysCloseToTheInputAndReportsRelations) {
+    const std::vector<std::string> files = sketches();
+    ASSERT_EQ(files.size(), 15u);
+    std::map<std::string, int> totals;
+    for (const std::string& file : files) {
+        SCOPED_TRACE(file);
+        auto drawing = load_svg(file);
+        ASSERT_TRUE(drawing.ok()) << drawing.status().message();
+        ASSERT_GT(drawing->paths.size(), 2u);
+        auto result = replay(drawing->paths, drawing->pixels_per_unit);
+        ASSERT_TRUE(result.ok()) << result.status().message();
+        ASSERT_EQ(result->strokes.size(), drawing->paths.size());
+        int relations = 0;
+        for (std::size_t i = 0; i < result->strokes.size(); ++i) {
+            const StrokeResult& s = result->strokes[i];
+            const double bound = kRelativeBound * s.size + kAbsoluteBoundPx / drawing->pixels_per_unit;
+            EXPECT_LE(s.moved, bound) << "stroke " << i << " moved " << s.moved << " (size " << s.size << ")";
+            for (const Relation& r : s.chosen.relations()) {
+                ++relations;
+                ++totals[r.rule];
+                EXPECT_FALSE(r.detail.empty());
+            }
+        }
+        EXPECT_GT(relations, 0) << "no relation enforced in " << file;
+    }
+    // Across the set, the common relations of hand-drawn sketches all occur.
+    for (const char* rule : {"line", "arc", "endpoint"}) EXPECT_GT(totals[rule], 0) << rule;
+    for (const auto& [rule, count] : totals) std::cout << "  " << rule << ": " << count << "\\n";
+}
+
+}  // namespace
+}  // namespace exemplar::sketch
