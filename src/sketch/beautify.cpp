@@ -249,21 +249,25 @@ Result<std::vector<Suggestion>> suggest(const ResolvedDrawing& drawing, const Pa
         }
     }
 
-    // The input itself, last (§7.5), unless a suggestion already is it.
+    // Most likely first (Eq. 7.1); the search's discovery order breaks ties.
+    std::stable_sort(out.begin(), out.end(), [](const Suggestion& a, const Suggestion& b) {
+        return a.likelihood > b.likelihood;
+    });
+    // The input itself, last (§7.5), unless a suggestion is already (nearly) the input: then
+    // that one stands for it, and a suggestion with no relation at all is the input.
+    const std::vector<Vec2> mine = coarse(stroke);
+    bool input_present = false;
+    for (Suggestion& s : out) {
+        if (ppu * max_pointwise_distance(coarse(s.path), mine) >= options.duplicate_px) continue;
+        input_present = true;
+        if (s.relations().empty()) s.original = true;
+    }
+    // With room for one suggestion only, that is the best one (the input if nothing applies).
+    if (input_present || (options.max_suggestions == 1 && !out.empty())) return out;
     Suggestion original;
     original.path = stroke;
     original.original = true;
     original.segments.push_back(make_candidate(stroke));
-    const std::vector<Vec2> mine = coarse(stroke);
-    out.erase(std::remove_if(out.begin(), out.end(),
-                             [&](const Suggestion& s) {
-                                 return ppu * max_pointwise_distance(coarse(s.path), mine) <
-                                            options.duplicate_px &&
-                                        s.segments.size() == 1 && s.relations().empty();
-                             }),
-              out.end());
-    // With room for one suggestion only, that is the best one (the input if nothing applies).
-    if (options.max_suggestions == 1 && !out.empty()) return out;
     out.push_back(std::move(original));
     return out;
 }

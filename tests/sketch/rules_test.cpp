@@ -240,9 +240,14 @@ TEST(SketchRules, ArcCenterSnapsToAnEndpoint) {
     c.arc = {{4, 3}, 50, 0.2, 1.5};
     const auto out = run("arc-center", c, canvas.context());
     ASSERT_FALSE(out.empty());
-    EXPECT_EQ(out[0].candidate.arc.center, (Vec2{0, 0}));
-    EXPECT_NEAR(out[0].candidate.arc.radius, 50, 1e-9);
-    for (Vec2 p : flatten(out[0].candidate.path, 1.0)) EXPECT_NEAR(norm(p), 50, 0.02);
+    const ArcGeometry& arc = out[0].candidate.arc;
+    EXPECT_EQ(arc.center, (Vec2{0, 0}));
+    // Refitted around the new centre where it was drawn: the mean distance of the old arc.
+    EXPECT_NEAR(arc.radius, 50, 5);
+    for (Vec2 p : flatten(out[0].candidate.path, 1.0)) EXPECT_NEAR(norm(p), arc.radius, 0.02);
+    // Same endpoint directions from the new centre.
+    const Vec2 s = c.path.start();
+    EXPECT_NEAR(arc.start_angle_rad, std::atan2(s.y, s.x), 1e-9);
 }
 
 TEST(SketchRules, ArcCenterSearchRadiusGrowsForFlatArcs) {

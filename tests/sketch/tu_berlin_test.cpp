@@ -56,7 +56,7 @@ TEST(SketchTuBerlin, EverySketchStaysCloseToTheInputAndReportsRelations) {
     }
     // Across the set, the common relations of hand-drawn sketches all occur.
     for (const char* rule : {"line", "arc", "endpoint"}) EXPECT_GT(totals[rule], 0) << rule;
-    for (const auto& [rule, count] : totals) std::cout << "  " << rule << ": " << count << "\\n";
+    for (const auto& [rule, count] : totals) std::cout << "  " << rule << ": " << count << '\n';
 }
 
 }  // namespace

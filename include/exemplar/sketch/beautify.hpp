@@ -45,8 +45,9 @@ struct Suggestion {
 /// Checks option ranges; the message names the option, its value and the valid range.
 Status validate(const BeautifyOptions& options);
 
-/// Ranked suggestions for `stroke` (at most `options.max_suggestions`, the last one the input
-/// itself unless max_suggestions is 1). InvalidArgument for a degenerate stroke (empty, or all points equal) or bad options.
+/// Ranked suggestions for `stroke`, most likely first (at most `options.max_suggestions`); the
+/// last one is the input itself, unless max_suggestions is 1 or a suggestion is already within
+/// `duplicate_px` of the input. InvalidArgument for a degenerate stroke (empty, or all points equal) or bad options.
 Result<std::vector<Suggestion>> suggest(const ResolvedDrawing& drawing, const Path& stroke,
                                         const BeautifyOptions& options = {});
 

@@ -131,6 +131,10 @@ struct BeautifyOptions {
     double center_search_px = 30.0;  ///< § 7.3.1: D, arc-centre search radius.
     double offset_percentile = 25.0;  ///< § 7.3.6: n, percentiles 50 ± n compared.
     double duplicate_px = 0.5;        ///< Suggestions closer than this are the same.
+    /// How far (Fréchet distance, view px) a path may move to become a line, an arc or a copy
+    /// of another path: the likelihood is also at most 1 − distance / this. Ours; the paper
+    /// only uses relative measures, which let long strokes move far.
+    double shape_tolerance_px = 12.0;
 
     RuleParams line{0.08, 0.5};           ///< 1 − chord/length at which L = 0.
     RuleParams arc{0.08, 0.5};            ///< Fréchet distance / length at which L = 0.

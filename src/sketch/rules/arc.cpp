@@ -2,9 +2,11 @@
 // angular span comes from projecting the samples on the circle; the arc is sampled again and
 // compared with the input by the discrete Fréchet distance (relative to the path length). Spans
 // close to 2π, or closed paths, become full circles. Deviations: spans under 30° are left to the
-// line rule (a nearly straight stroke fits a huge circle), and fixed endpoints are kept by
+// line rule (a nearly straight stroke fits a huge circle), the likelihood is also capped by the
+// absolute Fréchet distance (`shape_tolerance_px`), and fixed endpoints are kept by
 // moving the centre onto their bisector (both fixed) or refitting the radius (one fixed).
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -55,7 +57,9 @@ public:
 
         const Path shape = arc_path(arc.center, arc.radius, arc.start_angle_rad, arc.sweep_rad);
         const double frechet = discrete_frechet(sample_path(shape, n), pts);
-        const double likelihood = falloff(frechet / length, params.tolerance);
+        const double likelihood =
+            std::min(falloff(frechet / length, params.tolerance),
+                     falloff(context.px(frechet), context.options->shape_tolerance_px));
         if (likelihood < params.threshold) return {};
         Candidate c = as_arc(input, arc, circle);
         if (!circle) {  // exact endpoints for the fixed ones

@@ -2,9 +2,11 @@
 // candidate centres — endpoints of resolved paths, centres of resolved arcs and circles, and
 // centres of rotation used so far — within the adaptive radius max(D, 2r(1 − θ/2π)) (Fig. 7.6),
 // θ the span, D = 30 view px. Deviation: centres of regular polygons made of line series are not
-// offered. A free arc or circle is translated; an arc with one fixed endpoint keeps it and takes
-// the radius to it. Fixes the centre.
+// offered. A circle is translated; an arc is refitted around the new centre through its
+// endpoints' directions (mean radius of its samples, or the radius to a fixed endpoint), and the
+// likelihood is capped by how far it moves (`shape_tolerance_px`). Fixes the centre.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -54,10 +56,15 @@ public:
         }
         for (const Target& t : targets) {
             const double d = context.px(distance(t.point, arc.center));
-            const double likelihood = falloff(d, radius_px);
+            double likelihood = falloff(d, radius_px);
             if (likelihood < context.options->arc_center.threshold) continue;
-            std::optional<Candidate> c = recentred(input, t.point);
+            const int n = context.options->match_samples;
+            std::optional<Candidate> c = recentred(input, t.point, n);
             if (!c) continue;
+            // The refitted arc must stay close to the drawn one.
+            const double moved_px = context.px(discrete_frechet(samples(input, n), samples(*c, n)));
+            likelihood = std::min(likelihood, falloff(moved_px, context.options->shape_tolerance_px));
+            if (likelihood < context.options->arc_center.threshold) continue;
             c->fixed.center = true;
             const int stroke = stroke_of(context, t.path);
             Relation r{name(), std::string("center:") + std::to_string(t.path) + t.what,
@@ -72,21 +79,35 @@ public:
     }
 
 private:
-    static std::optional<Candidate> recentred(const Candidate& input, Vec2 center) {
-        if (!input.fixed.start && !input.fixed.end) {
+    // The arc or circle around `center`: a circle is moved; an arc is refitted through its
+    // endpoints' directions with the mean radius of its samples (or the radius to its fixed
+    // endpoint), so that it stays where it was drawn (Fig. 7.6).
+    static std::optional<Candidate> recentred(const Candidate& input, Vec2 center, int samples_n) {
+        if (input.kind == ShapeKind::Circle) {
+            if (input.fixed.start || input.fixed.end) return std::nullopt;
             return moved(input, Affine::translation(center - input.arc.center));
         }
-        if (input.kind == ShapeKind::Circle) return std::nullopt;
-        const Vec2 anchor = input.fixed.start ? input.path.start() : input.path.end();
+        const Vec2 s = input.path.start(), e = input.path.end();
         ArcGeometry arc = input.arc;
         arc.center = center;
-        arc.radius = distance(anchor, center);
+        if (input.fixed.start || input.fixed.end) {
+            arc.radius = distance(input.fixed.start ? s : e, center);
+        } else {
+            double sum = 0.0;
+            const std::vector<Vec2> pts = samples(input, samples_n);
+            for (Vec2 p : pts) sum += distance(p, center);
+            arc.radius = sum / static_cast<double>(pts.size());
+        }
         if (!(arc.radius > 0.0)) return std::nullopt;
-        const double anchor_angle = std::atan2(anchor.y - center.y, anchor.x - center.x);
-        arc.start_angle_rad = input.fixed.start ? anchor_angle : anchor_angle - arc.sweep_rad;
+        const double sa = std::atan2(s.y - center.y, s.x - center.x);
+        const double ea = std::atan2(e.y - center.y, e.x - center.x);
+        double sweep = wrap_angle(ea - sa);
+        if (sweep * input.arc.sweep_rad < 0) sweep += sweep < 0 ? 2 * std::numbers::pi : -2 * std::numbers::pi;
+        arc.start_angle_rad = sa;
+        arc.sweep_rad = sweep;
         Candidate c = as_arc(input, arc, false);
-        if (input.fixed.start) c.path.segments.front().p0 = anchor;
-        if (input.fixed.end) c.path.segments.back().p3 = anchor;
+        if (input.fixed.start) c.path.segments.front().p0 = s;
+        if (input.fixed.end) c.path.segments.back().p3 = e;
         return c;
     }
 };

@@ -2,7 +2,8 @@
 // paths and to their inner points (the closest point on each path; endpoints are preferred).
 // The endpoint is moved by a similarity about the other endpoint (rotation + scale, so the rest
 // of the stroke keeps its shape and the other end stays put), or by a translation when the
-// direction, length or transformation is fixed. Paths are not joined (round caps hide the seam).
+// direction, length or transformation is fixed (or slid along its fixed direction when the other
+// end is fixed too and the target lies on that line). Paths are not joined (round caps hide the seam).
 // Fixes the endpoint and records what it is attached to (for end-tangent alignment).
 
 #include <cmath>
@@ -16,6 +17,7 @@ namespace {
 
 constexpr double kInnerPreference = 0.85;  // inner points score below endpoints at equal distance
 constexpr std::size_t kPerEndpoint = 3;
+constexpr double kOnLine = 1e-6;  // drawing units: "on the line" for sliding a fixed-direction end
 
 // The map that moves one endpoint onto `target` without breaking fixed properties.
 std::optional<Affine> endpoint_move(const Candidate& c, bool at_start, Vec2 target) {
@@ -32,8 +34,15 @@ std::optional<Affine> endpoint_move(const Candidate& c, bool at_start, Vec2 targ
         if (scale < 0.5 || scale > 2.0) return std::nullopt;
         return Affine::similarity(std::atan2(cross(u, v), dot(u, v)), scale, other);
     }
-    if (other_fixed) return std::nullopt;
-    return Affine::translation(target - p);
+    if (!other_fixed) return Affine::translation(target - p);
+    // Both the direction and the other end are fixed: the endpoint may still slide along the
+    // line if the target lies on it (closing a rectangle after a perpendicularity snap).
+    if (c.fixed.length || c.fixed.transform) return std::nullopt;
+    const Vec2 u = p - other, v = target - other;
+    if (norm(u) < 1e-9 || dot(u, v) <= 0.0) return std::nullopt;
+    const double off_line = std::abs(cross(normalized(u), v));
+    if (off_line > kOnLine) return std::nullopt;
+    return Affine::similarity(0.0, dot(normalized(u), v) / norm(u), other);
 }
 
 class EndpointRule final : public Rule {

@@ -5,7 +5,8 @@
 // template under that similarity. Templates with i ≥ 3 copies get the boost 1 − (1 − s)^ln i.
 // Deviations: lines and circles are not matched (every line or circle is similar to every other;
 // the line and arc rules handle them), and the Fréchet distance is between point samples rather
-// than points and the simplified template's segments.
+// than points and the simplified template's segments; the likelihood is also capped by the
+// absolute distance (`shape_tolerance_px`).
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +65,10 @@ public:
                     best_reversed = reverse;
                 }
             }
-            const double raw = falloff(best_error, context.options->identity.tolerance);
+            const double raw =
+                std::min(falloff(best_error, context.options->identity.tolerance),
+                         falloff(context.px(best_error * length),
+                                 context.options->shape_tolerance_px));
             const double likelihood = repeat_boost(raw, t.instances);
             if (likelihood < context.options->identity.threshold) continue;
 

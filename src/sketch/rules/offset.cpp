@@ -5,7 +5,8 @@
 // replaced by the reference offset by the median distance, over the stretch of the reference the
 // candidate spans. Deviations: a normal "hits" the reference when the direction to the closest
 // reference point is within 30° of the normal (instead of an exact ray intersection); lines and
-// arcs as references are left to parallelism and centre snapping.
+// arcs as references are left to parallelism and centre snapping; references farther than 40 view
+// px are ignored; and the likelihood is capped by how far the stroke moves (`shape_tolerance_px`).
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,7 @@ namespace {
 constexpr double kHitCone = 0.52;        // 30°
 constexpr double kMinHitFraction = 0.6;  // of the samples
 constexpr double kMinOffsetPx = 3.0;
+constexpr double kMaxOffsetPx = 40.0;    // farther references are not offsets of this stroke
 
 class OffsetRule final : public Rule {
 public:
@@ -40,7 +42,7 @@ public:
         const std::vector<Vec2> pts = samples(input, n);
         const double length = polyline_length(pts);
         if (context.px(length) < 10.0) return out;
-        const double max_offset = std::max(context.units(40.0), 0.5 * length);
+        const double max_offset = context.units(kMaxOffsetPx);
         for (std::size_t i = 0; i < context.paths.size(); ++i) {
             const ResolvedPath& ref = *context.paths[i];
             if (!ref.geometric || ref.kind != ShapeKind::Curve || ref.dense.size() < 2) continue;
@@ -66,12 +68,16 @@ public:
             const double median = percentile(50);
             if (lo * hi <= 0.0 || context.px(std::abs(median)) < kMinOffsetPx) continue;
             const double spread = std::abs(hi - lo) / std::abs(median);
-            const double likelihood = falloff(spread, o.offset.tolerance);
+            double likelihood = falloff(spread, o.offset.tolerance);
             if (likelihood < o.offset.threshold) continue;
             std::optional<Path> path = offset_stretch(ref, input, std::abs(median), context);
             if (!path) continue;
             Candidate c = input;
             c.path = *path;
+            // The offset must replace the stroke where it was drawn.
+            const double moved_px = context.px(discrete_frechet(pts, samples(c, n)));
+            likelihood = std::min(likelihood, falloff(moved_px, o.shape_tolerance_px));
+            if (likelihood < o.offset.threshold) continue;
             c.fixed.shape = true;
             Relation r{name(), std::string("offset:") + std::to_string(i), {ref.stroke}, likelihood,
                        std::string("offset of stroke ") + std::to_string(ref.stroke) + " by " +

@@ -4,8 +4,9 @@
 // of C's centroid and its image). C is reflected exactly across that axis, across the axes used
 // before (boosted by 1 − (1 − s)^ln i for an axis used i times) and across resolved line segments
 // when the axis is close to them. Likelihood from how far the candidate moves, relative to its
-// length. Fixes the transformation; the axis is recorded for later strokes.
+// length (and capped by `shape_tolerance_px`, ours). Fixes the transformation; the axis is recorded for later strokes.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -76,7 +77,9 @@ public:
                 Candidate c = moved(input, correction);
                 const double moved_by = move_distance(c, input, n);
                 const double likelihood =
-                    falloff(moved_by / length, o.reflection.tolerance) * option.snap_score;
+                    std::min(falloff(moved_by / length, o.reflection.tolerance),
+                             falloff(context.px(moved_by), o.shape_tolerance_px)) *
+                    option.snap_score;
                 if (likelihood < o.reflection.threshold) continue;
                 c.instance->relative_to = j;
                 c.instance->relative = mirror;

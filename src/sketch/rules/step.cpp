@@ -2,7 +2,10 @@
 // to the copy it was matched with (its step transform). For a new copy of the same template, the
 // transform from each copy D to the candidate is compared with D's step transform by how far
 // applying the step to D would move the candidate (relative to its length); a close match places
-// the candidate exactly one step further. Fixes the transformation.
+// the candidate exactly one step further; the likelihood is also capped by the absolute move
+// (`shape_tolerance_px`, ours). Fixes the transformation.
+
+#include <algorithm>
 
 #include "rule_util.hpp"
 #include "rules.hpp"
@@ -31,7 +34,9 @@ public:
             const Affine correction = compose(*copy.step, rel.inverse());
             Candidate c = moved(input, correction);
             const double moved_by = move_distance(c, input, n);
-            const double likelihood = falloff(moved_by / length, context.options->step.tolerance);
+            const double likelihood =
+                std::min(falloff(moved_by / length, context.options->step.tolerance),
+                         falloff(context.px(moved_by), context.options->shape_tolerance_px));
             if (likelihood < context.options->step.threshold) continue;
             c.instance->relative_to = j;
             c.instance->relative = *copy.step;

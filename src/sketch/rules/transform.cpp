@@ -4,7 +4,8 @@
 // to 0.5 or an integer, and the translation so that the centre of rotation lands on an existing
 // point (endpoints, arc centres, centres of rotation used), or — without rotation — so that the
 // x or y offset from C becomes 0. All snaps that apply to one copy are combined into one
-// suggestion whose likelihood is the geometric mean of theirs. Reflected copies are left to the
+// suggestion whose likelihood is the geometric mean of theirs; snaps that would move the copy
+// more than `shape_tolerance_px` are not proposed (ours). Reflected copies are left to the
 // reflection rule. Fixes the transformation.
 
 #include <cmath>
@@ -90,6 +91,9 @@ public:
             if (likelihood < o.transform.threshold) continue;
             const Affine correction = compose(adjusted, rel.inverse());
             Candidate c = moved(input, correction);
+            // Snapping must not carry the copy far from where it was drawn.
+            const double moved_px = context.px(move_distance(c, input, o.match_samples));
+            if (falloff(moved_px, o.shape_tolerance_px) < o.transform.threshold) continue;
             c.instance->relative_to = j;
             c.instance->relative = adjusted;
             c.fixed.transform = true;
