@@ -274,17 +274,27 @@ ClosestPoint closest_point(const std::vector<Vec2>& polyline, Vec2 p) {
     best.distance = std::numeric_limits<double>::infinity();
     if (polyline.empty()) return best;
     if (polyline.size() == 1) return {polyline.front(), distance(p, polyline.front()), 0.0, {}};
-    double before = 0.0;
+    // Squared distances in the loop; the arc position is summed only up to the winner.
+    double best_d2 = std::numeric_limits<double>::infinity();
+    std::size_t best_i = 1;
+    double best_t = 0.0;
     for (std::size_t i = 1; i < polyline.size(); ++i) {
-        double t = 0.0;
-        const double d = point_segment_distance(p, polyline[i - 1], polyline[i], &t);
-        const double len = distance(polyline[i - 1], polyline[i]);
-        if (d < best.distance) {
-            best = {lerp(polyline[i - 1], polyline[i], t), d, before + t * len,
-                    normalized(polyline[i] - polyline[i - 1])};
+        const Vec2 a = polyline[i - 1], ab = polyline[i] - a;
+        const double len2 = dot(ab, ab);
+        const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+        const Vec2 q = a + ab * t - p;
+        const double d2 = dot(q, q);
+        if (d2 < best_d2) {
+            best_d2 = d2;
+            best_i = i;
+            best_t = t;
         }
-        before += len;
     }
+    double before = 0.0;
+    for (std::size_t i = 1; i < best_i; ++i) before += distance(polyline[i - 1], polyline[i]);
+    const Vec2 a = polyline[best_i - 1], b = polyline[best_i];
+    best = {lerp(a, b, best_t), std::sqrt(best_d2), before + best_t * distance(a, b),
+            normalized(b - a)};
     return best;
 }
 
@@ -389,6 +399,16 @@ Circle fit_circle(const std::vector<Vec2>& points) {
     circle.center = {uc + mean.x, vc + mean.y};
     circle.radius = std::sqrt(uc * uc + vc * vc + scale / static_cast<double>(n));
     return circle;
+}
+
+Box bounding_box(const std::vector<Vec2>& points) {
+    if (points.empty()) return {};
+    Box box{points.front(), points.front()};
+    for (Vec2 p : points) {
+        box.lo = {std::min(box.lo.x, p.x), std::min(box.lo.y, p.y)};
+        box.hi = {std::max(box.hi.x, p.x), std::max(box.hi.y, p.y)};
+    }
+    return box;
 }
 
 double bounding_diagonal(const std::vector<Vec2>& points) {

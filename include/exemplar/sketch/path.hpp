@@ -8,6 +8,7 @@
 /// functions are pure; none throws. Degenerate input (an empty path, a polyline of one point) gives
 /// empty or zero results as documented per function.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -32,7 +33,9 @@ struct Vec2 {
 
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+/// Length of a vector (plain square root: coordinates are far from overflow, and std::hypot is
+/// several times slower in the closest-point loops).
+inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
 /// `a` scaled to length 1, or (0, 0) if `a` is (0, 0).
 inline Vec2 normalized(Vec2 a) {
@@ -169,6 +172,24 @@ struct Circle {
     double radius = 0.0;
 };
 Circle fit_circle(const std::vector<Vec2>& points);
+
+/// An axis-aligned box.
+struct Box {
+    Vec2 lo, hi;
+    /// Distance from `p` to the box (0 inside).
+    double distance_to(Vec2 p) const {
+        const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
+        const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+        return std::sqrt(dx * dx + dy * dy);
+    }
+    /// True if the boxes, each grown by `margin`, overlap.
+    bool near(const Box& other, double margin) const {
+        return lo.x - margin <= other.hi.x && other.lo.x <= hi.x + margin &&
+               lo.y - margin <= other.hi.y && other.lo.y <= hi.y + margin;
+    }
+};
+/// Bounding box of points (all zero if empty).
+Box bounding_box(const std::vector<Vec2>& points);
 
 /// Bounding box diagonal of a polyline (a size measure); 0 if empty.
 double bounding_diagonal(const std::vector<Vec2>& points);

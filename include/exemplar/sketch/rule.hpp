@@ -104,6 +104,7 @@ struct ResolvedPath {
     std::vector<Vec2> simplified;  ///< `dense` after Ramer–Douglas–Peucker (ε = 4 view px).
     std::vector<Vec2> match;       ///< `match_samples` points equally spaced (path matching).
     double length = 0.0;
+    Box box;                  ///< Bounding box of `dense` (quick rejection in the rules).
     int template_path = -1;   ///< Its template (itself if it is an original).
     Affine from_template;     ///< Template → this.
     std::optional<Affine> step;  ///< Step transform (relative to the copy it snapped to).

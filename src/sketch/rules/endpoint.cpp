@@ -101,6 +101,7 @@ private:
             if (!target.geometric || target.dense.empty()) continue;
             const int index = static_cast<int>(i);
             const double radius = context.units(params.tolerance);
+            if (target.box.distance_to(p) >= radius) continue;
             bool near_end = false;
             if (!target.path.closed) {
                 const Vec2 ends[2] = {target.path.start(), target.path.end()};

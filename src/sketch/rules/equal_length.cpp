@@ -33,6 +33,7 @@ public:
             if (!target.geometric || target.kind != ShapeKind::Line) continue;
             const double target_length = distance(target.path.start(), target.path.end());
             const double ratio_error = std::abs(1.0 - length / target_length);
+            if (falloff(ratio_error, params.tolerance) < params.threshold) continue;
             const ClosestPoint near = closest_point(target.simplified, *center);
             const double proximity =
                 1.0 - 0.15 * std::min(1.0, context.px(near.distance) /

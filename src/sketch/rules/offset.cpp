@@ -43,14 +43,17 @@ public:
         const double length = polyline_length(pts);
         if (context.px(length) < 10.0) return out;
         const double max_offset = context.units(kMaxOffsetPx);
+        const Box box = bounding_box(pts);
         for (std::size_t i = 0; i < context.paths.size(); ++i) {
             const ResolvedPath& ref = *context.paths[i];
             if (!ref.geometric || ref.kind != ShapeKind::Curve || ref.dense.size() < 2) continue;
+            if (!ref.box.near(box, max_offset)) continue;
             std::vector<double> signed_distances;
             for (std::size_t k = 0; k < pts.size(); ++k) {
                 const Vec2 tangent = normalized(pts[std::min(k + 1, pts.size() - 1)] -
                                                 pts[k == 0 ? 0 : k - 1]);
                 const Vec2 normal = perpendicular(tangent);
+                if (ref.box.distance_to(pts[k]) > max_offset) continue;
                 const ClosestPoint cp = closest_point(ref.dense, pts[k]);
                 if (cp.distance > max_offset || cp.distance <= 0.0) continue;
                 const Vec2 towards = (cp.point - pts[k]) / cp.distance;

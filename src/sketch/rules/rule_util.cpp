@@ -37,6 +37,7 @@ ResolvedPath resolve_path(const Candidate& candidate, int stroke, int segment,
     r.simplified = simplify_rdp(r.dense, options.rdp_epsilon_px * unit);
     r.match = resample(r.dense, options.match_samples);
     r.length = polyline_length(r.dense);
+    r.box = bounding_box(r.dense);
     return r;
 }
 
@@ -192,6 +193,7 @@ std::vector<RuleOutput> snap_line_angle(const Candidate& input, const RuleContex
                 best_rotation = rotation;
             }
         }
+        if (falloff(best_error, params.tolerance) < params.threshold) continue;
         // Nearby lines are slightly preferred (§7.3.1).
         const ClosestPoint near = closest_point(target.simplified, (input.path.start() + input.path.end()) / 2.0);
         const double proximity = 1.0 - 0.15 * std::min(1.0, context.px(near.distance) /
