@@ -35,6 +35,8 @@ Status validate(const BeautifyOptions& o) {
     EXEMPLAR_RETURN_IF_ERROR(range("corner-step-px", o.corner_step_px, 0.1, 100));
     EXEMPLAR_RETURN_IF_ERROR(range("corner-angle-rad", o.corner_angle_rad, 0.01, 10));
     EXEMPLAR_RETURN_IF_ERROR(range("hook-fraction", o.hook_fraction, 0, 1));
+    EXEMPLAR_RETURN_IF_ERROR(range("hook-max-px", o.hook_max_px, 0, 1000));
+    EXEMPLAR_RETURN_IF_ERROR(range("shape-tolerance-px", o.shape_tolerance_px, 0, 10000));
     EXEMPLAR_RETURN_IF_ERROR(range("center-search-px", o.center_search_px, 0, 10000));
     EXEMPLAR_RETURN_IF_ERROR(range("offset-percentile", o.offset_percentile, 0, 50));
     return Status::ok();
@@ -95,11 +97,14 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
             const double right = k + 1 < pieces.size() ? polyline_length(pieces[k + 1]) : 0.0;
             const double neighbour = k == 0 ? right : (k + 1 == pieces.size() ? left : std::min(left, right));
             if (length >= options.hook_fraction * neighbour) continue;
-            if (k == 0 || k + 1 == pieces.size()) {
+            const bool end_piece = k == 0 || k + 1 == pieces.size();
+            if (end_piece && length * pixels_per_unit <= options.hook_max_px) {
                 pieces.erase(pieces.begin() + static_cast<long>(k));  // a hook at an end
             } else {
-                // A short inner piece: merge it into its shorter neighbour.
-                const std::size_t into = left <= right ? k - 1 : k + 1;
+                // A short piece that is more than a hook: merge it into its shorter neighbour
+                // (the corner between them is ignored) so that no stroke part is lost.
+                const std::size_t into =
+                    k == 0 ? 1 : (k + 1 == pieces.size() ? k - 1 : (left <= right ? k - 1 : k + 1));
                 std::vector<Vec2>& target = pieces[into];
                 if (into < k) {
                     target.insert(target.end(), pieces[k].begin() + 1, pieces[k].end());
@@ -121,7 +126,7 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
         p.closed = false;
         if (!p.empty()) out.push_back(p);
     }
-    if (out.empty()) return {stroke};
+    if (out.empty() || (out.size() == 1 && pieces.front().size() == pts.size())) return {stroke};
     return out;
 }
 

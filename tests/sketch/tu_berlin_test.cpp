@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <algorithm>
 #include <map>
 
 #include "exemplar/sketch/beautify.hpp"
@@ -25,14 +26,17 @@ std::vector<std::string> sketches() {
     return files;
 }
 
-// A stroke may move by at most 25% of its size plus the snapping radius (10 view px).
-constexpr double kRelativeBound = 0.25;
+// A stroke may move (Fréchet distance) by at most 15% of its size (bounding-box diagonal) plus
+// the snapping radius (10 view px); the median stroke by less than 5 view px.
+constexpr double kRelativeBound = 0.15;
+constexpr double kMedianBoundPx = 5.0;
 constexpr double kAbsoluteBoundPx = 10.0;
 
 TEST(SketchTuBerlin, EverySketchStaysCloseToTheInputAndReportsRelations) {
     const std::vector<std::string> files = sketches();
     ASSERT_EQ(files.size(), 15u);
     std::map<std::string, int> totals;
+    std::vector<double> moved_px;
     for (const std::string& file : files) {
         SCOPED_TRACE(file);
         auto drawing = load_svg(file);
@@ -46,6 +50,7 @@ TEST(SketchTuBerlin, EverySketchStaysCloseToTheInputAndReportsRelations) {
             const StrokeResult& s = result->strokes[i];
             const double bound = kRelativeBound * s.size + kAbsoluteBoundPx / drawing->pixels_per_unit;
             EXPECT_LE(s.moved, bound) << "stroke " << i << " moved " << s.moved << " (size " << s.size << ")";
+            moved_px.push_back(s.moved * drawing->pixels_per_unit);
             for (const Relation& r : s.chosen.relations()) {
                 ++relations;
                 ++totals[r.rule];
@@ -54,6 +59,9 @@ TEST(SketchTuBerlin, EverySketchStaysCloseToTheInputAndReportsRelations) {
         }
         EXPECT_GT(relations, 0) << "no relation enforced in " << file;
     }
+    std::sort(moved_px.begin(), moved_px.end());
+    ASSERT_FALSE(moved_px.empty());
+    EXPECT_LT(moved_px[moved_px.size() / 2], kMedianBoundPx);
     // Across the set, the common relations of hand-drawn sketches all occur.
     for (const char* rule : {"line", "arc", "endpoint"}) EXPECT_GT(totals[rule], 0) << rule;
     for (const auto& [rule, count] : totals) std::cout << "  " << rule << ": " << count << '\n';

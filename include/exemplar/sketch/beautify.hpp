@@ -79,7 +79,9 @@ Result<ReplayResult> replay(const std::vector<Path>& strokes, double pixels_per_
                             const BeautifyOptions& options = {});
 
 /// Splits a stroke at its corners (§7.4.1): turn angles of tangents sampled every
-/// `corner_step_px`, local maxima above `corner_angle_rad`, short end hooks dropped. A stroke
+/// `corner_step_px`, local maxima above `corner_angle_rad`; end pieces shorter than
+/// `hook_fraction` × their neighbour are dropped as hooks if at most `hook_max_px` long, other
+/// short pieces merged into a neighbour. A stroke
 /// without corners is returned unchanged as the only element.
 std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& options,
                                    double pixels_per_unit = 1.0);

@@ -129,6 +129,9 @@ struct BeautifyOptions {
     double corner_step_px = 2.0;   ///< § 7.4.1: sampling step of corner detection.
     double corner_angle_rad = 1.05;  ///< Smallest turn (over ±2 samples) that is a corner (60°).
     double hook_fraction = 0.15;     ///< § 7.4.1: shorter segments than this × neighbour dropped.
+    /// End segments are dropped as hooks only up to this length (view px); longer short ones are
+    /// merged into their neighbour instead, so no drawn part is lost (ours).
+    double hook_max_px = 8.0;
     double center_search_px = 30.0;  ///< § 7.3.1: D, arc-centre search radius.
     double offset_percentile = 25.0;  ///< § 7.3.6: n, percentiles 50 ± n compared.
     double duplicate_px = 0.5;        ///< Suggestions closer than this are the same.
