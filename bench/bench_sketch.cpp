@@ -65,8 +65,9 @@ int main(int argc, char** argv) {
     }
     std::sort(ms.begin(), ms.end());
     auto at = [&](double q) { return ms[static_cast<std::size_t>(q * (ms.size() - 1) + 0.5)]; };
-    std::printf("suggest() for %zu new strokes (best of %d runs each): median %.2f ms, "
-                "p90 %.2f ms, max %.2f ms; up to %zu suggestions\n",
-                ms.size(), repeats, at(0.5), at(0.9), ms.back(), most_suggestions);
+    std::printf(
+        "suggest() for %zu new strokes (best of %d runs each): median %.2f ms, "
+        "p90 %.2f ms, max %.2f ms; up to %zu suggestions\n",
+        ms.size(), repeats, at(0.5), at(0.9), ms.back(), most_suggestions);
     return 0;
 }

@@ -63,8 +63,9 @@ std::string suggestions_svg(const Drawing& drawing, const sketch::ReplayResult& 
     for (std::size_t k = 0; k < result.last_suggestions.size(); ++k) {
         const sketch::Affine shift =
             sketch::Affine::translation({static_cast<double>(k) * (box[2] + gap), 0.0});
-        SvgLayer grey{{}, {}, "#999999", 0.004 * width * drawing.pixels_per_unit, 1.0,
-                      "context-" + std::to_string(k + 1)};
+        SvgLayer grey{{},        {},
+                      "#999999", 0.004 * width * drawing.pixels_per_unit,
+                      1.0,       "context-" + std::to_string(k + 1)};
         for (const Path& p : context) grey.paths.push_back(sketch::transformed(p, shift));
         SvgLayer blue{{sketch::transformed(result.last_suggestions[k].path, shift)},
                       {"suggestion-" + std::to_string(k + 1)},
@@ -88,7 +89,8 @@ std::string suggestions_svg(const Drawing& drawing, const sketch::ReplayResult& 
 
 BeautifyCommand::BeautifyCommand(CLI::App& parent) {
     app_ = parent.add_subcommand(
-        "beautify", "Beautify a sketch stroke by stroke (ShipShape: lines, arcs, snapping, symmetry)");
+        "beautify",
+        "Beautify a sketch stroke by stroke (ShipShape: lines, arcs, snapping, symmetry)");
     app_->footer(
         "Strokes are replayed in document order; each is beautified against the ones before and "
         "the first (most likely) suggestion is kept. Distances are in view pixels (the SVG's "
@@ -114,7 +116,8 @@ Status BeautifyCommand::run(const Streams& streams) const {
     // Checks that need no file.
     sketch::BeautifyOptions options;
     options.max_suggestions = max_suggestions_;
-    if (Status s = sketch::validate(options); !s.is_ok()) return invalid_argument("--" + s.message());
+    if (Status s = sketch::validate(options); !s.is_ok())
+        return invalid_argument("--" + s.message());
     if (lowercase_extension(output_) != ".svg") {
         return invalid_argument("--output " + output_ + ": must be an .svg file");
     }
@@ -139,8 +142,9 @@ Status BeautifyCommand::run(const Streams& streams) const {
     auto drawing = sketch::load_svg(input_);
     if (!drawing.ok()) return drawing.status();
     if (drawing->paths.empty()) {
-        return invalid_argument(input_ + ": the drawing has no strokes (no path, line, polyline, "
-                                         "polygon, circle, ellipse or rect)");
+        return invalid_argument(input_ +
+                                ": the drawing has no strokes (no path, line, polyline, "
+                                "polygon, circle, ellipse or rect)");
     }
     for (std::size_t i = 0; i < drawing->paths.size(); ++i) {
         if (drawing->paths[i].empty() || sketch::arc_length(drawing->paths[i]) <= 0.0) {
@@ -149,7 +153,8 @@ Status BeautifyCommand::run(const Streams& streams) const {
         }
     }
     auto result = sketch::replay(drawing->paths, drawing->pixels_per_unit, options);
-    if (!result.ok()) return Status(result.status().code(), input_ + ": " + result.status().message());
+    if (!result.ok())
+        return Status(result.status().code(), input_ + ": " + result.status().message());
 
     // Outputs, each atomic.
     std::vector<Path> clean;
@@ -197,9 +202,11 @@ Status BeautifyCommand::run(const Streams& streams) const {
         if (suggestions_ext == ".json") {
             json list = json::array();
             for (std::size_t k = 0; k < result->last_suggestions.size(); ++k) {
-                list.push_back(suggestion_json(result->last_suggestions[k], static_cast<int>(k) + 1));
+                list.push_back(
+                    suggestion_json(result->last_suggestions[k], static_cast<int>(k) + 1));
             }
-            text = json{{"stroke", result->strokes.size() - 1}, {"suggestions", list}}.dump(2) + "\n";
+            text =
+                json{{"stroke", result->strokes.size() - 1}, {"suggestions", list}}.dump(2) + "\n";
         } else {
             text = suggestions_svg(*drawing, *result);
         }

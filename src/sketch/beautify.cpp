@@ -15,7 +15,8 @@ namespace exemplar::sketch {
 
 std::vector<Relation> Suggestion::relations() const {
     std::vector<Relation> all;
-    for (const Candidate& c : segments) all.insert(all.end(), c.relations.begin(), c.relations.end());
+    for (const Candidate& c : segments)
+        all.insert(all.end(), c.relations.begin(), c.relations.end());
     return all;
 }
 
@@ -64,9 +65,11 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
     // summed over ±2 samples so that a corner rounded over a few pixels still counts.
     const std::size_t m = pts.size();
     std::vector<double> turn(m, 0.0), windowed(m, 0.0);
-    for (std::size_t i = 1; i + 1 < m; ++i) turn[i] = angle_between(pts[i] - pts[i - 1], pts[i + 1] - pts[i]);
+    for (std::size_t i = 1; i + 1 < m; ++i)
+        turn[i] = angle_between(pts[i] - pts[i - 1], pts[i + 1] - pts[i]);
     for (std::size_t i = 1; i + 1 < m; ++i) {
-        for (std::size_t j = i >= 2 ? i - 2 : 0; j <= std::min(m - 1, i + 2); ++j) windowed[i] += turn[j];
+        for (std::size_t j = i >= 2 ? i - 2 : 0; j <= std::min(m - 1, i + 2); ++j)
+            windowed[i] += turn[j];
     }
     std::vector<std::size_t> corners;
     for (std::size_t i = 3; i + 3 < m; ++i) {
@@ -74,7 +77,8 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
         bool local_max = true;
         for (std::size_t j = i - 2; j <= i + 2; ++j) {
             if (j == i) continue;
-            if (windowed[j] > windowed[i] || (j < i && windowed[j] == windowed[i])) local_max = false;
+            if (windowed[j] > windowed[i] || (j < i && windowed[j] == windowed[i]))
+                local_max = false;
         }
         if (local_max) corners.push_back(i);
     }
@@ -84,7 +88,8 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
     std::vector<std::vector<Vec2>> pieces;
     std::size_t first = 0;
     for (std::size_t c : corners) {
-        pieces.emplace_back(pts.begin() + static_cast<long>(first), pts.begin() + static_cast<long>(c) + 1);
+        pieces.emplace_back(pts.begin() + static_cast<long>(first),
+                            pts.begin() + static_cast<long>(c) + 1);
         first = c;
     }
     pieces.emplace_back(pts.begin() + static_cast<long>(first), pts.end());
@@ -95,7 +100,8 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
             const double length = polyline_length(pieces[k]);
             const double left = k > 0 ? polyline_length(pieces[k - 1]) : 0.0;
             const double right = k + 1 < pieces.size() ? polyline_length(pieces[k + 1]) : 0.0;
-            const double neighbour = k == 0 ? right : (k + 1 == pieces.size() ? left : std::min(left, right));
+            const double neighbour =
+                k == 0 ? right : (k + 1 == pieces.size() ? left : std::min(left, right));
             if (length >= options.hook_fraction * neighbour) continue;
             const bool end_piece = k == 0 || k + 1 == pieces.size();
             if (end_piece && length * pixels_per_unit <= options.hook_max_px) {
@@ -169,7 +175,8 @@ Path joined(const std::vector<Candidate>& segments, bool closed) {
             path.segments.push_back(cubic);
         }
     }
-    for (std::size_t i = 1; i < path.segments.size(); ++i) path.segments[i].p0 = path.segments[i - 1].p3;
+    for (std::size_t i = 1; i < path.segments.size(); ++i)
+        path.segments[i].p0 = path.segments[i - 1].p3;
     if (closed && !path.empty()) {
         path.segments.back().p3 = path.segments.front().p0;
         path.closed = true;
@@ -177,7 +184,9 @@ Path joined(const std::vector<Candidate>& segments, bool closed) {
     return path;
 }
 
-std::vector<Vec2> coarse(const Path& p) { return sample_path(p, 16); }
+std::vector<Vec2> coarse(const Path& p) {
+    return sample_path(p, 16);
+}
 
 }  // namespace
 
@@ -189,7 +198,8 @@ Result<std::vector<Suggestion>> suggest(const ResolvedDrawing& drawing, const Pa
     }
     const double ppu = drawing.pixels_per_unit;
     const std::vector<Path> pieces = split_at_corners(stroke, options, ppu);
-    const bool closed = stroke.closed || (pieces.size() > 1 && ppu * distance(stroke.start(), stroke.end()) < 1.0);
+    const bool closed =
+        stroke.closed || (pieces.size() > 1 && ppu * distance(stroke.start(), stroke.end()) < 1.0);
     std::vector<Suggestion> out;
     const int wanted = std::max(1, options.max_suggestions - 1);  // the input itself is last
 
@@ -220,7 +230,8 @@ Result<std::vector<Suggestion>> suggest(const ResolvedDrawing& drawing, const Pa
                     input = pinned(input, false, state.segments.front().path.start());
                 }
                 const RuleContext context = make_context(drawing, state.resolved, options);
-                for (auto& [candidate, score] : search(input, context, options.segment_suggestions)) {
+                for (auto& [candidate, score] :
+                     search(input, context, options.segment_suggestions)) {
                     State grown = state;
                     grown.resolved.push_back(resolve_path(candidate, drawing.strokes,
                                                           static_cast<int>(k), ppu, options));
@@ -277,17 +288,18 @@ Result<std::vector<Suggestion>> suggest(const ResolvedDrawing& drawing, const Pa
     return out;
 }
 
-void accept(ResolvedDrawing& drawing, const Suggestion& suggestion, const BeautifyOptions& options) {
+void accept(ResolvedDrawing& drawing, const Suggestion& suggestion,
+            const BeautifyOptions& options) {
     const int stroke = drawing.strokes++;
     const bool single = suggestion.segments.size() == 1;
     for (std::size_t k = 0; k < suggestion.segments.size(); ++k) {
         const Candidate& c = suggestion.segments[k];
-        ResolvedPath r = resolve_path(c, stroke, static_cast<int>(k), drawing.pixels_per_unit, options);
+        ResolvedPath r =
+            resolve_path(c, stroke, static_cast<int>(k), drawing.pixels_per_unit, options);
         const int index = static_cast<int>(drawing.paths.size());
         r.shape = single;
         r.template_path = index;
-        if (c.instance && c.instance->template_path >= 0 &&
-            c.instance->template_path < index) {
+        if (c.instance && c.instance->template_path >= 0 && c.instance->template_path < index) {
             r.template_path = c.instance->template_path;
             r.from_template = c.instance->from_template;
             if (c.instance->relative_to >= 0) r.step = c.instance->relative;

@@ -89,8 +89,8 @@ Vec2 center_tangent(const std::vector<Vec2>& pts, std::size_t i) {
     return normalized(perpendicular(pts[i] - pts[i - 1]));
 }
 
-void fit_cubic(const std::vector<Vec2>& pts, std::size_t first, std::size_t last, Vec2 t1,
-               Vec2 t2, double tolerance, std::vector<Cubic>& out) {
+void fit_cubic(const std::vector<Vec2>& pts, std::size_t first, std::size_t last, Vec2 t1, Vec2 t2,
+               double tolerance, std::vector<Cubic>& out) {
     if (last - first == 1) {
         const double dist = distance(pts[first], pts[last]) / 3.0;
         out.push_back({pts[first], pts[first] + t1 * dist, pts[last] + t2 * dist, pts[last]});
@@ -158,8 +158,9 @@ Path fit_path(const std::vector<Vec2>& samples, const FitOptions& options) {
         if (breaks.back() != 0 && i - breaks.back() <= 2) {
             const std::size_t prev = breaks.back();
             const double prev_turn =
-                std::numbers::pi - angle_between(end_direction(pts, prev, 0, -1, reach),
-                                     end_direction(pts, prev, pts.size() - 1, +1, reach));
+                std::numbers::pi -
+                angle_between(end_direction(pts, prev, 0, -1, reach),
+                              end_direction(pts, prev, pts.size() - 1, +1, reach));
             if (turn > prev_turn) breaks.back() = i;
             continue;
         }

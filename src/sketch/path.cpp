@@ -85,7 +85,9 @@ std::array<Cubic, 2> Cubic::split(double t) const {
     return {Cubic{p0, a, ab, mid}, Cubic{mid, bc, c, p3}};
 }
 
-Cubic line_cubic(Vec2 a, Vec2 b) { return {a, lerp(a, b, 1.0 / 3.0), lerp(a, b, 2.0 / 3.0), b}; }
+Cubic line_cubic(Vec2 a, Vec2 b) {
+    return {a, lerp(a, b, 1.0 / 3.0), lerp(a, b, 2.0 / 3.0), b};
+}
 
 Path polyline_path(const std::vector<Vec2>& points, bool closed) {
     Path path;
@@ -119,9 +121,8 @@ Path reversed(const Path& path) {
 Path ellipse_arc_path(Vec2 center, double rx, double ry, double rotation_rad,
                       double start_angle_rad, double sweep_rad) {
     Path path;
-    const int pieces =
-        std::max(1, static_cast<int>(std::ceil(std::abs(sweep_rad) / (std::numbers::pi / 2) -
-                                               1e-9)));
+    const int pieces = std::max(
+        1, static_cast<int>(std::ceil(std::abs(sweep_rad) / (std::numbers::pi / 2) - 1e-9)));
     const double step = sweep_rad / pieces;
     const double k = 4.0 / 3.0 * std::tan(step / 4.0);
     const double cr = std::cos(rotation_rad), sr = std::sin(rotation_rad);
@@ -165,7 +166,9 @@ double polyline_length(const std::vector<Vec2>& polyline) {
     return length;
 }
 
-double arc_length(const Path& path) { return polyline_length(flatten(path, 0.25)); }
+double arc_length(const Path& path) {
+    return polyline_length(flatten(path, 0.25));
+}
 
 namespace {
 
@@ -267,7 +270,9 @@ Vec2 start_tangent(const Path& path) {
     return {};
 }
 
-Vec2 end_tangent(const Path& path) { return -start_tangent(reversed(path)); }
+Vec2 end_tangent(const Path& path) {
+    return -start_tangent(reversed(path));
+}
 
 ClosestPoint closest_point(const std::vector<Vec2>& polyline, Vec2 p) {
     ClosestPoint best;

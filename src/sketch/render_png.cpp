@@ -18,7 +18,8 @@ namespace {
 void set_colour(cairo_t* cr, const std::string& colour, double opacity) {
     double r = 0, g = 0, b = 0;
     unsigned value = 0;
-    if (colour.size() == 7 && colour[0] == '#' && std::sscanf(colour.c_str() + 1, "%x", &value) == 1) {
+    if (colour.size() == 7 && colour[0] == '#' &&
+        std::sscanf(colour.c_str() + 1, "%x", &value) == 1) {
         r = ((value >> 16) & 0xff) / 255.0;
         g = ((value >> 8) & 0xff) / 255.0;
         b = (value & 0xff) / 255.0;
@@ -34,8 +35,8 @@ void set_colour(cairo_t* cr, const std::string& colour, double opacity) {
 
 }  // namespace
 
-Status save_png(const Drawing& canvas, const std::vector<SvgLayer>& layers,
-                const std::string& path, int width_px) {
+Status save_png(const Drawing& canvas, const std::vector<SvgLayer>& layers, const std::string& path,
+                int width_px) {
     if (width_px < 16 || width_px > 8192) {
         return invalid_argument(std::string("png width: ") + std::to_string(width_px) +
                                 " is invalid (must be 16..8192)");

@@ -108,10 +108,9 @@ private:
         while (true) {
             std::vector<Node> children = expand(node);
             if (children.empty()) return node;
-            auto best = std::max_element(children.begin(), children.end(),
-                                         [](const Node& a, const Node& b) {
-                                             return ByScore{}(a, b);
-                                         });
+            auto best =
+                std::max_element(children.begin(), children.end(),
+                                 [](const Node& a, const Node& b) { return ByScore{}(a, b); });
             node = std::move(*best);
         }
     }
@@ -153,8 +152,8 @@ private:
 
 }  // namespace
 
-std::vector<std::pair<Candidate, double>> search(const Candidate& input,
-                                                 const RuleContext& context, int max_results) {
+std::vector<std::pair<Candidate, double>> search(const Candidate& input, const RuleContext& context,
+                                                 int max_results) {
     return Search(context, max_results).run(input);
 }
 

@@ -83,7 +83,9 @@ public:
         cubic_to(current_ + (q - current_) * (2.0 / 3.0), p + (q - p) * (2.0 / 3.0), p);
         last_quad_ = q;
     }
-    void line_to(Vec2 p) { cubic_to(lerp(current_, p, 1.0 / 3.0), lerp(current_, p, 2.0 / 3.0), p); }
+    void line_to(Vec2 p) {
+        cubic_to(lerp(current_, p, 1.0 / 3.0), lerp(current_, p, 2.0 / 3.0), p);
+    }
     void arc_to(double rx, double ry, double rotation_deg, bool large, bool sweep, Vec2 p);
     void close() {
         if (path_.empty()) return;
@@ -208,8 +210,7 @@ std::string parse_path_data(const char* d, std::vector<Path>& out) {
             case 'C': {
                 const Vec2 base = b.current();
                 Vec2 c1, c2, p;
-                ok = read(c1.x) && read(c1.y) && read(c2.x) && read(c2.y) && read(p.x) &&
-                     read(p.y);
+                ok = read(c1.x) && read(c1.y) && read(c2.x) && read(c2.y) && read(p.x) && read(p.y);
                 if (ok && rel) {
                     c1 += base;
                     c2 += base;
@@ -255,11 +256,8 @@ std::string parse_path_data(const char* d, std::vector<Path>& out) {
                 if (ok) b.arc_to(rx, ry, rot, large, sweep, p);
                 break;
             }
-            case 'Z':
-                b.close();
-                break;
-            default:
-                return std::string("unknown path command '") + command + "'";
+            case 'Z': b.close(); break;
+            default: return std::string("unknown path command '") + command + "'";
         }
         if (!ok) {
             return std::string("bad or missing numbers for path command '") + command +
@@ -281,7 +279,8 @@ std::string parse_transform(const char* text, Affine& m) {
     std::size_t pos = 0;
     m = Affine{};
     while (true) {
-        while (pos < t.size() && (std::isspace(static_cast<unsigned char>(t[pos])) || t[pos] == ','))
+        while (pos < t.size() &&
+               (std::isspace(static_cast<unsigned char>(t[pos])) || t[pos] == ','))
             ++pos;
         if (pos >= t.size()) break;
         const std::size_t open = t.find('(', pos);
@@ -290,9 +289,10 @@ std::string parse_transform(const char* text, Affine& m) {
             return "malformed transform \"" + t + "\"";
         }
         std::string name = t.substr(pos, open - pos);
-        name.erase(std::remove_if(name.begin(), name.end(),
-                                  [](char c) { return std::isspace(static_cast<unsigned char>(c)); }),
-                   name.end());
+        name.erase(
+            std::remove_if(name.begin(), name.end(),
+                           [](char c) { return std::isspace(static_cast<unsigned char>(c)); }),
+            name.end());
         const std::string args_text = t.substr(open + 1, close - open - 1);
         Scanner s(args_text.c_str());
         std::vector<double> a;
@@ -388,7 +388,8 @@ std::string element_paths(const tinyxml2::XMLElement* e, std::vector<Path>& out)
         ry = std::clamp(ry, 0.0, h / 2);
         if (ok && w > 0 && h > 0) {
             if (rx <= 0 || ry <= 0) {
-                out.push_back(polyline_path({{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}}, true));
+                out.push_back(
+                    polyline_path({{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}}, true));
             } else {
                 const double q = std::numbers::pi / 2;
                 Path p;
@@ -431,8 +432,8 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
             Affine inner = m;
             if (name == "svg") {  // a nested viewport: its x/y offset
                 bool ok = true;
-                inner = compose(m, Affine::translation({attribute(e, "x", 0, &ok),
-                                                        attribute(e, "y", 0, &ok)}));
+                inner = compose(
+                    m, Affine::translation({attribute(e, "x", 0, &ok), attribute(e, "y", 0, &ok)}));
             }
             const std::string error = walk(e, inner, drawing);
             if (!error.empty()) return error;
@@ -490,8 +491,8 @@ Result<Drawing> parse_svg(const std::string& text, const std::string& name) {
     if (const char* vb = root->Attribute("viewBox")) {
         Scanner s(vb);
         double v[4] = {0, 0, 0, 0};
-        if (!(s.number(v[0]) && s.number(v[1]) && s.number(v[2]) && s.number(v[3])) ||
-            v[2] <= 0 || v[3] <= 0) {
+        if (!(s.number(v[0]) && s.number(v[1]) && s.number(v[2]) && s.number(v[3])) || v[2] <= 0 ||
+            v[3] <= 0) {
             return invalid_argument(name + ": malformed viewBox \"" + vb + "\"");
         }
         drawing.view_x = v[0];

@@ -29,9 +29,9 @@ protected:
 };
 
 TEST_F(Beautify, WritesDrawingReportSuggestionsAndPreview) {
-    const CliRun r = run({"beautify", kSketch, "-o", path("clean.svg"), "--report",
-                          path("report.json"), "--suggestions", path("last.json"), "--preview",
-                          path("before_after.png")});
+    const CliRun r =
+        run({"beautify", kSketch, "-o", path("clean.svg"), "--report", path("report.json"),
+             "--suggestions", path("last.json"), "--preview", path("before_after.png")});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out, path("clean.svg") + "\n" + path("report.json") + "\n" + path("last.json") +
                          "\n" + path("before_after.png") + "\n");
@@ -47,7 +47,8 @@ TEST_F(Beautify, WritesDrawingReportSuggestionsAndPreview) {
     int relations = 0;
     for (const auto& stroke : report["per_stroke"]) {
         relations += static_cast<int>(stroke["relations"].size());
-        for (const auto& rel : stroke["relations"]) EXPECT_FALSE(rel["detail"].get<std::string>().empty());
+        for (const auto& rel : stroke["relations"])
+            EXPECT_FALSE(rel["detail"].get<std::string>().empty());
     }
     EXPECT_GT(relations, 0);
     EXPECT_FALSE(report["relation_counts"].empty());
@@ -68,7 +69,9 @@ TEST_F(Beautify, WritesDrawingReportSuggestionsAndPreview) {
 }
 
 TEST_F(Beautify, SuggestionsAsSvgAndTheSameResultEveryRun) {
-    ASSERT_EQ(run({"beautify", kSketch, "-o", path("a.svg"), "--suggestions", path("s.svg"), "-q"}).code, 0);
+    ASSERT_EQ(
+        run({"beautify", kSketch, "-o", path("a.svg"), "--suggestions", path("s.svg"), "-q"}).code,
+        0);
     ASSERT_EQ(run({"beautify", kSketch, "-o", path("b.svg"), "-q"}).code, 0);
     EXPECT_EQ(file_bytes(path("a.svg")), file_bytes(path("b.svg")));
     auto panels = sketch::load_svg(path("s.svg"));
@@ -89,17 +92,15 @@ TEST_F(Beautify, BadInputsGiveOneLineErrors) {
     fails({"beautify", path("bad_path.svg")}, 1, "id=\"p7\"");
     fails({"beautify", path("empty.svg")}, 1, "empty.svg: the drawing has no strokes");
     fails({"beautify", path("dot.svg")}, 1,
-                   "dot.svg: stroke 1 (id \"dot\") is degenerate (a single point)");
+          "dot.svg: stroke 1 (id \"dot\") is degenerate (a single point)");
     fails({"beautify", path("one.svg"), "--max-suggestions", "0"}, 1,
-                   "--max-suggestions: 0 is invalid (must be 1..100)");
+          "--max-suggestions: 0 is invalid (must be 1..100)");
     expect_failure_as_is({"beautify", path("one.svg"), "-o", path("out.png")}, 1,
                          "must be an .svg file");
     fails({"beautify", path("one.svg"), "--suggestions", path("s.txt")}, 1,
-                   "must be a .json or .svg file");
-    fails({"beautify", path("one.svg"), "--preview", path("p.jpg")}, 1,
-                   "must be a .png file");
-    fails({"beautify", path("one.svg"), "--report", path("no/such/r.json")}, 1,
-                   "does not exist");
+          "must be a .json or .svg file");
+    fails({"beautify", path("one.svg"), "--preview", path("p.jpg")}, 1, "must be a .png file");
+    fails({"beautify", path("one.svg"), "--report", path("no/such/r.json")}, 1, "does not exist");
     fails({"beautify"}, 2, "drawing is required");
 }
 

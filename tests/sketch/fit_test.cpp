@@ -1,11 +1,11 @@
 // Schneider fitting: error bound, corners kept, closed strokes, degenerate input.
 
+#include "exemplar/sketch/fit.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
-
-#include "exemplar/sketch/fit.hpp"
 
 namespace exemplar::sketch {
 namespace {

@@ -1,10 +1,10 @@
 // Paths: sampling, arc length, tangents, simplification, Fréchet distance, similarity fits.
 
+#include "exemplar/sketch/path.hpp"
+
 #include <gtest/gtest.h>
 
 #include <numbers>
-
-#include "exemplar/sketch/path.hpp"
 
 namespace exemplar::sketch {
 namespace {
@@ -21,7 +21,8 @@ TEST(SketchPath, ArcLengthOfLineAndCircle) {
 TEST(SketchPath, ResampleIsEquallySpaced) {
     const std::vector<Vec2> pts = resample({{0, 0}, {10, 0}, {10, 10}}, 5);
     ASSERT_EQ(pts.size(), 5u);
-    for (std::size_t i = 1; i < pts.size(); ++i) EXPECT_NEAR(distance(pts[i - 1], pts[i]), 5.0, 1e-9);
+    for (std::size_t i = 1; i < pts.size(); ++i)
+        EXPECT_NEAR(distance(pts[i - 1], pts[i]), 5.0, 1e-9);
     EXPECT_EQ(pts.back(), (Vec2{10, 10}));
 }
 
@@ -67,7 +68,8 @@ TEST(SketchPath, SimilarityFitRecoversTheTransform) {
 
 TEST(SketchPath, CircleFitOnExactPoints) {
     std::vector<Vec2> pts;
-    for (int i = 0; i < 12; ++i) pts.push_back(Vec2{5, -3} + Vec2{std::cos(0.2 * i), std::sin(0.2 * i)} * 7.0);
+    for (int i = 0; i < 12; ++i)
+        pts.push_back(Vec2{5, -3} + Vec2{std::cos(0.2 * i), std::sin(0.2 * i)} * 7.0);
     const Circle c = fit_circle(pts);
     EXPECT_NEAR(c.center.x, 5, 1e-9);
     EXPECT_NEAR(c.center.y, -3, 1e-9);

@@ -44,9 +44,9 @@ double direction_angle(const Path& p) {
 }
 
 TEST(SketchRules, AllRulesOfFigure73AreRegistered) {
-    const char* names[] = {"line",         "arc",        "endpoint",  "tangent",  "parallel",
+    const char* names[] = {"line",          "arc",          "endpoint",   "tangent",  "parallel",
                            "perpendicular", "equal-length", "arc-center", "identity", "transform",
-                           "reflection",   "step",       "offset"};
+                           "reflection",    "step",         "offset"};
     EXPECT_EQ(make_rules().size(), std::size(names));
     for (const char* n : names) EXPECT_NE(make_rule(n), nullptr) << n;
 }
@@ -92,7 +92,8 @@ TEST(SketchRules, ArcTurnsAJitteredCircleIntoACircleWithTheRightCentre) {
 TEST(SketchRules, ArcFitsAnOpenArcAndKeepsAFixedEndpoint) {
     Canvas canvas;
     std::vector<Vec2> pts;
-    for (int i = 0; i <= 40; ++i) pts.push_back(Vec2{0, 0} + Vec2{std::cos(2.0 * i / 40), std::sin(2.0 * i / 40)} * 60.0);
+    for (int i = 0; i <= 40; ++i)
+        pts.push_back(Vec2{0, 0} + Vec2{std::cos(2.0 * i / 40), std::sin(2.0 * i / 40)} * 60.0);
     Candidate c = make_candidate(wobbly(pts, 0.8, 3));
     c.fixed.start = true;
     const auto out = run("arc", c, canvas.context());
@@ -104,8 +105,10 @@ TEST(SketchRules, ArcFitsAnOpenArcAndKeepsAFixedEndpoint) {
 
 TEST(SketchRules, ArcDoesNotFireOnALineOrAnSCurve) {
     Canvas canvas;
-    EXPECT_TRUE(run("arc", make_candidate(wobbly({{0, 0}, {100, 5}}, 0.5, 4)), canvas.context()).empty());
-    EXPECT_TRUE(run("arc", make_candidate(wobbly(s_curve({0, 0}), 0.5, 5)), canvas.context()).empty());
+    EXPECT_TRUE(
+        run("arc", make_candidate(wobbly({{0, 0}, {100, 5}}, 0.5, 4)), canvas.context()).empty());
+    EXPECT_TRUE(
+        run("arc", make_candidate(wobbly(s_curve({0, 0}), 0.5, 5)), canvas.context()).empty());
 }
 
 TEST(SketchRules, EndpointSnapsToANearbyEndpointExactly) {
@@ -229,7 +232,9 @@ TEST(SketchRules, EqualLengthDoesNotFireOnDifferentLengthsOrCurves) {
     Canvas canvas;
     canvas.add_line({0, 0}, {100, 0});
     EXPECT_TRUE(run("equal-length", line_candidate({0, 40}, {150, 40}), canvas.context()).empty());
-    EXPECT_TRUE(run("equal-length", make_candidate(wobbly({{0, 40}, {101, 40}}, 1, 6)), canvas.context()).empty());
+    EXPECT_TRUE(
+        run("equal-length", make_candidate(wobbly({{0, 40}, {101, 40}}, 1, 6)), canvas.context())
+            .empty());
 }
 
 TEST(SketchRules, ArcCenterSnapsToAnEndpoint) {
@@ -284,9 +289,10 @@ TEST(SketchRules, IdentityFindsATransformedCopy) {
     EXPECT_NEAR(parts.scale, 0.8, 0.02);
     EXPECT_FALSE(parts.reflected);
     // The result is exactly the template under that transform.
-    EXPECT_LT(max_pointwise_distance(sample_path(best.path, 20),
-                                     sample_path(transformed(canvas.drawing.paths[0].path,
-                                                             best.instance->from_template), 20)),
+    EXPECT_LT(max_pointwise_distance(
+                  sample_path(best.path, 20),
+                  sample_path(
+                      transformed(canvas.drawing.paths[0].path, best.instance->from_template), 20)),
               1e-9);
 }
 
@@ -304,7 +310,8 @@ TEST(SketchRules, IdentityDoesNotMatchADifferentShape) {
 
 // A template, then the candidate: a copy of it matched by the identity rule.
 Candidate matched_copy(Canvas& canvas, const std::vector<Vec2>& copy_points, int salt) {
-    const auto out = run("identity", make_candidate(wobbly(copy_points, 0.8, salt)), canvas.context());
+    const auto out =
+        run("identity", make_candidate(wobbly(copy_points, 0.8, salt)), canvas.context());
     EXPECT_FALSE(out.empty());
     return out.empty() ? Candidate{} : out[0].candidate;
 }
@@ -324,9 +331,10 @@ TEST(SketchRules, ReflectionDetectsAMirroredCopyAndItsAxis) {
     EXPECT_NEAR(best.axis->point.x, 200, 0.5);
     // The result is the exact mirror of the template across that axis.
     const Affine exact = Affine::reflection(best.axis->point, best.axis->direction);
-    EXPECT_LT(max_pointwise_distance(sample_path(best.path, 20),
-                                     sample_path(transformed(canvas.drawing.paths[0].path, exact), 20)),
-              1e-6);
+    EXPECT_LT(
+        max_pointwise_distance(sample_path(best.path, 20),
+                               sample_path(transformed(canvas.drawing.paths[0].path, exact), 20)),
+        1e-6);
 }
 
 TEST(SketchRules, ReflectionSnapsToAnAxisUsedBefore) {
@@ -334,10 +342,12 @@ TEST(SketchRules, ReflectionSnapsToAnAxisUsedBefore) {
     const std::vector<Vec2> shape = s_curve({40, 0});
     canvas.add_curve(fit_path(shape));
     canvas.drawing.axes.push_back({{201.5, 0}, {0, 1}, 3});
-    const Candidate copy = matched_copy(canvas, mapped(shape, Affine::reflection({200, 0}, {0, 1})), 10);
+    const Candidate copy =
+        matched_copy(canvas, mapped(shape, Affine::reflection({200, 0}, {0, 1})), 10);
     const auto out = run("reflection", copy, canvas.context());
     bool used_existing = false;
-    for (const RuleOutput& o : out) used_existing |= o.candidate.axis && o.candidate.axis->point.x == 201.5;
+    for (const RuleOutput& o : out)
+        used_existing |= o.candidate.axis && o.candidate.axis->point.x == 201.5;
     EXPECT_TRUE(used_existing);
 }
 
@@ -345,7 +355,8 @@ TEST(SketchRules, ReflectionDoesNotFireOnARotatedCopy) {
     Canvas canvas;
     const std::vector<Vec2> shape = s_curve({40, 0});
     canvas.add_curve(fit_path(shape));
-    const Candidate copy = matched_copy(canvas, mapped(shape, Affine::rotation(2.0, {300, 300})), 11);
+    const Candidate copy =
+        matched_copy(canvas, mapped(shape, Affine::rotation(2.0, {300, 300})), 11);
     EXPECT_TRUE(run("reflection", copy, canvas.context()).empty());
 }
 
@@ -380,7 +391,8 @@ TEST(SketchRules, TransformDoesNotFireWithoutAnythingToSnap) {
     canvas.add_curve(fit_path(shape));
     // 17° and scale 1.37: no nearby fraction of 2π, no nearby 0.5 or integer scale; the centre of
     // rotation (far away) is near no point.
-    const Affine m = compose(Affine::translation({900, -700}), Affine::similarity(0.3, 1.37, {0, 0}));
+    const Affine m =
+        compose(Affine::translation({900, -700}), Affine::similarity(0.3, 1.37, {0, 0}));
     const Candidate copy = matched_copy(canvas, mapped(shape, m), 14);
     EXPECT_TRUE(run("transform", copy, canvas.context()).empty());
 }
@@ -390,8 +402,10 @@ TEST(SketchRules, StepRepeatsTheStepTransform) {
     const std::vector<Vec2> shape = s_curve({0, 0});
     canvas.add_curve(fit_path(shape));
     // A copy one step of (130, 0) further, already accepted with that step.
-    Candidate first = make_candidate(transformed(canvas.drawing.paths[0].path, Affine::translation({130, 0})));
-    first.instance = Instance{0, Affine::translation({130, 0}), 0, Affine::translation({130, 0}), false};
+    Candidate first =
+        make_candidate(transformed(canvas.drawing.paths[0].path, Affine::translation({130, 0})));
+    first.instance =
+        Instance{0, Affine::translation({130, 0}), 0, Affine::translation({130, 0}), false};
     canvas.add(first);
     ASSERT_TRUE(canvas.drawing.paths[1].step.has_value());
     const Candidate copy = matched_copy(canvas, mapped(shape, Affine::translation({264, 5})), 15);
@@ -406,8 +420,10 @@ TEST(SketchRules, StepDoesNotFireOffTheStep) {
     Canvas canvas;
     const std::vector<Vec2> shape = s_curve({0, 0});
     canvas.add_curve(fit_path(shape));
-    Candidate first = make_candidate(transformed(canvas.drawing.paths[0].path, Affine::translation({130, 0})));
-    first.instance = Instance{0, Affine::translation({130, 0}), 0, Affine::translation({130, 0}), false};
+    Candidate first =
+        make_candidate(transformed(canvas.drawing.paths[0].path, Affine::translation({130, 0})));
+    first.instance =
+        Instance{0, Affine::translation({130, 0}), 0, Affine::translation({130, 0}), false};
     canvas.add(first);
     const Candidate copy = matched_copy(canvas, mapped(shape, Affine::translation({190, 90})), 16);
     EXPECT_TRUE(run("step", copy, canvas.context()).empty());

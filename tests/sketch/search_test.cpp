@@ -23,7 +23,8 @@ bool has_rule(const Suggestion& s, const std::string& rule) {
 
 std::string path_signature(const Suggestion& s) {
     std::string out;
-    for (Vec2 p : sample_path(s.path, 8)) out += std::to_string(p.x) + "," + std::to_string(p.y) + ";";
+    for (Vec2 p : sample_path(s.path, 8))
+        out += std::to_string(p.x) + "," + std::to_string(p.y) + ";";
     return out;
 }
 

@@ -12,7 +12,8 @@ namespace exemplar::sketch::testing {
 
 /// Deterministic pseudo-random offsets in [-amplitude, amplitude] (a hash, no state).
 inline double jitter(int i, int salt, double amplitude) {
-    std::uint32_t n = static_cast<std::uint32_t>(i) * 2654435761u + static_cast<std::uint32_t>(salt) * 40503u;
+    std::uint32_t n =
+        static_cast<std::uint32_t>(i) * 2654435761u + static_cast<std::uint32_t>(salt) * 40503u;
     n ^= n >> 13;
     n *= 2246822519u;
     n ^= n >> 16;

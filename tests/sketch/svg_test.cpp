@@ -1,16 +1,17 @@
 // SVG import/export: every path command, shapes, transforms, errors, round trip.
 
+#include "exemplar/sketch/svg.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "exemplar/sketch/svg.hpp"
-
 namespace exemplar::sketch {
 namespace {
 
-Drawing parse_ok(const std::string& body, const std::string& root = "<svg xmlns=\"http://www.w3.org/2000/svg\">") {
+Drawing parse_ok(const std::string& body,
+                 const std::string& root = "<svg xmlns=\"http://www.w3.org/2000/svg\">") {
     auto d = parse_svg(root + body + "</svg>", "test.svg");
     EXPECT_TRUE(d.ok()) << d.status().message();
     return d.ok() ? *d : Drawing{};
@@ -22,7 +23,8 @@ void expect_near(Vec2 a, Vec2 b, double tol = 1e-9) {
 }
 
 TEST(SketchSvg, AbsoluteAndRelativeCommands) {
-    const Drawing d = parse_ok(R"svg(<path id="p" d="M10 10 L20 10 h5 v5 H40 V0 l-5-5 c1 1 2 2 3 3 S10 10 12 12 Q20 20 30 20 t10 0 Z"/>)svg");
+    const Drawing d = parse_ok(
+        R"svg(<path id="p" d="M10 10 L20 10 h5 v5 H40 V0 l-5-5 c1 1 2 2 3 3 S10 10 12 12 Q20 20 30 20 t10 0 Z"/>)svg");
     ASSERT_EQ(d.paths.size(), 1u);
     const Path& p = d.paths[0];
     EXPECT_TRUE(p.closed);
@@ -117,7 +119,9 @@ TEST(SketchSvg, WriteThenReadRoundTrips) {
     ASSERT_EQ(back->paths.size(), 2u);
     EXPECT_EQ(back->ids[1], "b");
     EXPECT_EQ(back->view_width, 100);
-    EXPECT_LT(max_pointwise_distance(sample_path(back->paths[0], 20), sample_path(layer.paths[0], 20)), 1e-3);
+    EXPECT_LT(
+        max_pointwise_distance(sample_path(back->paths[0], 20), sample_path(layer.paths[0], 20)),
+        1e-3);
 }
 
 TEST(SketchSvg, ViewBoxAndPixelScale) {

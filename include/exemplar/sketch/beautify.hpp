@@ -25,10 +25,10 @@ namespace exemplar::sketch {
 /// The resolved drawing: accepted paths with their samples and annotations.
 struct ResolvedDrawing {
     std::vector<ResolvedPath> paths;
-    std::vector<Axis> axes;             ///< Reflection axes used (with use counts).
+    std::vector<Axis> axes;              ///< Reflection axes used (with use counts).
     std::vector<Vec2> rotation_centers;  ///< Centres of rotation used.
-    int strokes = 0;                    ///< Strokes accepted so far.
-    double pixels_per_unit = 1.0;       ///< View pixels per drawing unit (§7.3.2).
+    int strokes = 0;                     ///< Strokes accepted so far.
+    double pixels_per_unit = 1.0;        ///< View pixels per drawing unit (§7.3.2).
 };
 
 /// One beautified version of a stroke.
@@ -47,7 +47,8 @@ Status validate(const BeautifyOptions& options);
 
 /// Ranked suggestions for `stroke`, most likely first (at most `options.max_suggestions`); the
 /// last one is the input itself, unless max_suggestions is 1 or a suggestion is already within
-/// `duplicate_px` of the input. InvalidArgument for a degenerate stroke (empty, or all points equal) or bad options.
+/// `duplicate_px` of the input. InvalidArgument for a degenerate stroke (empty, or all points
+/// equal) or bad options.
 Result<std::vector<Suggestion>> suggest(const ResolvedDrawing& drawing, const Path& stroke,
                                         const BeautifyOptions& options = {});
 
@@ -58,10 +59,10 @@ void accept(ResolvedDrawing& drawing, const Suggestion& suggestion,
 /// One stroke of a replayed drawing.
 struct StrokeResult {
     Path input;
-    Suggestion chosen;           ///< The accepted (first) suggestion.
-    double moved = 0.0;          ///< Discrete Fréchet distance input → result, drawing units.
-    double size = 0.0;           ///< Bounding-box diagonal of the input, drawing units.
-    int suggestion_count = 0;    ///< How many suggestions there were.
+    Suggestion chosen;         ///< The accepted (first) suggestion.
+    double moved = 0.0;        ///< Discrete Fréchet distance input → result, drawing units.
+    double size = 0.0;         ///< Bounding-box diagonal of the input, drawing units.
+    int suggestion_count = 0;  ///< How many suggestions there were.
 };
 
 /// A whole drawing beautified stroke by stroke.
@@ -88,8 +89,8 @@ std::vector<Path> split_at_corners(const Path& stroke, const BeautifyOptions& op
 
 /// The single-path search (§7.3) for one candidate against `context`: at most `max_results`
 /// unique leaves, best first, each with its chained likelihood.
-std::vector<std::pair<Candidate, double>> search(const Candidate& input,
-                                                 const RuleContext& context, int max_results);
+std::vector<std::pair<Candidate, double>> search(const Candidate& input, const RuleContext& context,
+                                                 int max_results);
 
 /// The rule context over the drawing's paths plus `extra` ones (earlier segments of the stroke).
 RuleContext make_context(const ResolvedDrawing& drawing, const std::vector<ResolvedPath>& extra,

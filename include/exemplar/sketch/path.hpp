@@ -31,20 +31,32 @@ struct Vec2 {
     Vec2& operator-=(Vec2 b) { return *this = *this - b; }
 };
 
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double dot(Vec2 a, Vec2 b) {
+    return a.x * b.x + a.y * b.y;
+}
+inline double cross(Vec2 a, Vec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 /// Length of a vector (plain square root: coordinates are far from overflow, and std::hypot is
 /// several times slower in the closest-point loops).
-inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
-inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
+inline double norm(Vec2 a) {
+    return std::sqrt(a.x * a.x + a.y * a.y);
+}
+inline double distance(Vec2 a, Vec2 b) {
+    return norm(a - b);
+}
 /// `a` scaled to length 1, or (0, 0) if `a` is (0, 0).
 inline Vec2 normalized(Vec2 a) {
     const double n = norm(a);
     return n > 0.0 ? a / n : Vec2{};
 }
 /// `a` rotated by +90° (in y-down coordinates: clockwise on screen).
-inline Vec2 perpendicular(Vec2 a) { return {-a.y, a.x}; }
-inline Vec2 lerp(Vec2 a, Vec2 b, double t) { return a + (b - a) * t; }
+inline Vec2 perpendicular(Vec2 a) {
+    return {-a.y, a.x};
+}
+inline Vec2 lerp(Vec2 a, Vec2 b, double t) {
+    return a + (b - a) * t;
+}
 /// Unsigned angle between two directions, in [0, π]; 0 if either is (0, 0).
 double angle_between(Vec2 a, Vec2 b);
 /// Unsigned angle between two undirected lines with these directions, in [0, π/2].

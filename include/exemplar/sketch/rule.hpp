@@ -84,7 +84,7 @@ struct Candidate {
     std::vector<std::string> declined;  ///< Rules whose suggestion was declined on this branch.
     std::optional<Attachment> start_attachment, end_attachment;
     std::optional<Instance> instance;
-    std::optional<Axis> axis;          ///< Reflection axis used, if any.
+    std::optional<Axis> axis;             ///< Reflection axis used, if any.
     std::optional<Vec2> rotation_center;  ///< Snapped centre of rotation, if any.
 };
 
@@ -93,8 +93,8 @@ struct ResolvedPath {
     Path path;
     ShapeKind kind = ShapeKind::Curve;
     ArcGeometry arc;
-    int stroke = -1;   ///< Stroke (drawing order) this path belongs to.
-    int segment = 0;   ///< Segment within a multi-segment stroke.
+    int stroke = -1;  ///< Stroke (drawing order) this path belongs to.
+    int segment = 0;  ///< Segment within a multi-segment stroke.
     /// Used by the rules on geometry (snapping, lines, arcs, offsets): every segment.
     bool geometric = true;
     /// Used by the rules on copies (identity, transformation, reflection, step): single-segment
@@ -104,11 +104,11 @@ struct ResolvedPath {
     std::vector<Vec2> simplified;  ///< `dense` after Ramer–Douglas–Peucker (ε = 4 view px).
     std::vector<Vec2> match;       ///< `match_samples` points equally spaced (path matching).
     double length = 0.0;
-    Box box;                  ///< Bounding box of `dense` (quick rejection in the rules).
-    int template_path = -1;   ///< Its template (itself if it is an original).
-    Affine from_template;     ///< Template → this.
+    Box box;                     ///< Bounding box of `dense` (quick rejection in the rules).
+    int template_path = -1;      ///< Its template (itself if it is an original).
+    Affine from_template;        ///< Template → this.
     std::optional<Affine> step;  ///< Step transform (relative to the copy it snapped to).
-    int instances = 1;        ///< On a template: number of copies including itself.
+    int instances = 1;           ///< On a template: number of copies including itself.
 };
 
 /// Parameters of one rule: the tolerance at which its likelihood falls to 0 (units per rule), and
@@ -132,7 +132,7 @@ struct BeautifyOptions {
     /// End segments are dropped as hooks only up to this length (view px); longer short ones are
     /// merged into their neighbour instead, so no drawn part is lost (ours).
     double hook_max_px = 8.0;
-    double center_search_px = 30.0;  ///< § 7.3.1: D, arc-centre search radius.
+    double center_search_px = 30.0;   ///< § 7.3.1: D, arc-centre search radius.
     double offset_percentile = 25.0;  ///< § 7.3.6: n, percentiles 50 ± n compared.
     double duplicate_px = 0.5;        ///< Suggestions closer than this are the same.
     /// How far (Fréchet distance, view px) a path may move to become a line, an arc or a copy
@@ -151,7 +151,7 @@ struct BeautifyOptions {
     RuleParams identity{0.1, 0.4};        ///< Fréchet distance / length after alignment.
     RuleParams reflection{0.1, 0.4};      ///< Fréchet distance / length to the exact mirror.
     RuleParams transform{1.0, 0.3};       ///< Scales the snap tolerances below.
-    RuleParams step{0.12, 0.4};           ///< Distance to the stepped copy / length.
+    RuleParams step{0.2, 0.4};            ///< Distance to the stepped copy / max(step, length).
     RuleParams offset{0.35, 0.4};         ///< Interquartile spread / median offset.
     double rotation_snap_rad = 0.09;      ///< Rotation snapping tolerance (5°).
     double scale_snap = 0.06;             ///< Scale snapping tolerance (relative).
@@ -163,7 +163,7 @@ struct BeautifyOptions {
 /// What the rules see: the resolved paths and the drawing-wide annotations.
 struct RuleContext {
     std::vector<const ResolvedPath*> paths;
-    std::vector<Axis> axes;             ///< Reflection axes used so far.
+    std::vector<Axis> axes;              ///< Reflection axes used so far.
     std::vector<Vec2> rotation_centers;  ///< Centres of rotation used so far.
     double pixels_per_unit = 1.0;
     const BeautifyOptions* options = nullptr;

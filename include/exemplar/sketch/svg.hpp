@@ -61,8 +61,8 @@ Status save_svg(const Drawing& canvas, const std::vector<SvgLayer>& layers,
 
 /// Renders layers on a white background to a PNG with Cairo: the canvas's viewBox (or the
 /// paths' bounds) scaled to `width_px` wide. Written atomically.
-Status save_png(const Drawing& canvas, const std::vector<SvgLayer>& layers,
-                const std::string& path, int width_px = 512);
+Status save_png(const Drawing& canvas, const std::vector<SvgLayer>& layers, const std::string& path,
+                int width_px = 512);
 
 /// Writes text to `path` atomically (temporary file + rename); IoError names the file.
 Status save_text(const std::string& text, const std::string& path);

@@ -17,8 +17,8 @@ namespace exemplar::sketch::rules {
 
 namespace {
 
-constexpr double kMinSpanRad = 0.52;       // 30°
-constexpr double kCircleGapRad = 0.45;     // spans within ~26° of 2π close into circles
+constexpr double kMinSpanRad = 0.52;    // 30°
+constexpr double kCircleGapRad = 0.45;  // spans within ~26° of 2π close into circles
 
 class ArcRule final : public Rule {
 public:
@@ -55,7 +55,10 @@ public:
                         circle ? std::copysign(2 * std::numbers::pi, sweep) : sweep};
         if (!circle && !constrain_to_fixed_ends(input, arc)) return {};
 
-        const Path shape = arc_path(arc.center, arc.radius, arc.start_angle_rad, arc.sweep_rad);
+        // Compared over the span that was drawn (a nearly closed stroke against the full circle
+        // would count its gap as error).
+        const Path shape =
+            arc_path(arc.center, arc.radius, arc.start_angle_rad, circle ? sweep : arc.sweep_rad);
         const double frechet = discrete_frechet(sample_path(shape, n), pts);
         const double likelihood =
             std::min(falloff(frechet / length, params.tolerance),
@@ -67,7 +70,10 @@ public:
             if (input.fixed.end) c.path.segments.back().p3 = input.path.end();
         }
         const std::string what = circle ? "circle" : "arc";
-        Relation r{name(), what, {}, likelihood,
+        Relation r{name(),
+                   what,
+                   {},
+                   likelihood,
                    "fitted a " + what + std::string(" (radius ") + fixed1(context.px(arc.radius)) +
                        std::string(" px, span ") + degrees(std::abs(arc.sweep_rad)) + "°)"};
         return {{with_relation(std::move(c), std::move(r)), likelihood}};
@@ -93,7 +99,8 @@ private:
             const double ea = std::atan2(e.y - arc.center.y, e.x - arc.center.x);
             double sweep = wrap_angle(ea - sa);
             // Keep the fitted direction and roughly the fitted span (small or large arc).
-            if (sweep * arc.sweep_rad < 0) sweep += sweep < 0 ? 2 * std::numbers::pi : -2 * std::numbers::pi;
+            if (sweep * arc.sweep_rad < 0)
+                sweep += sweep < 0 ? 2 * std::numbers::pi : -2 * std::numbers::pi;
             arc.sweep_rad = sweep;
             arc.start_angle_rad = sa;
         } else if (input.fixed.start) {
@@ -108,6 +115,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_arc_rule() { return std::make_unique<ArcRule>(); }
+std::unique_ptr<Rule> make_arc_rule() {
+    return std::make_unique<ArcRule>();
+}
 
 }  // namespace exemplar::sketch::rules

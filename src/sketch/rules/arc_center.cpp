@@ -52,7 +52,8 @@ public:
             }
         }
         for (std::size_t k = 0; k < context.rotation_centers.size(); ++k) {
-            targets.push_back({context.rotation_centers[k], -1, std::string("rotation centre ") + std::to_string(k)});
+            targets.push_back({context.rotation_centers[k], -1,
+                               std::string("rotation centre ") + std::to_string(k)});
         }
         for (const Target& t : targets) {
             const double d = context.px(distance(t.point, arc.center));
@@ -63,15 +64,17 @@ public:
             if (!c) continue;
             // The refitted arc must stay close to the drawn one.
             const double moved_px = context.px(discrete_frechet(samples(input, n), samples(*c, n)));
-            likelihood = std::min(likelihood, falloff(moved_px, context.options->shape_tolerance_px));
+            likelihood =
+                std::min(likelihood, falloff(moved_px, context.options->shape_tolerance_px));
             if (likelihood < context.options->arc_center.threshold) continue;
             c->fixed.center = true;
             const int stroke = stroke_of(context, t.path);
-            Relation r{name(), std::string("center:") + std::to_string(t.path) + t.what,
-                       t.path >= 0 ? std::vector<int>{stroke} : std::vector<int>{}, likelihood,
-                       "centre snapped to the " + t.what +
-                           (t.path >= 0 ? std::string(" of stroke ") + std::to_string(stroke) : "") +
-                           std::string(" (moved ") + fixed1(d) + " px)"};
+            Relation r{
+                name(), std::string("center:") + std::to_string(t.path) + t.what,
+                t.path >= 0 ? std::vector<int>{stroke} : std::vector<int>{}, likelihood,
+                "centre snapped to the " + t.what +
+                    (t.path >= 0 ? std::string(" of stroke ") + std::to_string(stroke) : "") +
+                    std::string(" (moved ") + fixed1(d) + " px)"};
             out.push_back({with_relation(std::move(*c), std::move(r)), likelihood});
         }
         keep_best(out, 3);
@@ -102,7 +105,8 @@ private:
         const double sa = std::atan2(s.y - center.y, s.x - center.x);
         const double ea = std::atan2(e.y - center.y, e.x - center.x);
         double sweep = wrap_angle(ea - sa);
-        if (sweep * input.arc.sweep_rad < 0) sweep += sweep < 0 ? 2 * std::numbers::pi : -2 * std::numbers::pi;
+        if (sweep * input.arc.sweep_rad < 0)
+            sweep += sweep < 0 ? 2 * std::numbers::pi : -2 * std::numbers::pi;
         arc.start_angle_rad = sa;
         arc.sweep_rad = sweep;
         Candidate c = as_arc(input, arc, false);
@@ -114,6 +118,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_arc_center_rule() { return std::make_unique<ArcCenterRule>(); }
+std::unique_ptr<Rule> make_arc_center_rule() {
+    return std::make_unique<ArcCenterRule>();
+}
 
 }  // namespace exemplar::sketch::rules

@@ -3,8 +3,8 @@
 // The endpoint is moved by a similarity about the other endpoint (rotation + scale, so the rest
 // of the stroke keeps its shape and the other end stays put), or by a translation when the
 // direction, length or transformation is fixed (or slid along its fixed direction when the other
-// end is fixed too and the target lies on that line). Paths are not joined (round caps hide the seam).
-// Fixes the endpoint and records what it is attached to (for end-tangent alignment).
+// end is fixed too and the target lies on that line). Paths are not joined (round caps hide the
+// seam). Fixes the endpoint and records what it is attached to (for end-tangent alignment).
 
 #include <cmath>
 
@@ -28,7 +28,8 @@ std::optional<Affine> endpoint_move(const Candidate& c, bool at_start, Vec2 targ
     if (!rigid) {
         const Vec2 u = p - other, v = target - other;
         if (norm(u) < 1e-9 || norm(v) < 1e-9) {
-            return other_fixed ? std::nullopt : std::optional<Affine>(Affine::translation(target - p));
+            return other_fixed ? std::nullopt
+                               : std::optional<Affine>(Affine::translation(target - p));
         }
         const double scale = norm(v) / norm(u);
         if (scale < 0.5 || scale > 2.0) return std::nullopt;
@@ -89,8 +90,10 @@ private:
                 c.end_attachment = Attachment{path, target, tangent, endpoint};
             }
             const int stroke = stroke_of(context, path);
-            Relation r{name(), "snap-" + which + std::string(":") + std::to_string(path) + where,
-                       {stroke}, likelihood,
+            Relation r{name(),
+                       "snap-" + which + std::string(":") + std::to_string(path) + where,
+                       {stroke},
+                       likelihood,
                        which + " snapped to " + (endpoint ? "an endpoint" : "a point") +
                            std::string(" of stroke ") + std::to_string(stroke) + " (moved " +
                            fixed1(context.px(distance(p, target))) + " px)"};
@@ -110,8 +113,8 @@ private:
                     const double d = distance(p, ends[k]);
                     if (d >= radius) continue;
                     near_end = true;
-                    propose(index, ends[k], tangents[k], true, falloff(context.px(d), params.tolerance),
-                            k == 0 ? ".s" : ".e");
+                    propose(index, ends[k], tangents[k], true,
+                            falloff(context.px(d), params.tolerance), k == 0 ? ".s" : ".e");
                 }
             }
             if (near_end) continue;
@@ -119,7 +122,8 @@ private:
             if (inner.distance >= radius) continue;
             propose(index, inner.point, inner.tangent, false,
                     kInnerPreference * falloff(context.px(inner.distance), params.tolerance),
-                    std::string("@") + std::to_string(static_cast<long>(std::lround(context.px(inner.arc_position)))));
+                    std::string("@") + std::to_string(static_cast<long>(
+                                           std::lround(context.px(inner.arc_position)))));
         }
         return out;
     }
@@ -127,6 +131,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_endpoint_rule() { return std::make_unique<EndpointRule>(); }
+std::unique_ptr<Rule> make_endpoint_rule() {
+    return std::make_unique<EndpointRule>();
+}
 
 }  // namespace exemplar::sketch::rules

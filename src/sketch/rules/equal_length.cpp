@@ -14,9 +14,7 @@ namespace {
 class EqualLengthRule final : public Rule {
 public:
     const char* name() const override { return "equal-length"; }
-    double threshold(const BeautifyOptions& o) const override {
-        return o.equal_length.threshold;
-    }
+    double threshold(const BeautifyOptions& o) const override { return o.equal_length.threshold; }
 
     std::vector<RuleOutput> apply(const Candidate& input,
                                   const RuleContext& context) const override {
@@ -48,9 +46,12 @@ public:
             // Scale along the line only: a similarity about the pivot with no rotation.
             Candidate c = moved(input, Affine::similarity(0.0, scale, *center));
             c.fixed.length = true;
-            Relation r{name(), std::string("equal-length:") + std::to_string(i), {target.stroke}, likelihood,
-                       std::string("as long as stroke ") + std::to_string(target.stroke) + " (was " +
-                           fixed1(100 * ratio_error) + "% off)"};
+            Relation r{name(),
+                       std::string("equal-length:") + std::to_string(i),
+                       {target.stroke},
+                       likelihood,
+                       std::string("as long as stroke ") + std::to_string(target.stroke) +
+                           " (was " + fixed1(100 * ratio_error) + "% off)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         keep_best(out, 3);
@@ -60,6 +61,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_equal_length_rule() { return std::make_unique<EqualLengthRule>(); }
+std::unique_ptr<Rule> make_equal_length_rule() {
+    return std::make_unique<EqualLengthRule>();
+}
 
 }  // namespace exemplar::sketch::rules

@@ -65,10 +65,9 @@ public:
                     best_reversed = reverse;
                 }
             }
-            const double raw =
-                std::min(falloff(best_error, context.options->identity.tolerance),
-                         falloff(context.px(best_error * length),
-                                 context.options->shape_tolerance_px));
+            const double raw = std::min(
+                falloff(best_error, context.options->identity.tolerance),
+                falloff(context.px(best_error * length), context.options->shape_tolerance_px));
             const double likelihood = repeat_boost(raw, t.instances);
             if (likelihood < context.options->identity.threshold) continue;
 
@@ -86,12 +85,15 @@ public:
             const int index = static_cast<int>(i);
             c.instance = Instance{index, best, index, best, best_reversed};
             const SimilarityParts parts = decompose_similarity(best);
-            Relation r{name(), std::string("identity:") + std::to_string(i), {t.stroke}, likelihood,
+            Relation r{name(),
+                       std::string("identity:") + std::to_string(i),
+                       {t.stroke},
+                       likelihood,
                        std::string("copy of stroke ") + std::to_string(t.stroke) +
                            (parts.reflected ? " (mirrored)" : "") + " (scale " +
                            fixed1(100 * parts.scale) + "%, rotation " +
-                           degrees(parts.rotation_rad) + "°, off by " +
-                           fixed1(100 * best_error) + "% of the length)"};
+                           degrees(parts.rotation_rad) + "°, off by " + fixed1(100 * best_error) +
+                           "% of the length)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         keep_best(out, 3);
@@ -101,6 +103,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_identity_rule() { return std::make_unique<IdentityRule>(); }
+std::unique_ptr<Rule> make_identity_rule() {
+    return std::make_unique<IdentityRule>();
+}
 
 }  // namespace exemplar::sketch::rules

@@ -28,18 +28,23 @@ public:
         if (likelihood < params.threshold) return {};
         Candidate c = as_line(input, input.path.start(), input.path.end());
         const int n = context.options->match_samples;
-        const double moved_px =
-            context.px(discrete_frechet(samples(input, n), samples(c, n)));
+        const double moved_px = context.px(discrete_frechet(samples(input, n), samples(c, n)));
         likelihood = std::min(likelihood, falloff(moved_px, context.options->shape_tolerance_px));
         if (likelihood < params.threshold) return {};
-        Relation r{name(), "line", {}, likelihood,
-                   std::string("straightened to a line (chord/length ") + fixed1(100 * ratio) + "%)"};
+        Relation r{
+            name(),
+            "line",
+            {},
+            likelihood,
+            std::string("straightened to a line (chord/length ") + fixed1(100 * ratio) + "%)"};
         return {{with_relation(std::move(c), std::move(r)), likelihood}};
     }
 };
 
 }  // namespace
 
-std::unique_ptr<Rule> make_line_rule() { return std::make_unique<LineRule>(); }
+std::unique_ptr<Rule> make_line_rule() {
+    return std::make_unique<LineRule>();
+}
 
 }  // namespace exemplar::sketch::rules

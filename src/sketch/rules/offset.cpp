@@ -23,7 +23,7 @@ namespace {
 constexpr double kHitCone = 0.52;        // 30°
 constexpr double kMinHitFraction = 0.6;  // of the samples
 constexpr double kMinOffsetPx = 3.0;
-constexpr double kMaxOffsetPx = 40.0;    // farther references are not offsets of this stroke
+constexpr double kMaxOffsetPx = 40.0;  // farther references are not offsets of this stroke
 
 class OffsetRule final : public Rule {
 public:
@@ -50,8 +50,8 @@ public:
             if (!ref.box.near(box, max_offset)) continue;
             std::vector<double> signed_distances;
             for (std::size_t k = 0; k < pts.size(); ++k) {
-                const Vec2 tangent = normalized(pts[std::min(k + 1, pts.size() - 1)] -
-                                                pts[k == 0 ? 0 : k - 1]);
+                const Vec2 tangent =
+                    normalized(pts[std::min(k + 1, pts.size() - 1)] - pts[k == 0 ? 0 : k - 1]);
                 const Vec2 normal = perpendicular(tangent);
                 if (ref.box.distance_to(pts[k]) > max_offset) continue;
                 const ClosestPoint cp = closest_point(ref.dense, pts[k]);
@@ -82,7 +82,10 @@ public:
             likelihood = std::min(likelihood, falloff(moved_px, o.shape_tolerance_px));
             if (likelihood < o.offset.threshold) continue;
             c.fixed.shape = true;
-            Relation r{name(), std::string("offset:") + std::to_string(i), {ref.stroke}, likelihood,
+            Relation r{name(),
+                       std::string("offset:") + std::to_string(i),
+                       {ref.stroke},
+                       likelihood,
                        std::string("offset of stroke ") + std::to_string(ref.stroke) + " by " +
                            fixed1(context.px(std::abs(median))) + " px"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
@@ -128,6 +131,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_offset_rule() { return std::make_unique<OffsetRule>(); }
+std::unique_ptr<Rule> make_offset_rule() {
+    return std::make_unique<OffsetRule>();
+}
 
 }  // namespace exemplar::sketch::rules

@@ -21,6 +21,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_parallel_rule() { return std::make_unique<ParallelRule>(); }
+std::unique_ptr<Rule> make_parallel_rule() {
+    return std::make_unique<ParallelRule>();
+}
 
 }  // namespace exemplar::sketch::rules

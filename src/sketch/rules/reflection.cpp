@@ -4,7 +4,8 @@
 // of C's centroid and its image). C is reflected exactly across that axis, across the axes used
 // before (boosted by 1 − (1 − s)^ln i for an axis used i times) and across resolved line segments
 // when the axis is close to them. Likelihood from how far the candidate moves, relative to its
-// length (and capped by `shape_tolerance_px`, ours). Fixes the transformation; the axis is recorded for later strokes.
+// length (and capped by `shape_tolerance_px`, ours). Fixes the transformation; the axis is recorded
+// for later strokes.
 
 #include <algorithm>
 #include <cmath>
@@ -27,15 +28,13 @@ public:
     std::vector<RuleOutput> apply(const Candidate& input,
                                   const RuleContext& context) const override {
         std::vector<RuleOutput> out;
-        if (!input.instance || input.fixed.transform || input.fixed.start || input.fixed.end) {
-            return out;
-        }
+        if (!adjustable_copy(input)) return out;
         const BeautifyOptions& o = *context.options;
         const int n = o.match_samples;
         const double length = polyline_length(samples(input, n));
         for (int j : copies_of(context, input.instance->template_path)) {
             const ResolvedPath& copy = *context.paths[static_cast<std::size_t>(j)];
-            const Affine rel = compose(input.instance->from_template, copy.from_template.inverse());
+            const Affine rel = relative_to(input, copy);
             const SimilarityParts parts = decompose_similarity(rel);
             if (!parts.reflected || std::abs(parts.scale - 1.0) > kMaxScaleError) continue;
             const double axis_angle = parts.rotation_rad / 2.0;
@@ -68,7 +67,8 @@ public:
                 const Axis line{p.path.start(), normalized(p.path.end() - p.path.start()), 0};
                 const double s = near_axis(line);
                 if (s > 0.0) {
-                    options.push_back({line, s, std::string("the line of stroke ") + std::to_string(p.stroke)});
+                    options.push_back(
+                        {line, s, std::string("the line of stroke ") + std::to_string(p.stroke)});
                 }
             }
             for (const Option& option : options) {
@@ -85,13 +85,18 @@ public:
                 c.instance->relative = mirror;
                 c.fixed.transform = true;
                 c.axis = option.axis;
-                const double axis_deg = std::fmod(
-                    std::atan2(option.axis.direction.y, option.axis.direction.x) * 180 /
-                            std::numbers::pi + 360.0, 180.0);
-                Relation r{name(), std::string("reflection:") + std::to_string(j) + ":" + option.what,
-                           {copy.stroke}, likelihood,
-                           std::string("mirror of stroke ") + std::to_string(copy.stroke) + " across " +
-                               option.what + std::string(" (axis at ") + fixed1(axis_deg) + "°)"};
+                const double axis_deg =
+                    std::fmod(std::atan2(option.axis.direction.y, option.axis.direction.x) * 180 /
+                                      std::numbers::pi +
+                                  360.0,
+                              180.0);
+                Relation r{name(),
+                           std::string("reflection:") + std::to_string(j) + ":" + option.what,
+                           {copy.stroke},
+                           likelihood,
+                           std::string("mirror of stroke ") + std::to_string(copy.stroke) +
+                               " across " + option.what + std::string(" (axis at ") +
+                               fixed1(axis_deg) + "°)"};
                 out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
             }
         }
@@ -102,6 +107,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_reflection_rule() { return std::make_unique<ReflectionRule>(); }
+std::unique_ptr<Rule> make_reflection_rule() {
+    return std::make_unique<ReflectionRule>();
+}
 
 }  // namespace exemplar::sketch::rules

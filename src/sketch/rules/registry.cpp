@@ -1,8 +1,8 @@
 // The rule set of Fig. 7.3 in its fixed evaluation order.
 
-#include "rules.hpp"
-
 #include <string>
+
+#include "rules.hpp"
 
 namespace exemplar::sketch {
 

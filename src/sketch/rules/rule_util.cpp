@@ -51,9 +51,9 @@ Candidate moved(const Candidate& c, const Affine& m) {
         out.arc.center = m.apply(c.arc.center);
         out.arc.radius = c.arc.radius * parts.scale;
         // The start point's new angle; the sweep flips with a reflection.
-        const Vec2 start = c.arc.center + Vec2{std::cos(c.arc.start_angle_rad),
-                                               std::sin(c.arc.start_angle_rad)} *
-                                              c.arc.radius;
+        const Vec2 start =
+            c.arc.center +
+            Vec2{std::cos(c.arc.start_angle_rad), std::sin(c.arc.start_angle_rad)} * c.arc.radius;
         const Vec2 moved_start = m.apply(start) - out.arc.center;
         out.arc.start_angle_rad = std::atan2(moved_start.y, moved_start.x);
         out.arc.sweep_rad = parts.reflected ? -c.arc.sweep_rad : c.arc.sweep_rad;
@@ -119,10 +119,9 @@ double repeat_boost(double s, int i) {
 }
 
 void keep_best(std::vector<RuleOutput>& outputs, std::size_t keep) {
-    std::stable_sort(outputs.begin(), outputs.end(),
-                     [](const RuleOutput& a, const RuleOutput& b) {
-                         return a.likelihood > b.likelihood;
-                     });
+    std::stable_sort(outputs.begin(), outputs.end(), [](const RuleOutput& a, const RuleOutput& b) {
+        return a.likelihood > b.likelihood;
+    });
     if (outputs.size() > keep) outputs.resize(keep);
 }
 
@@ -168,9 +167,9 @@ std::vector<RuleOutput> snap_line_angle(const Candidate& input, const RuleContex
                                         const char* rule_name) {
     std::vector<RuleOutput> out;
     // Lines, and not yet classified paths through their chords (§7.3.1).
-    const bool line_like = input.kind == ShapeKind::Line ||
-                           (input.kind == ShapeKind::Curve && !input.fixed.shape &&
-                            !input.path.closed && straightness(input.path) >= 0.9);
+    const bool line_like =
+        input.kind == ShapeKind::Line || (input.kind == ShapeKind::Curve && !input.fixed.shape &&
+                                          !input.path.closed && straightness(input.path) >= 0.9);
     if (!line_like || input.fixed.direction) return out;
     const std::optional<Vec2> center = pivot(input);
     if (!center) return out;
@@ -195,9 +194,11 @@ std::vector<RuleOutput> snap_line_angle(const Candidate& input, const RuleContex
         }
         if (falloff(best_error, params.tolerance) < params.threshold) continue;
         // Nearby lines are slightly preferred (§7.3.1).
-        const ClosestPoint near = closest_point(target.simplified, (input.path.start() + input.path.end()) / 2.0);
-        const double proximity = 1.0 - 0.15 * std::min(1.0, context.px(near.distance) /
-                                                                std::max(1.0, 2 * context.px(length)));
+        const ClosestPoint near =
+            closest_point(target.simplified, (input.path.start() + input.path.end()) / 2.0);
+        const double proximity =
+            1.0 -
+            0.15 * std::min(1.0, context.px(near.distance) / std::max(1.0, 2 * context.px(length)));
         const double likelihood = falloff(best_error, params.tolerance) * proximity;
         if (likelihood < params.threshold) continue;
         const double new_angle = std::atan2(dir.y, dir.x) + best_rotation;
@@ -211,8 +212,9 @@ std::vector<RuleOutput> snap_line_angle(const Candidate& input, const RuleContex
                    std::string(rule_name) + std::string(":") + std::to_string(i),
                    {target.stroke},
                    likelihood,
-                   std::string(rule_name) + std::string(" to stroke ") + std::to_string(target.stroke) +
-                       std::string(" (was ") + degrees(best_error) + "° off)"};
+                   std::string(rule_name) + std::string(" to stroke ") +
+                       std::to_string(target.stroke) + std::string(" (was ") + degrees(best_error) +
+                       "° off)"};
         out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
     }
     keep_best(out, 3);

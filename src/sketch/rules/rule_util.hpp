@@ -24,7 +24,9 @@ Candidate moved(const Candidate& c, const Affine& m);
 Candidate with_relation(Candidate c, Relation relation);
 
 /// Unit chord direction and its length.
-inline Vec2 chord(const Candidate& c) { return c.path.end() - c.path.start(); }
+inline Vec2 chord(const Candidate& c) {
+    return c.path.end() - c.path.start();
+}
 
 /// chord length / arc length in [0, 1] (1 for a straight path).
 double straightness(const Path& path);
@@ -67,11 +69,24 @@ void keep_best(std::vector<RuleOutput>& outputs, std::size_t keep);
 /// "12.3" with one decimal.
 std::string fixed1(double v);
 /// Degrees from radians, one decimal.
-inline std::string degrees(double rad) { return fixed1(rad * 180.0 / 3.14159265358979323846); }
+inline std::string degrees(double rad) {
+    return fixed1(rad * 180.0 / 3.14159265358979323846);
+}
 
 /// Lines and arcs of the copies-rules: the resolved paths that are copies of `template_path`
 /// (including the template itself).
 std::vector<int> copies_of(const RuleContext& context, int template_path);
+
+/// True if the candidate is a copy whose transformation may still be adjusted (the
+/// transformation, reflection and step rules): a copy, transformation and endpoints free.
+inline bool adjustable_copy(const Candidate& c) {
+    return c.instance && !c.fixed.transform && !c.fixed.start && !c.fixed.end;
+}
+
+/// The similarity carrying resolved copy `copy` onto the candidate (both copies of one template).
+inline Affine relative_to(const Candidate& c, const ResolvedPath& copy) {
+    return compose(c.instance->from_template, copy.from_template.inverse());
+}
 
 /// Snaps an angle to the nearest multiple of 2π/k (k = 1..12); returns the snapped angle and
 /// its distance.

@@ -53,19 +53,24 @@ public:
             if (std::abs(rotation) > std::numbers::pi / 2) {
                 rotation = wrap_angle(rotation + std::numbers::pi);
             }
-            const double likelihood = falloff(std::abs(rotation), context.options->tangent.tolerance);
+            const double likelihood =
+                falloff(std::abs(rotation), context.options->tangent.tolerance);
             if (likelihood < context.options->tangent.threshold) continue;
             const Vec2 center = at_start ? input.path.start() : input.path.end();
-            Candidate c = input.kind == ShapeKind::Curve
-                              ? with_end_handle(input, at_start,
-                                                Affine::rotation(rotation).apply_vector(own))
-                              : moved(input, Affine::rotation(rotation, center));
+            Candidate c =
+                input.kind == ShapeKind::Curve
+                    ? with_end_handle(input, at_start, Affine::rotation(rotation).apply_vector(own))
+                    : moved(input, Affine::rotation(rotation, center));
             c.fixed.direction = true;
             const std::string which = at_start ? "start" : "end";
             const int stroke = stroke_of(context, a->path);
-            Relation r{name(), "tangent-" + which, {stroke}, likelihood,
-                       which + std::string(" tangent aligned with stroke ") + std::to_string(stroke) +
-                           std::string(" (was ") + degrees(std::abs(rotation)) + "° off)"};
+            Relation r{name(),
+                       "tangent-" + which,
+                       {stroke},
+                       likelihood,
+                       which + std::string(" tangent aligned with stroke ") +
+                           std::to_string(stroke) + std::string(" (was ") +
+                           degrees(std::abs(rotation)) + "° off)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         return out;
@@ -74,6 +79,8 @@ public:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_tangent_rule() { return std::make_unique<TangentRule>(); }
+std::unique_ptr<Rule> make_tangent_rule() {
+    return std::make_unique<TangentRule>();
+}
 
 }  // namespace exemplar::sketch::rules

@@ -26,14 +26,12 @@ public:
     std::vector<RuleOutput> apply(const Candidate& input,
                                   const RuleContext& context) const override {
         std::vector<RuleOutput> out;
-        if (!input.instance || input.fixed.transform || input.fixed.start || input.fixed.end) {
-            return out;
-        }
+        if (!adjustable_copy(input)) return out;
         const BeautifyOptions& o = *context.options;
         const double slack = o.transform.tolerance;
         for (int j : copies_of(context, input.instance->template_path)) {
             const ResolvedPath& copy = *context.paths[static_cast<std::size_t>(j)];
-            const Affine rel = compose(input.instance->from_template, copy.from_template.inverse());
+            const Affine rel = relative_to(input, copy);
             const SimilarityParts parts = decompose_similarity(rel);
             if (parts.reflected) continue;
             std::vector<double> scores;
@@ -98,7 +96,10 @@ public:
             c.instance->relative = adjusted;
             c.fixed.transform = true;
             if (rotation_center) c.rotation_center = rotation_center;
-            Relation r{name(), std::string("transform:") + std::to_string(j), {copy.stroke}, likelihood,
+            Relation r{name(),
+                       std::string("transform:") + std::to_string(j),
+                       {copy.stroke},
+                       likelihood,
                        std::string("transformation from stroke ") + std::to_string(copy.stroke) +
                            " snapped:" + detail};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
@@ -139,6 +140,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Rule> make_transform_rule() { return std::make_unique<TransformRule>(); }
+std::unique_ptr<Rule> make_transform_rule() {
+    return std::make_unique<TransformRule>();
+}
 
 }  // namespace exemplar::sketch::rules
