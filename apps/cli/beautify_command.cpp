@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "exemplar/sketch/beautify.hpp"
+#include "exemplar/sketch/fit.hpp"
 #include "exemplar/sketch/svg.hpp"
 #include "output_files.hpp"
 
@@ -43,6 +44,25 @@ std::string stroke_name(const Drawing& d, std::size_t i) {
     std::string name = "stroke " + std::to_string(i);
     if (i < d.ids.size() && !d.ids[i].empty()) name += " (id \"" + d.ids[i] + "\")";
     return name;
+}
+
+// A stroke made only of straight pieces (3 or more: pen samples) refitted as a smooth path.
+Path smoothed(const Path& path, double tolerance) {
+    if (path.segments.size() < 3) return path;
+    std::vector<sketch::Vec2> samples{path.start()};
+    for (const sketch::Cubic& c : path.segments) {
+        const sketch::Cubic line = sketch::line_cubic(c.p0, c.p3);
+        if (sketch::distance(c.c1, line.c1) > 1e-9 || sketch::distance(c.c2, line.c2) > 1e-9) {
+            return path;  // already has curves
+        }
+        samples.push_back(c.p3);
+    }
+    sketch::FitOptions fit;
+    fit.tolerance = tolerance;
+    Path smooth = sketch::fit_path(samples, fit);
+    if (smooth.empty()) return path;
+    smooth.closed = smooth.closed || path.closed;
+    return smooth;
 }
 
 // The drawing's canvas: its viewBox, or its strokes' bounds.
@@ -109,6 +129,10 @@ BeautifyCommand::BeautifyCommand(CLI::App& parent) {
                      "Before/after picture (.png): the input in grey under the result in black");
     app_->add_option("--max-suggestions", max_suggestions_,
                      "Suggestions per stroke, 1..100 (default 10, the paper's N)");
+    app_->add_option("--fit", fit_px_,
+                     "Refit strokes drawn as polylines (pen samples: 3 or more straight pieces) "
+                     "as smooth Bezier paths within this many view px before beautifying, "
+                     "0..100; 0 keeps them as drawn (default 0)");
     app_->add_flag("--quiet,-q", quiet_, "Do not print the output paths");
 }
 
@@ -118,6 +142,10 @@ Status BeautifyCommand::run(const Streams& streams) const {
     options.max_suggestions = max_suggestions_;
     if (Status s = sketch::validate(options); !s.is_ok())
         return invalid_argument("--" + s.message());
+    if (!(std::isfinite(fit_px_) && fit_px_ >= 0.0 && fit_px_ <= 100.0)) {
+        return invalid_argument("--fit: " + std::to_string(fit_px_) +
+                                " is invalid (must be 0..100 view px)");
+    }
     if (lowercase_extension(output_) != ".svg") {
         return invalid_argument("--output " + output_ + ": must be an .svg file");
     }
@@ -151,6 +179,9 @@ Status BeautifyCommand::run(const Streams& streams) const {
             return invalid_argument(input_ + ": " + stroke_name(*drawing, i) +
                                     " is degenerate (a single point)");
         }
+    }
+    if (fit_px_ > 0.0) {
+        for (Path& p : drawing->paths) p = smoothed(p, fit_px_ / drawing->pixels_per_unit);
     }
     auto result = sketch::replay(drawing->paths, drawing->pixels_per_unit, options);
     if (!result.ok())

@@ -166,6 +166,7 @@ private:
     CLI::App* app_ = nullptr;
     std::string input_, output_, report_, suggestions_, preview_;
     int max_suggestions_ = 10;
+    double fit_px_ = 0.0;
     bool quiet_ = false;
 };
 

@@ -79,6 +79,24 @@ TEST_F(Beautify, SuggestionsAsSvgAndTheSameResultEveryRun) {
     EXPECT_GT(panels->paths.size(), 1u);
 }
 
+TEST_F(Beautify, FitRefitsPenPolylinesAsSmoothPaths) {
+    const std::string house = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/sketch/house.svg";
+    ASSERT_EQ(run({"beautify", house, "-o", path("raw.svg"), "-q"}).code, 0);
+    ASSERT_EQ(run({"beautify", house, "-o", path("fit.svg"), "--fit", "1", "-q"}).code, 0);
+    auto raw = sketch::load_svg(path("raw.svg"));
+    auto fit = sketch::load_svg(path("fit.svg"));
+    ASSERT_TRUE(raw.ok() && fit.ok());
+    ASSERT_EQ(raw->paths.size(), fit->paths.size());
+    // The free-form first bird is kept as drawn (a polyline of many pieces) unless refitted.
+    const std::size_t bird = 8;
+    ASSERT_EQ(raw->ids[bird], "bird-1");
+    EXPECT_GT(raw->paths[bird].segments.size(), 20u);
+    EXPECT_LT(fit->paths[bird].segments.size(), 8u);
+    EXPECT_LT(sketch::discrete_frechet(sketch::sample_path(raw->paths[bird], 64),
+                                       sketch::sample_path(fit->paths[bird], 64)),
+              1.5);
+}
+
 TEST_F(Beautify, BadInputsGiveOneLineErrors) {
     write_text("empty.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"><g/></svg>");
     write_text("dot.svg",
@@ -93,6 +111,7 @@ TEST_F(Beautify, BadInputsGiveOneLineErrors) {
     fails({"beautify", path("empty.svg")}, 1, "empty.svg: the drawing has no strokes");
     fails({"beautify", path("dot.svg")}, 1,
           "dot.svg: stroke 1 (id \"dot\") is degenerate (a single point)");
+    fails({"beautify", path("one.svg"), "--fit", "-1"}, 1, "--fit: -1.000000 is invalid");
     fails({"beautify", path("one.svg"), "--max-suggestions", "0"}, 1,
           "--max-suggestions: 0 is invalid (must be 1..100)");
     expect_failure_as_is({"beautify", path("one.svg"), "-o", path("out.png")}, 1,
