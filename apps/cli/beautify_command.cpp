@@ -22,16 +22,23 @@ using sketch::Drawing;
 using sketch::Path;
 using sketch::SvgLayer;
 
-json relation_json(const sketch::Relation& r) {
-    return {{"rule", r.rule},
-            {"strokes", r.strokes},
-            {"likelihood", r.likelihood},
-            {"detail", r.detail}};
+// The relations of a suggestion, each with the segment it applies to (0 for one-piece strokes).
+json relations_json(const sketch::Suggestion& s) {
+    json relations = json::array();
+    for (std::size_t k = 0; k < s.segments.size(); ++k) {
+        for (const sketch::Relation& r : s.segments[k].relations) {
+            relations.push_back({{"rule", r.rule},
+                                 {"segment", k},
+                                 {"strokes", r.strokes},
+                                 {"likelihood", r.likelihood},
+                                 {"detail", r.detail}});
+        }
+    }
+    return relations;
 }
 
 json suggestion_json(const sketch::Suggestion& s, int rank) {
-    json relations = json::array();
-    for (const sketch::Relation& r : s.relations()) relations.push_back(relation_json(r));
+    const json relations = relations_json(s);
     return {{"rank", rank},
             {"likelihood", s.likelihood},
             {"original", s.original},
@@ -201,11 +208,8 @@ Status BeautifyCommand::run(const Streams& streams) const {
         const double ppu = drawing->pixels_per_unit;
         for (std::size_t i = 0; i < result->strokes.size(); ++i) {
             const sketch::StrokeResult& s = result->strokes[i];
-            json relations = json::array();
-            for (const sketch::Relation& r : s.chosen.relations()) {
-                relations.push_back(relation_json(r));
-                ++totals[r.rule];
-            }
+            const json relations = relations_json(s.chosen);
+            for (const sketch::Relation& r : s.chosen.relations()) ++totals[r.rule];
             std::string kind = s.chosen.segments.size() == 1
                                    ? sketch::to_string(s.chosen.segments[0].kind)
                                    : "multi-segment";

@@ -52,6 +52,7 @@ RuleContext make_context(const ResolvedDrawing& drawing, const std::vector<Resol
     context.axes = drawing.axes;
     context.rotation_centers = drawing.rotation_centers;
     context.pixels_per_unit = drawing.pixels_per_unit;
+    context.current_stroke = drawing.strokes;
     context.options = &options;
     return context;
 }

@@ -166,6 +166,8 @@ struct RuleContext {
     std::vector<Axis> axes;              ///< Reflection axes used so far.
     std::vector<Vec2> rotation_centers;  ///< Centres of rotation used so far.
     double pixels_per_unit = 1.0;
+    int current_stroke =
+        -1;  ///< The stroke being beautified (its earlier segments are in `paths`).
     const BeautifyOptions* options = nullptr;
 
     double px(double units) const { return units * pixels_per_unit; }

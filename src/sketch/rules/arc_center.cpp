@@ -69,12 +69,11 @@ public:
             if (likelihood < context.options->arc_center.threshold) continue;
             c->fixed.center = true;
             const int stroke = stroke_of(context, t.path);
-            Relation r{
-                name(), std::string("center:") + std::to_string(t.path) + t.what,
-                t.path >= 0 ? std::vector<int>{stroke} : std::vector<int>{}, likelihood,
-                "centre snapped to the " + t.what +
-                    (t.path >= 0 ? std::string(" of stroke ") + std::to_string(stroke) : "") +
-                    std::string(" (moved ") + fixed1(d) + " px)"};
+            Relation r{name(), std::string("center:") + std::to_string(t.path) + t.what,
+                       t.path >= 0 ? std::vector<int>{stroke} : std::vector<int>{}, likelihood,
+                       "centre snapped to the " + t.what +
+                           (t.path >= 0 ? " of " + stroke_name(context, t.path) : std::string()) +
+                           std::string(" (moved ") + fixed1(d) + " px)"};
             out.push_back({with_relation(std::move(*c), std::move(r)), likelihood});
         }
         keep_best(out, 3);

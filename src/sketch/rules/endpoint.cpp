@@ -94,8 +94,8 @@ private:
                        "snap-" + which + std::string(":") + std::to_string(path) + where,
                        {stroke},
                        likelihood,
-                       which + " snapped to " + (endpoint ? "an endpoint" : "a point") +
-                           std::string(" of stroke ") + std::to_string(stroke) + " (moved " +
+                       which + " snapped to " + (endpoint ? "an endpoint" : "a point") + " of " +
+                           stroke_name(context, path) + " (moved " +
                            fixed1(context.px(distance(p, target))) + " px)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         };

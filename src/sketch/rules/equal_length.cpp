@@ -50,8 +50,8 @@ public:
                        std::string("equal-length:") + std::to_string(i),
                        {target.stroke},
                        likelihood,
-                       std::string("as long as stroke ") + std::to_string(target.stroke) +
-                           " (was " + fixed1(100 * ratio_error) + "% off)"};
+                       "as long as " + stroke_name(context, static_cast<int>(i)) + " (was " +
+                           fixed1(100 * ratio_error) + "% off)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         keep_best(out, 3);

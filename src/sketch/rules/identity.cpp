@@ -89,7 +89,7 @@ public:
                        std::string("identity:") + std::to_string(i),
                        {t.stroke},
                        likelihood,
-                       std::string("copy of stroke ") + std::to_string(t.stroke) +
+                       "copy of " + stroke_name(context, static_cast<int>(i)) +
                            (parts.reflected ? " (mirrored)" : "") + " (scale " +
                            fixed1(100 * parts.scale) + "%, rotation " +
                            degrees(parts.rotation_rad) + "°, off by " + fixed1(100 * best_error) +

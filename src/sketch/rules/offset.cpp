@@ -86,7 +86,7 @@ public:
                        std::string("offset:") + std::to_string(i),
                        {ref.stroke},
                        likelihood,
-                       std::string("offset of stroke ") + std::to_string(ref.stroke) + " by " +
+                       "offset of " + stroke_name(context, static_cast<int>(i)) + " by " +
                            fixed1(context.px(std::abs(median))) + " px"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }

@@ -68,7 +68,7 @@ public:
                 const double s = near_axis(line);
                 if (s > 0.0) {
                     options.push_back(
-                        {line, s, std::string("the line of stroke ") + std::to_string(p.stroke)});
+                        {line, s, "the line of " + stroke_name(context, static_cast<int>(i))});
                 }
             }
             for (const Option& option : options) {
@@ -94,9 +94,8 @@ public:
                            std::string("reflection:") + std::to_string(j) + ":" + option.what,
                            {copy.stroke},
                            likelihood,
-                           std::string("mirror of stroke ") + std::to_string(copy.stroke) +
-                               " across " + option.what + std::string(" (axis at ") +
-                               fixed1(axis_deg) + "°)"};
+                           "mirror of " + stroke_name(context, j) + " across " + option.what +
+                               std::string(" (axis at ") + fixed1(axis_deg) + "°)"};
                 out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
             }
         }

@@ -84,6 +84,15 @@ std::optional<Vec2> pivot(const Candidate& c) {
     return (c.path.start() + c.path.end()) / 2.0;
 }
 
+std::string stroke_name(const RuleContext& context, int path) {
+    if (path < 0 || path >= static_cast<int>(context.paths.size())) return "the drawing";
+    const ResolvedPath& p = *context.paths[static_cast<std::size_t>(path)];
+    if (p.stroke == context.current_stroke) {
+        return std::string("segment ") + std::to_string(p.segment) + " of this stroke";
+    }
+    return std::string("stroke ") + std::to_string(p.stroke);
+}
+
 Candidate as_line(const Candidate& c, Vec2 a, Vec2 b) {
     Candidate out = c;
     out.path = polyline_path({a, b});
@@ -212,9 +221,8 @@ std::vector<RuleOutput> snap_line_angle(const Candidate& input, const RuleContex
                    std::string(rule_name) + std::string(":") + std::to_string(i),
                    {target.stroke},
                    likelihood,
-                   std::string(rule_name) + std::string(" to stroke ") +
-                       std::to_string(target.stroke) + std::string(" (was ") + degrees(best_error) +
-                       "° off)"};
+                   std::string(rule_name) + " to " + stroke_name(context, static_cast<int>(i)) +
+                       std::string(" (was ") + degrees(best_error) + "° off)"};
         out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
     }
     keep_best(out, 3);

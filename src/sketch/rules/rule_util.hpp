@@ -42,6 +42,9 @@ inline int stroke_of(const RuleContext& context, int path) {
                : -1;
 }
 
+/// "stroke 7", or "segment 2 of this stroke" for an earlier segment of the stroke being processed.
+std::string stroke_name(const RuleContext& context, int path);
+
 /// A candidate replaced by the straight line a→b.
 Candidate as_line(const Candidate& c, Vec2 a, Vec2 b);
 /// A candidate replaced by an arc or circle.

@@ -52,8 +52,8 @@ public:
                        std::string("step:") + std::to_string(j),
                        {copy.stroke},
                        likelihood,
-                       std::string("one step on from stroke ") + std::to_string(copy.stroke) +
-                           " (moved " + fixed1(context.px(moved_by)) + " px)"};
+                       "one step on from " + stroke_name(context, j) + " (moved " +
+                           fixed1(context.px(moved_by)) + " px)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         keep_best(out, 3);

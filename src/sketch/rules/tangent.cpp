@@ -68,9 +68,8 @@ public:
                        "tangent-" + which,
                        {stroke},
                        likelihood,
-                       which + std::string(" tangent aligned with stroke ") +
-                           std::to_string(stroke) + std::string(" (was ") +
-                           degrees(std::abs(rotation)) + "° off)"};
+                       which + " tangent aligned with " + stroke_name(context, a->path) +
+                           std::string(" (was ") + degrees(std::abs(rotation)) + "° off)"};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         return out;

@@ -100,8 +100,7 @@ public:
                        std::string("transform:") + std::to_string(j),
                        {copy.stroke},
                        likelihood,
-                       std::string("transformation from stroke ") + std::to_string(copy.stroke) +
-                           " snapped:" + detail};
+                       "transformation from " + stroke_name(context, j) + " snapped:" + detail};
             out.push_back({with_relation(std::move(c), std::move(r)), likelihood});
         }
         keep_best(out, 3);
