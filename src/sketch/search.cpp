@@ -1,13 +1,14 @@
 // Best-first search over rule applications (ShipShape §7.3, Fig. 7.4–7.5).
 //
 // Each node holds a candidate; its children are the outputs of every rule not yet considered on
-// its branch, plus, per rule that proposed something, a "declined" child (the unmodified path
-// with likelihood 1 − max of that rule's proposals). A node's score is the chained likelihood
-// L = 1 − Π(1 − L_k) of Eq. 7.1. Nodes are expanded in order of score (ties: creation order, so
-// the search is deterministic). A node none of whose remaining rules proposes anything is a leaf
-// and joins the suggestion set Q if no suggestion has the same geometry. Before a node is
-// expanded its properties (the keys of its relations and its declined rules) are compared with
-// each suggestion's: if all are found in one, its subtree is skipped (Fig. 7.5).
+// its branch (endpoint snapping stays available until both endpoints are fixed), plus, per rule
+// that proposed something, a "declined" child (the unmodified path with likelihood 1 − max of that
+// rule's proposals). A node's score is the chained likelihood L = 1 − Π(1 − L_k) of Eq. 7.1. Nodes
+// are expanded in order of score (ties: creation order, so the search is deterministic). A node
+// none of whose remaining rules proposes anything is a leaf and joins the suggestion set Q if no
+// suggestion has the same geometry. Before a node is expanded its properties (the keys of its
+// relations and its declined rules) are compared with each suggestion's: if all are found in one,
+// its subtree is skipped (Fig. 7.5).
 //
 // Deviation: after `max_expansions` expansions, remaining nodes are completed greedily (always
 // the best child) instead of branching, which bounds the time for crowded drawings.
@@ -91,10 +92,12 @@ private:
             std::vector<RuleOutput> outputs = rules_[r]->apply(node.candidate, context_);
             if (outputs.empty()) continue;
             double best = 0.0;
+            const std::uint32_t applied =
+                rules_[r]->repeatable() ? node.considered : node.considered | bit;
             for (RuleOutput& o : outputs) {
                 best = std::max(best, o.likelihood);
-                children.push_back({std::move(o.candidate), chain(node.score, o.likelihood),
-                                    node.considered | bit, 0});
+                children.push_back(
+                    {std::move(o.candidate), chain(node.score, o.likelihood), applied, 0});
             }
             Node declined{node.candidate, chain(node.score, 1.0 - best), node.considered | bit, 0};
             declined.candidate.declined.emplace_back(rules_[r]->name());

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "exemplar/sketch/beautify.hpp"
 #include "sketch_test_util.hpp"
@@ -73,12 +74,59 @@ TEST(SketchSearch, SuggestionsAreUniqueBoundedAndDeterministic) {
             }
         }
     }
-    // With room for several, the square's closing side is snapped at both ends.
+    // With room for several, the first is a vertical line from the corner (0, 100), and one of
+    // the first three closes the square exactly at both corners (Eq. 7.1 ranks declining the
+    // weaker second snap, 6.6 px off, just above applying it).
     canvas.options.max_suggestions = 10;
     auto s = suggest(canvas.drawing, stroke, canvas.options);
     ASSERT_TRUE(s.ok());
+    ASSERT_GE(s->size(), 3u);
     EXPECT_NEAR(distance(s->front().path.start(), {0, 100}), 0.0, 1e-9);
-    EXPECT_NEAR(distance(s->front().path.end(), {0, 0}), 0.0, 1e-9);
+    EXPECT_NEAR(s->front().path.end().x, 0.0, 1e-9);
+    bool closed_square = false;
+    for (std::size_t k = 0; k < 3; ++k) {
+        closed_square |= distance((*s)[k].path.start(), {0, 100}) < 1e-9 &&
+                         distance((*s)[k].path.end(), {0, 0}) < 1e-9;
+    }
+    EXPECT_TRUE(closed_square);
+}
+
+TEST(SketchSearch, LikelihoodChainsTheRuleLikelihoods) {
+    // Eq. 7.1: L = 1 − Π(1 − L_k) over the applications on the branch; declined rules add
+    // factors (1 − max) too, so L is at least the product over the applied relations alone.
+    Canvas canvas;
+    canvas.add_line({0, 0}, {100, 0});
+    canvas.add_line({100, 0}, {100, 100});
+    canvas.add_line({100, 100}, {0, 100});
+    const RuleContext context = canvas.context();
+    const auto found = search(make_candidate(wobbly({{3, 97}, {1, 3}}, 0.8, 27)), context, 10);
+    ASSERT_GE(found.size(), 2u);
+    // Endpoint snapping applies once per endpoint: some suggestion snaps both.
+    bool both = false;
+    for (const auto& [candidate, score] : found) {
+        int snaps = 0;
+        for (const Relation& r : candidate.relations) snaps += r.rule == "endpoint";
+        EXPECT_LE(snaps, 2);
+        both |= snaps == 2 && candidate.fixed.start && candidate.fixed.end;
+    }
+    EXPECT_TRUE(both);
+    for (std::size_t i = 0; i < found.size(); ++i) {
+        const auto& [candidate, score] = found[i];
+        double keep = 1.0;
+        for (const Relation& r : candidate.relations) keep *= 1.0 - r.likelihood;
+        EXPECT_GE(score, 1.0 - keep - 1e-12);
+        EXPECT_LE(score, 1.0);
+        // Applied and declined rules on one branch are distinct (no rule twice).
+        std::set<std::string> rules;
+        for (const Relation& r : candidate.relations) {
+            if (r.rule != "endpoint") {  // once per endpoint
+                EXPECT_TRUE(rules.insert(r.rule).second) << r.rule;
+            }
+        }
+        for (const std::string& d : candidate.declined) {
+            EXPECT_TRUE(rules.insert("!" + d).second) << d;
+        }
+    }
 }
 
 TEST(SketchSearch, NothingToDoGivesOnlyTheInput) {

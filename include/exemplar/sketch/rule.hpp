@@ -186,6 +186,9 @@ public:
     virtual ~Rule() = default;
     /// Short name used in reports and relation keys ("parallel").
     virtual const char* name() const = 0;
+    /// True if the rule may apply again on a branch after it applied (endpoint snapping: once per
+    /// endpoint; each application fixes what it changed, so the chain ends).
+    virtual bool repeatable() const { return false; }
     /// The rule's threshold: proposals below it are not returned.
     virtual double threshold(const BeautifyOptions& options) const = 0;
     /// Modified candidates, most likely first (deterministic order), each ≥ threshold.

@@ -49,6 +49,7 @@ std::optional<Affine> endpoint_move(const Candidate& c, bool at_start, Vec2 targ
 class EndpointRule final : public Rule {
 public:
     const char* name() const override { return "endpoint"; }
+    bool repeatable() const override { return true; }
     double threshold(const BeautifyOptions& o) const override { return o.endpoint.threshold; }
 
     std::vector<RuleOutput> apply(const Candidate& input,
