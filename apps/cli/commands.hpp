@@ -153,4 +153,24 @@ private:
     bool quiet_ = false;
 };
 
+/// `exemplar beautify`: ShipShape beautification of an SVG sketch, stroke by stroke.
+class BeautifyCommand {
+public:
+    /// Adds the `beautify` subcommand and its flags to `app`.
+    explicit BeautifyCommand(CLI::App& app);
+    BeautifyCommand(const BeautifyCommand&) = delete;
+    BeautifyCommand& operator=(const BeautifyCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string input_, output_, report_, suggestions_, preview_;
+    int max_suggestions_ = 10;
+    double fit_px_ = 0.0;
+    bool quiet_ = false;
+};
+
 }  // namespace exemplar::cli
