@@ -349,23 +349,32 @@ Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, 
     s.source_mask = L.atlas_mask;
     s.guides.push_back({"input", L.atlas_input, L.frames[i], options_.input_weight, {}});
     if (neighbour >= 0 && options_.temporal_weight > 0.0f) {
+        // g_tc: the neighbour's output pulled along the motion, weighted by χ (and by whether
+        // the sample fell inside the frame). Where χ = 0 the guide takes the frame's own
+        // current solution (the coarser level's, upsampled, or the forward sweep's) instead of
+        // a zero weight: the term then only reinforces that solution, which is what the paper
+        // initializes such pixels with, and the engine keeps its fast distance kernel (a
+        // per-pixel weight map forces its general path, ~4x slower per distance). Only the
+        // coarsest level's forward sweep, which has no own solution yet, uses the weight map.
         const auto n = static_cast<std::size_t>(neighbour);
         const Image& flow = neighbour < t ? L.backward[i] : L.forward[i];
         const Image& visible = neighbour < t ? L.visible_prev[i] : L.visible_next[i];
         auto warped = video::backward_warp(out_[n], flow, 1);
         if (!warped.ok()) return warped.status();
+        Image own;
+        if (!out_[i].empty()) own = resize(out_[i], L.w, L.h, ResampleFilter::Gaussian, 1);
         Image weight = visible;
         const int C = warped->image.channels();
         for (std::size_t p = 0; p < weight.pixel_count(); ++p) {
             weight.data()[p] *= warped->valid.data()[p];
-            if (weight.data()[p] <= 0.0f) {
-                for (int c = 0; c < C; ++c) {
-                    warped->image
-                        .data()[p * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] =
-                        fill_[static_cast<std::size_t>(c)];
-                }
+            if (weight.data()[p] > 0.0f) continue;
+            for (int c = 0; c < C; ++c) {
+                const std::size_t j = p * static_cast<std::size_t>(C) + static_cast<std::size_t>(c);
+                warped->image.data()[j] =
+                    own.empty() ? fill_[static_cast<std::size_t>(c)] : own.data()[j];
             }
         }
+        if (!own.empty()) weight = Image();
         s.guides.push_back({"temporal", L.atlas_output, std::move(warped->image),
                             options_.temporal_weight, std::move(weight)});
     }
@@ -373,7 +382,7 @@ Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, 
     s.initial_nnf = initial;
     if (keyed) {
         s.guides.push_back({"keyframe", L.atlas_output, L.key_images[i], options_.keyframe_weight,
-                            L.key_masks[i]});
+                            key_of_[i]->mask.empty() ? Image() : L.key_masks[i]});
         // Painted pixels start from the key itself in the atlas (exact reproduction).
         const AtlasSlot& slot = L.slots[static_cast<std::size_t>(slot_of_[i])];
         if (s.initial_nnf.empty()) s.initial_nnf = Nnf(L.w, L.h);
@@ -400,6 +409,7 @@ Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, 
         o.finest_em_iterations = o.em_iterations;
         o.final_pass_iterations = 0;
     }
+    if (backward_sweep) o.finest_em_iterations = options_.backward_em_iterations;
     result_.times.merge += seconds_since(merge_start);
 
     RunContext call(context_.threads);
@@ -567,6 +577,11 @@ Status validate(const AnimationInput& in, const AnimateOptions& options) {
     if (options.levels < 1 || options.levels > 8) {
         return invalid_argument("levels: " + std::to_string(options.levels) +
                                 " is invalid (must be 1..8)");
+    }
+    if (options.backward_em_iterations < 1 || options.backward_em_iterations > 20) {
+        return invalid_argument(
+            "backward-em-iterations: " + std::to_string(options.backward_em_iterations) +
+            " is invalid (must be 1..20)");
     }
     if (options.sweeps < 1 || options.sweeps > 8) {
         return invalid_argument("sweeps: " + std::to_string(options.sweeps) +

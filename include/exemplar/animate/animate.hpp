@@ -64,6 +64,10 @@ struct AnimateOptions {
     float keyframe_weight = 4.0f;
     int levels = 4;  ///< Pyramid levels of the coarse-to-fine loop (the paper: 4).
     int sweeps = 1;  ///< Forward-backward sweep pairs per level (the paper: 1).
+    /// EM iterations of a backward-sweep call (every level): it starts from the merge of the
+    /// frame's forward solution and its solved successor, so it needs fewer than the forward
+    /// sweep (whose calls use the engine's em_iterations / finest_em_iterations).
+    int backward_em_iterations = 1;
     /// Occlusion test (χ): squared round-trip tolerance ε in px² (the paper: 2 for rendered
     /// velocities). 0 = automatic: 2 for given motion, 8 for estimated flow.
     float occlusion_tolerance_sq_px = 0.0f;
