@@ -1,0 +1,306 @@
+// `exemplar animate JOB.json`: temporally coherent stylization of a frame sequence (TCIA,
+// Bénard et al. 2013) with frame ranges, resume and hand-over between ranges (docs/video.md).
+//
+// The frames to write (the range, minus finished outputs when resuming) are solved in runs of
+// consecutive frames of at most `chunk` frames. A run [a, b] is extended by the neighbouring
+// frames a − 1 and b + 1 when their outputs already exist: those are loaded as full keyframes
+// (the hand-over), so a range continues seamlessly from the ranges solved before it.
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "animate_job.hpp"
+#include "commands.hpp"
+#include "exemplar/animate/animate.hpp"
+#include "exemplar/io/flow_io.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/video/frame_sequence.hpp"
+#include "output_files.hpp"
+#include "progress_bar.hpp"
+
+namespace exemplar::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string size_str(const Image& im) {
+    return std::to_string(im.width()) + "x" + std::to_string(im.height());
+}
+
+Result<video::FrameSequence> open_frames(const AnimateJob& job) {
+    std::error_code ec;
+    if (job.frames.find('%') != std::string::npos) {
+        if (job.first < 0 || job.last < 0) {
+            return invalid_argument("frames " + job.frames +
+                                    ": a pattern needs \"first\" and \"last\" frame numbers");
+        }
+        return video::FrameSequence::from_pattern(job.frames, job.first, job.last);
+    }
+    if (fs::is_directory(job.frames, ec)) return video::FrameSequence::from_folder(job.frames);
+    return video::FrameSequence::from_video(job.frames);
+}
+
+// "100-199" or "42".
+Result<std::pair<int, int>> parse_range(const std::string& text) {
+    int a = 0, b = 0;
+    char dash = 0;
+    char rest = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &a, &dash, &b, &rest) == 3 && dash == '-' && a <= b) {
+        return std::pair{a, b};
+    }
+    if (std::sscanf(text.c_str(), "%d%c", &a, &rest) == 1) return std::pair{a, a};
+    return invalid_argument("--frames: '" + text + "' is invalid (use FIRST-LAST, e.g. 100-199)");
+}
+
+// A keyframe's coverage: the mask file's channel 0, else the image's 4th channel when the style
+// output has 3, else none (a full key).
+Result<animate::Keyframe> load_key(const AnimateKeySpec& spec, int index, int style_channels) {
+    animate::Keyframe key;
+    key.frame = index;
+    auto image = load_image(spec.image);
+    if (!image.ok()) return image.status();
+    if (image->channels() == style_channels + 1 && spec.mask.empty()) {
+        key.mask = extract_channels(*image, style_channels, 1);
+        key.image = extract_channels(*image, 0, style_channels);
+    } else {
+        key.image = std::move(image).value();
+    }
+    if (key.image.channels() != style_channels) {
+        return invalid_argument(
+            spec.image + ": keyframe has " + std::to_string(key.image.channels()) +
+            " channels but the style output has " + std::to_string(style_channels));
+    }
+    if (!spec.mask.empty()) {
+        auto mask = load_image(spec.mask);
+        if (!mask.ok()) return mask.status();
+        key.mask = extract_channels(*mask, 0, 1);
+    }
+    return key;
+}
+
+}  // namespace
+
+AnimateCommand::AnimateCommand(CLI::App& parent) {
+    app_ = parent.add_subcommand(
+        "animate", "Stylize an animation coherently in time (TCIA, Benard et al. 2013)");
+    app_->footer(
+        "The job file (JSON) names the frames, motion, style pair, keyframes, weights and output;\n"
+        "see docs/video.md. Example: exemplar animate examples/animate/job.json --frames 0-11");
+    app_->add_option("job", job_path_, "Job file (JSON)")->required();
+    app_->add_option("--frames", frames_,
+                     "Frame numbers to write, FIRST-LAST (default: all); finished neighbours "
+                     "are handed over as keyframes");
+    app_->add_option("--output,-o", output_,
+                     "Output pattern (overrides the job's), e.g. out/%04d.png");
+    app_->add_option("--mp4", mp4_, "Also write the range as an MP4 (overrides the job's)");
+    app_->add_option("--chunk", chunk_,
+                     "Frames per solve (0 = the whole range; bounds memory and lost work)");
+    app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
+    seed_flag_ = app_->add_option("--seed", seed_, "Random seed (same seed, same output)");
+    app_->add_flag("--resume,!--no-resume", resume_,
+                   "Skip frames whose output exists (default on)");
+    app_->add_flag("--quiet,-q", quiet_, "No progress bar, no output paths");
+}
+
+Status AnimateCommand::run(const Streams& streams) const {
+    auto loaded = load_animate_job(job_path_);
+    if (!loaded.ok()) return loaded.status();
+    AnimateJob job = std::move(loaded).value();
+    if (!output_.empty()) job.output = output_;
+    if (!mp4_.empty()) job.mp4 = mp4_;
+    if (chunk_ >= 0) job.chunk = chunk_;
+    if (seed_flag_->count() > 0) job.options.synthesis.seed = seed_;
+    if (job.output.empty()) return invalid_argument(job_path_ + ": key 'output' is missing");
+    if (job.chunk == 1) return invalid_argument("--chunk: must be 0 (whole range) or >= 2");
+    auto probe = video::format_frame_path(job.output, 0);
+    if (!probe.ok()) return invalid_argument("output: " + probe.status().message());
+    EXEMPLAR_RETURN_IF_ERROR(check_output_path("output", *probe));
+    if (!job.mp4.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_output_path("mp4", job.mp4));
+        if (!video::mp4_writing_supported()) {
+            return unsupported("mp4: this OpenCV build cannot encode MP4");
+        }
+    }
+
+    // Inputs.
+    auto sequence = open_frames(job);
+    if (!sequence.ok()) return sequence.status();
+    video::FrameSequence& frames = *sequence;
+    const int first = frames.first_number(), last = first + frames.size() - 1;
+    int lo = first, hi = last;
+    if (!frames_.empty()) {
+        auto range = parse_range(frames_);
+        if (!range.ok()) return range.status();
+        std::tie(lo, hi) = *range;
+        if (lo < first || hi > last) {
+            return invalid_argument("--frames: " + frames_ + " is outside the frames " +
+                                    std::to_string(first) + ".." + std::to_string(last));
+        }
+    }
+    animate::AnimationInput base;
+    {
+        auto s = load_image(job.style_input);
+        if (!s.ok()) return s.status();
+        base.style_input = std::move(s).value();
+        auto o = load_image(job.style_output);
+        if (!o.ok()) return o.status();
+        base.style_output = std::move(o).value();
+    }
+    auto frame0 = frames.read(0);
+    if (!frame0.ok()) return frame0.status();
+    const int W = frame0->width(), H = frame0->height();
+    if (frame0->channels() != base.style_input.channels()) {
+        return invalid_argument(frames.frame_name(0) + ": has " +
+                                std::to_string(frame0->channels()) + " channels but style input " +
+                                job.style_input + " has " +
+                                std::to_string(base.style_input.channels()));
+    }
+    if (!job.mp4.empty() && (W % 2 != 0 || H % 2 != 0)) {
+        return invalid_argument("mp4: the frames are " + size_str(*frame0) +
+                                " but MP4 needs even sizes");
+    }
+    std::vector<animate::Keyframe> keys;  // by frame number in `frame`
+    for (const AnimateKeySpec& spec : job.keyframes) {
+        if (spec.frame < first || spec.frame > last) {
+            return invalid_argument(job_path_ + ": keyframe " + std::to_string(spec.frame) +
+                                    " is outside the frames " + std::to_string(first) + ".." +
+                                    std::to_string(last));
+        }
+        auto key = load_key(spec, spec.frame, base.style_output.channels());
+        if (!key.ok()) return key.status();
+        if (key->image.width() != W || key->image.height() != H) {
+            return invalid_argument(spec.image + ": keyframe is " + size_str(key->image) +
+                                    " but the frames are " + size_str(*frame0));
+        }
+        keys.push_back(std::move(key).value());
+    }
+    auto output_path = [&](int number) {
+        return video::format_frame_path(job.output, number).value();
+    };
+    auto done = [&](int number) {
+        std::error_code ec;
+        return resume_ && fs::exists(output_path(number), ec);
+    };
+
+    // Runs of frames to solve.
+    std::vector<std::pair<int, int>> runs;
+    for (int n = lo; n <= hi; ++n) {
+        if (done(n)) continue;
+        if (!runs.empty() && runs.back().second == n - 1 &&
+            (job.chunk == 0 || n - runs.back().first < job.chunk)) {
+            runs.back().second = n;
+        } else {
+            runs.emplace_back(n, n);
+        }
+    }
+    int todo = 0;
+    for (const auto& [a, b] : runs) todo += b - a + 1;
+    if (todo == 0 && !quiet_) streams.err << "exemplar animate: every frame of the range exists\n";
+
+    ProgressBar bar(streams.err, "animate", !quiet_ && streams.err_is_terminal);
+    int solved = 0;
+    for (const auto& [a, b] : runs) {
+        // Hand-over: finished neighbours become full keyframes. Runs are solved in order, so
+        // the run before this one has been written already.
+        const bool before = a > first && done(a - 1);
+        const bool after = b < last && done(b + 1);
+        const int s0 = before ? a - 1 : a, s1 = after ? b + 1 : b;
+        animate::AnimationInput in;
+        in.style_input = base.style_input;
+        in.style_output = base.style_output;
+        in.frame_count = s1 - s0 + 1;
+        const int index0 = s0 - first;  // sequence index of the run's first frame
+        in.frame = [&, index0](int t) -> Result<Image> {
+            auto f = frames.read(index0 + t);
+            if (f.ok() && (f->width() != W || f->height() != H)) {
+                return invalid_argument(frames.frame_name(index0 + t) + ": is " + size_str(*f) +
+                                        " but the first frame is " + std::to_string(W) + "x" +
+                                        std::to_string(H));
+            }
+            return f;
+        };
+        if (!job.estimate_flow) {
+            in.motion = [&, s0](int t) -> Result<video::FlowPair> {
+                video::FlowPair pair;
+                const std::pair<const std::string*, int> files[] = {
+                    {&job.forward_flow, s0 + t}, {&job.backward_flow, s0 + t + 1}};
+                for (int k = 0; k < 2; ++k) {
+                    auto file = video::format_frame_path(*files[k].first, files[k].second);
+                    if (!file.ok()) return invalid_argument("flows: " + file.status().message());
+                    auto flow = load_flow(*file, job.flow_layer);
+                    if (!flow.ok()) return flow.status();
+                    if (flow->width() != W || flow->height() != H) {
+                        return invalid_argument(*file + ": flow is " + size_str(*flow) +
+                                                " but the frames are " + std::to_string(W) + "x" +
+                                                std::to_string(H));
+                    }
+                    (k == 0 ? pair.forward : pair.backward) = std::move(flow).value();
+                }
+                return pair;
+            };
+        }
+        for (const animate::Keyframe& k : keys) {
+            if (k.frame < s0 || k.frame > s1) continue;
+            if ((before && k.frame == s0) || (after && k.frame == s1)) continue;
+            animate::Keyframe local = k;
+            local.frame -= s0;
+            in.keyframes.push_back(std::move(local));
+        }
+        for (int n : {before ? s0 : -1, after ? s1 : -1}) {
+            if (n < 0) continue;
+            auto handed = load_image(output_path(n));
+            if (!handed.ok()) return handed.status();
+            if (handed->channels() > base.style_output.channels()) {
+                handed = extract_channels(*handed, 0, base.style_output.channels());
+            }
+            in.keyframes.push_back({n - s0, std::move(handed).value(), {}});
+        }
+
+        animate::AnimateOptions options = job.options;
+        options.keep_frames = false;
+        options.on_frame = [&, s0, a, b](int t, const Image& image) -> Status {
+            const int n = s0 + t;
+            if (n < a || n > b) return Status::ok();   // a hand-over frame: already written
+            return save_image(image, output_path(n));  // atomic
+        };
+        RunContext context(threads_);
+        const int run_frames = b - a + 1;
+        context.progress = [&, a, b, run_frames](const ProgressEvent& e) {
+            char detail[96];
+            std::snprintf(detail, sizeof detail, "frames %d-%d  %s  level %d/%d  frame %d/%d", a, b,
+                          std::string(e.stage).c_str(), e.level + 1, e.levels, e.iteration + 1,
+                          e.iterations);
+            bar.update((solved + e.fraction * run_frames) / std::max(1, todo), detail);
+        };
+        auto result = animate::animate(in, options, context);
+        if (!result.ok()) {
+            bar.finish();
+            return result.status();
+        }
+        solved += run_frames;
+    }
+    bar.finish();
+    if (!quiet_ && todo > 0) {
+        streams.out << job.output << " (" << todo << " frame" << (todo == 1 ? "" : "s") << ")\n";
+    }
+
+    if (!job.mp4.empty()) {
+        auto writer = video::Mp4Writer::open(job.mp4, W, H, job.fps);
+        if (!writer.ok()) return writer.status();
+        for (int n = lo; n <= hi; ++n) {
+            auto image = load_image(output_path(n));
+            if (!image.ok()) return image.status();
+            EXEMPLAR_RETURN_IF_ERROR(writer->write(*image));
+        }
+        EXEMPLAR_RETURN_IF_ERROR(writer->finish());
+        if (!quiet_) streams.out << job.mp4 << '\n';
+    }
+    return Status::ok();
+}
+
+}  // namespace exemplar::cli
