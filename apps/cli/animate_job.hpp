@@ -29,7 +29,7 @@ struct AnimateJob {
     std::string output;  ///< Pattern of the output frames.
     std::string mp4;     ///< Optional MP4 of the written range.
     double fps = 24.0;
-    int chunk = 40;  ///< Frames per solve (0 = the whole range at once).
+    int chunk = 24;  ///< Frames per solve (0 = the whole range at once).
     animate::AnimateOptions options;
 };
 
