@@ -182,9 +182,18 @@ Status AnimateCommand::run(const Streams& streams) const {
     auto output_path = [&](int number) {
         return video::format_frame_path(job.output, number).value();
     };
-    auto done = [&](int number) {
+    auto exists = [&](int number) {
         std::error_code ec;
-        return resume_ && fs::exists(output_path(number), ec);
+        return fs::exists(output_path(number), ec);
+    };
+    auto done = [&](int number) { return resume_ && exists(number); };
+    // A neighbour's output is handed over when it is outside the range, or (inside it) when it
+    // is finished: resumed, or written by this invocation (never a stale one with --no-resume).
+    std::vector<char> written(static_cast<std::size_t>(last - first + 1), 0);
+    auto handed_over = [&](int number) {
+        if (number < first || number > last || !exists(number)) return false;
+        return resume_ || number < lo || number > hi ||
+               written[static_cast<std::size_t>(number - first)] != 0;
     };
 
     // Runs of frames to solve.
@@ -207,8 +216,8 @@ Status AnimateCommand::run(const Streams& streams) const {
     for (const auto& [a, b] : runs) {
         // Hand-over: finished neighbours become full keyframes. Runs are solved in order, so
         // the run before this one has been written already.
-        const bool before = a > first && done(a - 1);
-        const bool after = b < last && done(b + 1);
+        const bool before = handed_over(a - 1);
+        const bool after = handed_over(b + 1);
         const int s0 = before ? a - 1 : a, s1 = after ? b + 1 : b;
         animate::AnimationInput in;
         in.style_input = base.style_input;
@@ -265,7 +274,8 @@ Status AnimateCommand::run(const Streams& streams) const {
         options.keep_frames = false;
         options.on_frame = [&, s0, a, b](int t, const Image& image) -> Status {
             const int n = s0 + t;
-            if (n < a || n > b) return Status::ok();   // a hand-over frame: already written
+            if (n < a || n > b) return Status::ok();  // a hand-over frame: already written
+            written[static_cast<std::size_t>(n - first)] = 1;
             return save_image(image, output_path(n));  // atomic
         };
         RunContext context(threads_);

@@ -93,6 +93,20 @@ double trail_redness(const Scene& scene, const Image& frame, int t) {
     return sum / n;
 }
 
+TEST(Animate, RotatedPatchesAlongOrientationFieldsStayCoherent) {
+    const Scene scene;
+    const testing::Style style = make_style();
+    AnimateOptions options;
+    options.orientation = true;
+    auto tcia = animate(make_input(scene, style), options, RunContext(2));
+    ASSERT_TRUE(tcia.ok()) << tcia.status().message();
+    const double e_tcia = mean_warp_error(scene, tcia->frames);
+    const double e_base = mean_warp_error(scene, independent(scene, style, AnimateOptions()));
+    std::printf("orientation on: warp error tcia %.5f independent %.5f\n", e_tcia, e_base);
+    EXPECT_LT(e_tcia, 0.2 * e_base);
+    EXPECT_LT(trail_redness(scene, tcia->frames.back(), scene.frames - 1), -0.3);
+}
+
 TEST(Animate, DisoccludedBackgroundIsResynthesizedNotSmeared) {
     const Scene scene;
     const testing::Style style = make_style();
