@@ -151,6 +151,11 @@ Status AnimateCommand::run(const Streams& streams) const {
         if (!o.ok()) return o.status();
         base.style_output = std::move(o).value();
     }
+    if (!job.style_lines.empty()) {
+        auto l = load_image(job.style_lines);
+        if (!l.ok()) return l.status();
+        base.style_lines = std::move(l).value();
+    }
     auto frame0 = frames.read(0);
     if (!frame0.ok()) return frame0.status();
     const int W = frame0->width(), H = frame0->height();
@@ -233,6 +238,14 @@ Status AnimateCommand::run(const Streams& streams) const {
             }
             return f;
         };
+        in.style_lines = base.style_lines;
+        if (!job.lines.empty()) {
+            in.lines = [&, s0](int t) -> Result<Image> {
+                auto file = video::format_frame_path(job.lines, s0 + t);
+                if (!file.ok()) return invalid_argument("lines: " + file.status().message());
+                return load_image(*file);
+            };
+        }
         if (!job.estimate_flow) {
             in.motion = [&, s0](int t) -> Result<video::FlowPair> {
                 video::FlowPair pair;

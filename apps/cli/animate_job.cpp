@@ -136,6 +136,27 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                 }
                 job.keyframes.push_back(std::move(spec));
             }
+        } else if (key == "lines") {
+            if (!value.is_object()) {
+                return type_error(path, raw_key, "{\"style\": path, \"frames\": pattern}");
+            }
+            for (const auto& [lk_raw, lv] : value.items()) {
+                const std::string lk = canonical_key(lk_raw);
+                if (lk == "style") {
+                    EXEMPLAR_RETURN_IF_ERROR(path_of(lv, raw_key + ".style", job.style_lines));
+                } else if (lk == "frames") {
+                    EXEMPLAR_RETURN_IF_ERROR(path_of(lv, raw_key + ".frames", job.lines));
+                } else {
+                    return invalid_argument(path + ": unknown key '" + raw_key + "." + lk_raw +
+                                            "' (lines take style, frames)");
+                }
+            }
+            if (job.style_lines.empty() || job.lines.empty()) {
+                return invalid_argument(path + ": key '" + raw_key +
+                                        "' needs both \"style\" and \"frames\"");
+            }
+        } else if (key == "line-max-distance") {
+            EXEMPLAR_RETURN_IF_ERROR(number_of(value, raw_key, o.line_max_distance_px));
         } else if (key == "weights") {
             if (!value.is_object()) return type_error(path, raw_key, "an object of numbers");
             for (const auto& [wk_raw, wv] : value.items()) {
@@ -145,10 +166,12 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                                : wk == "input"    ? &o.input_weight
                                : wk == "temporal" ? &o.temporal_weight
                                : wk == "keyframe" ? &o.keyframe_weight
+                               : wk == "lines"    ? &o.line_weight
                                                   : nullptr;
                 if (field == nullptr) {
-                    return invalid_argument(path + ": unknown key '" + name +
-                                            "' (weights are output, input, temporal, keyframe)");
+                    return invalid_argument(
+                        path + ": unknown key '" + name +
+                        "' (weights are output, input, temporal, keyframe, lines)");
                 }
                 EXEMPLAR_RETURN_IF_ERROR(number_of(wv, name, *field));
             }

@@ -26,8 +26,10 @@ struct AnimateJob {
     std::string flow_layer;     ///< EXR layer of the flow files ("" = the first 2 channels).
     std::string style_input, style_output;
     std::vector<AnimateKeySpec> keyframes;
-    std::string output;  ///< Pattern of the output frames.
-    std::string mp4;     ///< Optional MP4 of the written range.
+    std::string style_lines;  ///< Line drawing of S (g_dt), with `lines`.
+    std::string lines;        ///< Pattern of the frames' line drawings (frame numbers).
+    std::string output;       ///< Pattern of the output frames.
+    std::string mp4;          ///< Optional MP4 of the written range.
     double fps = 24.0;
     int chunk = 24;  ///< Frames per solve (0 = the whole range at once).
     animate::AnimateOptions options;

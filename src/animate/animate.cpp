@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "exemplar/animate/lines.hpp"
 #include "exemplar/animate/offsets.hpp"
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
@@ -84,7 +85,8 @@ struct LevelData {
     // The source of the engine: the style and every painted keyframe side by side (Bénard §4:
     // keys are also style pairs), S and I_k likewise; slot 0 is the style, slot 1 + k key k.
     // Without keys the atlas is the style itself and the mask is empty.
-    Image atlas_output, atlas_input, atlas_mask, atlas_orientation;
+    Image atlas_output, atlas_input, atlas_mask, atlas_orientation, atlas_lines;
+    std::vector<Image> lines;  // D(I_t) / d_max, empty without lines
     std::vector<AtlasSlot> slots;
 };
 
@@ -127,6 +129,8 @@ private:
     const RunContext& context_;
     int T_ = 0, W_ = 0, H_ = 0, levels_ = 1;
     std::vector<Image> frames_, forward_, backward_, visible_prev_, visible_next_;
+    std::vector<Image> line_distance_;     // D(I_t) / d_max per frame, full resolution
+    Image style_line_distance_;            // D(S) / d_max
     std::vector<const Keyframe*> key_of_;  // per frame, nullptr if none
     std::vector<const Keyframe*> keys_;    // by frame
     std::vector<int> slot_of_;             // per frame: atlas slot of its key, or -1
@@ -178,6 +182,23 @@ Status Solver::load() {
             return invalid_argument(
                 "frame " + std::to_string(t) + ": has " + std::to_string(f.channels()) +
                 " channels but the style input has " + std::to_string(in_.style_input.channels()));
+        }
+    }
+    if (in_.lines) {
+        auto style = line_distance(in_.style_lines, options_.line_max_distance_px);
+        if (!style.ok()) return style.status();
+        style_line_distance_ = std::move(style).value();
+        line_distance_.resize(static_cast<std::size_t>(T_));
+        for (int t = 0; t < T_; ++t) {
+            auto lines = in_.lines(t);
+            if (!lines.ok()) return lines.status();
+            if (lines->width() != W_ || lines->height() != H_) {
+                return invalid_argument("lines " + std::to_string(t) + ": are " + size_str(*lines) +
+                                        " but the frames are " + size_str(frames_[0]));
+            }
+            auto d = line_distance(*lines, options_.line_max_distance_px);
+            if (!d.ok()) return d.status();
+            line_distance_[static_cast<std::size_t>(t)] = std::move(d).value();
         }
     }
     key_of_.assign(static_cast<std::size_t>(T_), nullptr);
@@ -265,9 +286,13 @@ void Solver::build_level(int level, LevelData& L) const {
     L.visible_next.resize(n);
     L.key_images.resize(n);
     L.key_masks.resize(n);
+    if (!line_distance_.empty()) L.lines.resize(n);
     parallel_for(0, T_, threads, [&](int t) {
         const auto i = static_cast<std::size_t>(t);
         L.frames[i] = resize(frames_[i], L.w, L.h, ResampleFilter::Gaussian, 1);
+        if (!L.lines.empty()) {
+            L.lines[i] = resize(line_distance_[i], L.w, L.h, ResampleFilter::Gaussian, 1);
+        }
         if (!forward_[i].empty()) L.forward[i] = flow_at(forward_[i], L.w, L.h);
         if (!backward_[i].empty()) L.backward[i] = flow_at(backward_[i], L.w, L.h);
         if (!visible_prev_[i].empty())
@@ -284,12 +309,16 @@ void Solver::build_level(int level, LevelData& L) const {
     // The atlas: style, then a 1-pixel gap (outside the mask, so no patch straddles two slots)
     // and each key; unpainted key pixels are outside the mask and hold the style's mean.
     L.slots = {AtlasSlot{0, sw, sh}};
-    Image style_orientation;
+    Image style_orientation, style_lines;
     if (options_.orientation) style_orientation = orientation_field(L.style_input, {}, threads);
+    if (!L.lines.empty()) {
+        style_lines = resize(style_line_distance_, sw, sh, ResampleFilter::Gaussian, threads);
+    }
     if (keys_.empty()) {
         L.atlas_output = L.style_output;
         L.atlas_input = L.style_input;
         L.atlas_orientation = style_orientation;
+        L.atlas_lines = style_lines;
         return;
     }
     int aw = sw, ah = sh;
@@ -312,6 +341,7 @@ void Solver::build_level(int level, LevelData& L) const {
     L.atlas_input = filled(L.style_input.channels(), in_fill);
     L.atlas_mask = Image(aw, ah, 1, 0.0f);
     if (options_.orientation) L.atlas_orientation = Image(aw, ah, 1, 0.0f);
+    if (!L.lines.empty()) L.atlas_lines = Image(aw, ah, 1, 1.0f);
     auto paste = [](const Image& from, Image& to, int x0, int x, int y) {
         std::copy_n(from.pixel(x, y), from.channels(), to.pixel(x0 + x, y));
     };
@@ -321,6 +351,7 @@ void Solver::build_level(int level, LevelData& L) const {
             paste(L.style_input, L.atlas_input, 0, x, y);
             L.atlas_mask.at(x, y, 0) = 1.0f;
             if (options_.orientation) paste(style_orientation, L.atlas_orientation, 0, x, y);
+            if (!L.lines.empty()) paste(style_lines, L.atlas_lines, 0, x, y);
         }
     }
     for (std::size_t k = 0; k < keys_.size(); ++k) {
@@ -332,6 +363,7 @@ void Solver::build_level(int level, LevelData& L) const {
             for (int x = 0; x < L.w; ++x) {
                 paste(L.frames[f], L.atlas_input, x0, x, y);
                 if (options_.orientation) paste(frame_orientation, L.atlas_orientation, x0, x, y);
+                if (!L.lines.empty()) paste(L.lines[f], L.atlas_lines, x0, x, y);
                 if (L.key_masks[f].at(x, y, 0) < 0.999f) continue;  // unpainted: not a source
                 paste(L.key_images[f], L.atlas_output, x0, x, y);
                 L.atlas_mask.at(x0 + x, y, 0) = 1.0f;
@@ -348,6 +380,9 @@ Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, 
     s.style = L.atlas_output;
     s.source_mask = L.atlas_mask;
     s.guides.push_back({"input", L.atlas_input, L.frames[i], options_.input_weight, {}});
+    if (!L.lines.empty()) {
+        s.guides.push_back({"lines", L.atlas_lines, L.lines[i], options_.line_weight, {}});
+    }
     if (neighbour >= 0 && options_.temporal_weight > 0.0f) {
         // g_tc: the neighbour's output pulled along the motion, weighted by χ (and by whether
         // the sample fell inside the frame). Where χ = 0 the guide takes the frame's own
@@ -567,7 +602,8 @@ Status validate(const AnimationInput& in, const AnimateOptions& options) {
     const std::pair<const char*, float> weights[] = {{"output-weight", options.output_weight},
                                                      {"input-weight", options.input_weight},
                                                      {"temporal-weight", options.temporal_weight},
-                                                     {"keyframe-weight", options.keyframe_weight}};
+                                                     {"keyframe-weight", options.keyframe_weight},
+                                                     {"line-weight", options.line_weight}};
     for (const auto& [name, value] : weights) {
         if (!finite_non_negative(value)) {
             return invalid_argument(std::string(name) + ": " + std::to_string(value) +
@@ -593,6 +629,19 @@ Status validate(const AnimationInput& in, const AnimateOptions& options) {
             " is invalid (must be >= 0 px^2, 0 = automatic)");
     }
     EXEMPLAR_RETURN_IF_ERROR(exemplar::validate(options.synthesis));
+    if (in.style_lines.empty() != !in.lines) {
+        return invalid_argument(
+            "lines: give both the style's line drawing and the frames' lines, or neither");
+    }
+    if (!in.style_lines.empty() && !in.style_lines.same_size(in.style_input)) {
+        return invalid_argument("style lines: are " + size_str(in.style_lines) +
+                                " but the style input is " + size_str(in.style_input));
+    }
+    if (!(std::isfinite(options.line_max_distance_px) && options.line_max_distance_px > 0.0f)) {
+        return invalid_argument(
+            "line-max-distance: " + std::to_string(options.line_max_distance_px) +
+            " is invalid (must be > 0 px)");
+    }
     std::vector<char> seen(static_cast<std::size_t>(in.frame_count), 0);
     for (const Keyframe& k : in.keyframes) {
         const std::string name = "keyframe " + std::to_string(k.frame);

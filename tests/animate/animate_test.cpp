@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 
+#include "exemplar/animate/lines.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -365,6 +366,83 @@ TEST(Animate, RealPairWithEstimatedFlowIsCoherent) {
     EXPECT_LT(e_tcia, 0.5 * e_base);
     EXPECT_LT(e_tcia, e_input);
     EXPECT_GT(g_tcia, 0.5 * g_style);
+}
+
+// The line term g_dt: with uninformative shading (uniform grey frames and style input), only
+// the distance transforms of the line drawings tell the outline of the moving square to take
+// the style's dark strokes.
+TEST(Animate, LineTermDrawsTheStylesStrokesAlongTheLines) {
+    const Scene scene;
+    const int n = 64;
+    Image style_lines(n, n, 1, 1.0f), out(n, n, 3);
+    auto on_rect = [](int x, int y, int lo, int hi) {
+        const bool in = x >= lo && x <= hi && y >= lo && y <= hi;
+        return in && (x <= lo + 1 || x >= hi - 1 || y <= lo + 1 || y >= hi - 1);
+    };
+    KeyedRng rng(3);
+    for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+            const bool line = on_rect(x, y, 12, 51);
+            if (line) style_lines.at(x, y, 0) = 0.0f;
+            const float v = line ? 0.05f + 0.1f * rng.uniform() : 0.8f + 0.2f * rng.uniform();
+            for (int c = 0; c < 3; ++c) out.at(x, y, c) = v;
+        }
+    }
+    AnimationInput in;
+    in.style_input = Image(n, n, 1, 0.5f);
+    in.style_output = out;
+    in.frame_count = scene.frames;
+    in.frame = [&](int) -> Result<Image> { return Image(scene.width, scene.height, 1, 0.5f); };
+    in.motion = [&](int t) -> Result<video::FlowPair> { return scene.motion(t); };
+    auto outline = [&](int x, int y, int t) {
+        return on_rect(x - scene.square_x(t) + 12, y - scene.y0 + 12, 12, 12 + scene.square - 1);
+    };
+    auto frame_lines = [&](int t) {
+        Image lines(scene.width, scene.height, 1, 1.0f);
+        for (int y = 0; y < scene.height; ++y) {
+            for (int x = 0; x < scene.width; ++x) {
+                if (outline(x, y, t)) lines.at(x, y, 0) = 0.0f;
+            }
+        }
+        return lines;
+    };
+    auto outline_mean = [&](const std::vector<Image>& frames) {
+        double sum = 0.0;
+        int count = 0;
+        for (int t = 0; t < scene.frames; ++t) {
+            for (int y = 0; y < scene.height; ++y) {
+                for (int x = 0; x < scene.width; ++x) {
+                    if (!outline(x, y, t)) continue;
+                    sum += frames[static_cast<std::size_t>(t)].at(x, y, 0);
+                    ++count;
+                }
+            }
+        }
+        return sum / count;
+    };
+    auto without = animate(in, AnimateOptions(), RunContext(2));
+    ASSERT_TRUE(without.ok()) << without.status().message();
+    in.style_lines = style_lines;
+    in.lines = [&](int t) -> Result<Image> { return frame_lines(t); };
+    auto with = animate(in, AnimateOptions(), RunContext(2));
+    ASSERT_TRUE(with.ok()) << with.status().message();
+    const double dark_with = outline_mean(with->frames);
+    const double dark_without = outline_mean(without->frames);
+    std::printf("outline luminance: with lines %.3f, without %.3f\n", dark_with, dark_without);
+    EXPECT_LT(dark_with, 0.25);  // the strokes are 0.05..0.15
+    EXPECT_GT(dark_without, 0.6);
+    EXPECT_LT(mean_warp_error(scene, with->frames), 0.002);
+}
+
+TEST(Animate, LineDistanceIsBoundedAndNormalized) {
+    Image lines(20, 5, 1, 1.0f);
+    lines.at(2, 2, 0) = 0.0f;
+    const Image d = line_distance(lines, 4.0f).value();
+    EXPECT_FLOAT_EQ(d.at(2, 2, 0), 0.0f);
+    EXPECT_NEAR(d.at(5, 2, 0), 0.75f, 1e-4);  // 3 px of 4
+    EXPECT_FLOAT_EQ(d.at(15, 2, 0), 1.0f);    // beyond d_max
+    EXPECT_FLOAT_EQ(line_distance(Image(4, 4, 1, 1.0f), 4.0f).value().at(1, 1, 0), 1.0f);
+    EXPECT_FALSE(line_distance(lines, 0.0f).ok());
 }
 
 }  // namespace

@@ -158,11 +158,25 @@ TEST_F(AnimateCli, RgbaKeyframeIsAPartialHardConstraint) {
     EXPECT_EQ(green, scene_.square * scene_.square);
 }
 
+TEST_F(AnimateCli, LineDrawingsFeedTheLineTerm) {
+    // The frames themselves serve as line drawings (their dark background is "line").
+    const CliRun r = run({"animate",
+                          job(R"("lines": {"style": "s_in.png", "frames": "frames/%02d.png"},)"
+                              R"( "weights": {"lines": 2}, "line-max-distance": 6)"),
+                          "-q", "--frames", "0-2"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out(2)));
+}
+
 TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
     expect_failure_as_is({"animate", job(R"("framez": 3)")}, 1,
                          path("job.json") + ": unknown key 'framez'");
     expect_failure_as_is({"animate", job(R"("keyframes": [{"frame": 40, "image": "s_out.png"}])")},
                          1, path("job.json") + ": keyframe 40 is outside the frames 0..7");
+    expect_failure_as_is({"animate", job(R"("lines": {"style": "s_in.png"})")}, 1,
+                         path("job.json") + ": key 'lines' needs both \"style\" and \"frames\"");
+    expect_failure_as_is({"animate", job(R"("weights": {"line": 2})")}, 1,
+                         path("job.json") + ": unknown key 'weights.line'");
     expect_failure_as_is({"animate", job(), "--frames", "5-9"}, 1,
                          "--frames: 5-9 is outside the frames 0..7");
     fs::remove(path("frames/05.png"));

@@ -51,6 +51,11 @@ struct AnimationInput {
     /// convention of docs/video.md. Empty = estimate both with DIS (exemplar/video).
     std::function<Result<video::FlowPair>(int)> motion;
     std::vector<Keyframe> keyframes;  ///< Any order; at most one per frame.
+    /// Optional line drawings for the line term g_dt (Bénard eq. 9): dark lines (< 0.5) on a
+    /// light background, channel 0 used; `style_lines` on S's grid, `lines(t)` on the frames'.
+    /// Both or neither.
+    Image style_lines;
+    std::function<Result<Image>(int)> lines;
 };
 
 /// Options of the solver. Weights are the paper's w_out, w_in, w_tc (eq. 2) on the engine's
@@ -62,6 +67,10 @@ struct AnimateOptions {
     /// Weight of a keyframe's painted pixels when its offsets are fitted (the keyframe's own
     /// pixels are copied exactly; this only decides how well the advected offsets reproduce it).
     float keyframe_weight = 4.0f;
+    /// w_dt: guide pair of the bounded line distances D(S), D(I_t) (when lines are given).
+    float line_weight = 2.0f;
+    /// d_max of g_dt in full-resolution pixels (the paper: 10); distances are divided by it.
+    float line_max_distance_px = 10.0f;
     int levels = 4;  ///< Pyramid levels of the coarse-to-fine loop (the paper: 4).
     int sweeps = 1;  ///< Forward-backward sweep pairs per level (the paper: 1).
     /// EM iterations of a backward-sweep call (every level): it starts from the merge of the
