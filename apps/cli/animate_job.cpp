@@ -1,7 +1,10 @@
 #include "animate_job.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "json_file.hpp"
 
@@ -35,6 +38,24 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
     auto path_of = [&](const json& v, const std::string& key, std::string& out) -> Status {
         if (!v.is_string()) return type_error(path, key, "a string (a file path)");
         out = resolve(v.get<std::string>());
+        return Status::ok();
+    };
+    // An object whose members are paths, e.g. {"input": ..., "output": ...}.
+    using Members = std::vector<std::pair<std::string, std::string*>>;
+    auto paths_of = [&](const json& v, const std::string& key, const Members& members) -> Status {
+        std::string names;
+        for (const auto& m : members) names += (names.empty() ? "" : ", ") + m.first;
+        if (!v.is_object()) return type_error(path, key, "an object with paths");
+        for (const auto& [member_raw, mv] : v.items()) {
+            const std::string member = canonical_key(member_raw);
+            auto it = std::find_if(members.begin(), members.end(),
+                                   [&](const auto& m) { return m.first == member; });
+            if (it == members.end()) {
+                return invalid_argument(path + ": unknown key '" + key + "." + member_raw + "' (" +
+                                        key + " takes " + names + ")");
+            }
+            EXEMPLAR_RETURN_IF_ERROR(path_of(mv, key + "." + member_raw, *it->second));
+        }
         return Status::ok();
     };
     auto number_of = [&](const json& v, const std::string& key, float& out) -> Status {
@@ -98,20 +119,8 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                                         "' needs both \"forward\" and \"backward\" patterns");
             }
         } else if (key == "style") {
-            if (!value.is_object()) {
-                return type_error(path, raw_key, "{\"input\": S, \"output\": Ŝ}");
-            }
-            for (const auto& [sk_raw, sv] : value.items()) {
-                const std::string sk = canonical_key(sk_raw);
-                if (sk == "input") {
-                    EXEMPLAR_RETURN_IF_ERROR(path_of(sv, raw_key + ".input", job.style_input));
-                } else if (sk == "output") {
-                    EXEMPLAR_RETURN_IF_ERROR(path_of(sv, raw_key + ".output", job.style_output));
-                } else {
-                    return invalid_argument(path + ": unknown key '" + raw_key + "." + sk_raw +
-                                            "' (style takes input, output)");
-                }
-            }
+            EXEMPLAR_RETURN_IF_ERROR(paths_of(
+                value, raw_key, {{"input", &job.style_input}, {"output", &job.style_output}}));
         } else if (key == "keyframes") {
             if (!value.is_array()) return type_error(path, raw_key, "an array of keyframes");
             for (const json& k : value) {
@@ -137,20 +146,8 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                 job.keyframes.push_back(std::move(spec));
             }
         } else if (key == "lines") {
-            if (!value.is_object()) {
-                return type_error(path, raw_key, "{\"style\": path, \"frames\": pattern}");
-            }
-            for (const auto& [lk_raw, lv] : value.items()) {
-                const std::string lk = canonical_key(lk_raw);
-                if (lk == "style") {
-                    EXEMPLAR_RETURN_IF_ERROR(path_of(lv, raw_key + ".style", job.style_lines));
-                } else if (lk == "frames") {
-                    EXEMPLAR_RETURN_IF_ERROR(path_of(lv, raw_key + ".frames", job.lines));
-                } else {
-                    return invalid_argument(path + ": unknown key '" + raw_key + "." + lk_raw +
-                                            "' (lines take style, frames)");
-                }
-            }
+            EXEMPLAR_RETURN_IF_ERROR(
+                paths_of(value, raw_key, {{"style", &job.style_lines}, {"frames", &job.lines}}));
             if (job.style_lines.empty() || job.lines.empty()) {
                 return invalid_argument(path + ": key '" + raw_key +
                                         "' needs both \"style\" and \"frames\"");
