@@ -126,4 +126,37 @@ Status validate(const AnimationInput& input, const AnimateOptions& options);
 Result<AnimationResult> animate(const AnimationInput& input, const AnimateOptions& options,
                                 const RunContext& context = {});
 
+/// One layer of a layered animation (Bénard §4): its own frames, style pair, keyframes and
+/// lines (an AnimationInput), and its coverage per frame.
+struct Layer {
+    /// The layer's inputs. `motion` is the motion of the layer's content (e.g. a renderer's
+    /// per-layer motion vectors); empty = estimated from the layer's frames. Either way it is
+    /// extrapolated into the layer's background (extrapolate_flow) before the solve.
+    AnimationInput input;
+    /// Coverage (alpha) of the layer in frame t: 1 channel in [0, 1], the frames' size.
+    std::function<Result<Image>(int)> coverage;
+};
+
+/// Output of animate_layers.
+struct LayeredResult {
+    std::vector<Image> frames;               ///< Composite Î_t (layers over each other).
+    std::vector<std::vector<Image>> layers;  ///< Each layer's own output, every frame.
+    StageTimes times;                        ///< Summed over the layers.
+};
+
+/// The flow of a layer extrapolated into its background: every pixel with coverage ≤ 0.5
+/// takes the flow of the nearest covered pixel (exact Euclidean distance transform), so that
+/// texture painted or synthesized beyond the layer's outline moves with the layer (Bénard
+/// Fig. 10). Without any covered pixel the flow is returned unchanged. Sizes must agree.
+Result<Image> extrapolate_flow(const Image& flow, const Image& coverage);
+
+/// Layered TCIA: solves each layer on its own (its motion extrapolated into its background, so
+/// a layer's texture persists behind the layers in front of it instead of being re-synthesized
+/// when they move away) and composites them back to front with their coverage:
+/// C = A·L + (1 − A)·C, starting from the first (backmost) layer as it is. All layers need the
+/// same frame count and size and the same style output channel count. options.on_frame and
+/// keep_frames are ignored (every frame is kept).
+Result<LayeredResult> animate_layers(const std::vector<Layer>& layers,
+                                     const AnimateOptions& options, const RunContext& context = {});
+
 }  // namespace exemplar::animate
