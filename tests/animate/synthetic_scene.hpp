@@ -56,6 +56,52 @@ struct Scene {
     }
 };
 
+// A textured disc rotating in place over the same background: sub-pixel motion everywhere in
+// the disc, no occlusion but at its rim.
+struct RotatingDisc {
+    int width = 64, height = 48, frames = 8;
+    float cx = 32.0f, cy = 24.0f, radius = 17.0f;
+    float omega = 0.08f;  // rad per frame, counter-clockwise on screen
+
+    bool in_disc(float x, float y) const {
+        return (x - cx) * (x - cx) + (y - cy) * (y - cy) <= radius * radius;
+    }
+    Image frame(int t) const {
+        Image im(width, height, 1);
+        const float a = -omega * static_cast<float>(t);  // back to the disc's own coordinates
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+                float v = 0.2f + 0.2f * fx / static_cast<float>(width - 1);
+                if (in_disc(fx, fy)) {
+                    const float dx = fx - cx, dy = fy - cy;
+                    const float u = std::cos(a) * dx + std::sin(a) * dy;
+                    const float w = -std::sin(a) * dx + std::cos(a) * dy;
+                    v = 0.8f + 0.025f * (std::sin(u / 2.0f) + std::sin(w / 3.0f));
+                }
+                im.at(x, y, 0) = v;
+            }
+        }
+        return im;
+    }
+    // Rotation by ±omega about the centre inside the disc, zero outside.
+    Image rotation_flow(float angle) const {
+        Image f(width, height, 2);
+        const float c = std::cos(angle), s = std::sin(angle);
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+                if (!in_disc(fx, fy)) continue;
+                const float dx = fx - cx, dy = fy - cy;
+                f.at(x, y, 0) = c * dx + s * dy - dx;  // screen: y down, ccw on screen
+                f.at(x, y, 1) = -s * dx + c * dy - dy;
+            }
+        }
+        return f;
+    }
+    video::FlowPair motion(int) const { return {rotation_flow(omega), rotation_flow(-omega)}; }
+};
+
 // Style: S has the background's grey ramp on the left and the square's grey on the right; Ŝ is
 // blue noise texture on the left, red on the right (texture: values vary pixel to pixel).
 struct Style {
