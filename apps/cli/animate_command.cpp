@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "animate_job.hpp"
@@ -32,17 +34,34 @@ std::string size_str(const Image& im) {
     return std::to_string(im.width()) + "x" + std::to_string(im.height());
 }
 
-Result<video::FrameSequence> open_frames(const AnimateJob& job) {
+Result<video::FrameSequence> open_frames(const std::string& frames, int first, int last) {
     std::error_code ec;
-    if (job.frames.find('%') != std::string::npos) {
-        if (job.first < 0 || job.last < 0) {
-            return invalid_argument("frames " + job.frames +
+    if (frames.find('%') != std::string::npos) {
+        if (first < 0 || last < 0) {
+            return invalid_argument("frames " + frames +
                                     ": a pattern needs \"first\" and \"last\" frame numbers");
         }
-        return video::FrameSequence::from_pattern(job.frames, job.first, job.last);
+        return video::FrameSequence::from_pattern(frames, first, last);
     }
-    if (fs::is_directory(job.frames, ec)) return video::FrameSequence::from_folder(job.frames);
-    return video::FrameSequence::from_video(job.frames);
+    if (fs::is_directory(frames, ec)) return video::FrameSequence::from_folder(frames);
+    return video::FrameSequence::from_video(frames);
+}
+
+// One layer's opened inputs (the whole animation when the job has no layers).
+struct Source {
+    const AnimateSourceSpec* spec = nullptr;
+    std::optional<video::FrameSequence> frames;
+    Image style_input, style_output, style_lines;
+    std::vector<animate::Keyframe> keys;  // `frame` holds the frame number
+    std::string output;                   // pattern of this layer's own output (layers only)
+};
+
+// "out/%04d.png" → "out/%04d.layer1.png".
+std::string layer_pattern(const std::string& output, std::size_t layer) {
+    const fs::path p(output);
+    return (p.parent_path() /
+            (p.stem().string() + ".layer" + std::to_string(layer) + p.extension().string()))
+        .string();
 }
 
 // "100-199" or "42".
@@ -127,11 +146,71 @@ Status AnimateCommand::run(const Streams& streams) const {
         }
     }
 
-    // Inputs.
-    auto sequence = open_frames(job);
-    if (!sequence.ok()) return sequence.status();
-    video::FrameSequence& frames = *sequence;
-    const int first = frames.first_number(), last = first + frames.size() - 1;
+    // Inputs: one source, or one per layer (back to front).
+    std::vector<AnimateSourceSpec> specs =
+        job.layers.empty() ? std::vector<AnimateSourceSpec>{job.base} : job.layers;
+    const bool layered = !job.layers.empty();
+    std::vector<Source> sources(specs.size());
+    int first = 0, last = -1, W = 0, H = 0;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        Source& src = sources[i];
+        src.spec = &specs[i];
+        const std::string what = layered ? "layer " + std::to_string(i) + ": " : "";
+        auto sequence = open_frames(src.spec->frames, job.first, job.last);
+        if (!sequence.ok()) return sequence.status();
+        src.frames.emplace(std::move(sequence).value());
+        for (const auto& [file, image] : {std::pair{&src.spec->style_input, &src.style_input},
+                                          std::pair{&src.spec->style_output, &src.style_output},
+                                          std::pair{&src.spec->style_lines, &src.style_lines}}) {
+            if (file->empty()) continue;
+            auto loaded_image = load_image(*file);
+            if (!loaded_image.ok()) return loaded_image.status();
+            *image = std::move(loaded_image).value();
+        }
+        auto frame0 = src.frames->read(0);
+        if (!frame0.ok()) return frame0.status();
+        const int f0 = src.frames->first_number(), f1 = f0 + src.frames->size() - 1;
+        if (i == 0) {
+            first = f0;
+            last = f1;
+            W = frame0->width();
+            H = frame0->height();
+        } else if (f0 != first || f1 != last || frame0->width() != W || frame0->height() != H) {
+            return invalid_argument(what + src.spec->frames + ": frames " + std::to_string(f0) +
+                                    ".." + std::to_string(f1) + " of " + size_str(*frame0) +
+                                    " but layer 0 has " + std::to_string(first) + ".." +
+                                    std::to_string(last) + " of " + std::to_string(W) + "x" +
+                                    std::to_string(H));
+        }
+        if (frame0->channels() != src.style_input.channels()) {
+            return invalid_argument(src.frames->frame_name(0) + ": has " +
+                                    std::to_string(frame0->channels()) +
+                                    " channels but style input " + src.spec->style_input + " has " +
+                                    std::to_string(src.style_input.channels()));
+        }
+        if (src.style_output.channels() != sources[0].style_output.channels()) {
+            return invalid_argument(what + "style output " + src.spec->style_output + " has " +
+                                    std::to_string(src.style_output.channels()) +
+                                    " channels but layer 0's has " +
+                                    std::to_string(sources[0].style_output.channels()));
+        }
+        for (const AnimateKeySpec& spec : src.spec->keyframes) {
+            if (spec.frame < first || spec.frame > last) {
+                return invalid_argument(job_path_ + ": " + what + "keyframe " +
+                                        std::to_string(spec.frame) + " is outside the frames " +
+                                        std::to_string(first) + ".." + std::to_string(last));
+            }
+            auto key = load_key(spec, spec.frame, src.style_output.channels());
+            if (!key.ok()) return key.status();
+            if (key->image.width() != W || key->image.height() != H) {
+                return invalid_argument(spec.image + ": keyframe is " + size_str(key->image) +
+                                        " but the frames are " + std::to_string(W) + "x" +
+                                        std::to_string(H));
+            }
+            src.keys.push_back(std::move(key).value());
+        }
+        src.output = layered ? layer_pattern(job.output, i) : job.output;
+    }
     int lo = first, hi = last;
     if (!frames_.empty()) {
         auto range = parse_range(frames_);
@@ -142,54 +221,22 @@ Status AnimateCommand::run(const Streams& streams) const {
                                     std::to_string(first) + ".." + std::to_string(last));
         }
     }
-    animate::AnimationInput base;
-    {
-        auto s = load_image(job.style_input);
-        if (!s.ok()) return s.status();
-        base.style_input = std::move(s).value();
-        auto o = load_image(job.style_output);
-        if (!o.ok()) return o.status();
-        base.style_output = std::move(o).value();
-    }
-    if (!job.style_lines.empty()) {
-        auto l = load_image(job.style_lines);
-        if (!l.ok()) return l.status();
-        base.style_lines = std::move(l).value();
-    }
-    auto frame0 = frames.read(0);
-    if (!frame0.ok()) return frame0.status();
-    const int W = frame0->width(), H = frame0->height();
-    if (frame0->channels() != base.style_input.channels()) {
-        return invalid_argument(frames.frame_name(0) + ": has " +
-                                std::to_string(frame0->channels()) + " channels but style input " +
-                                job.style_input + " has " +
-                                std::to_string(base.style_input.channels()));
-    }
     if (!job.mp4.empty() && (W % 2 != 0 || H % 2 != 0)) {
-        return invalid_argument("mp4: the frames are " + size_str(*frame0) +
-                                " but MP4 needs even sizes");
+        return invalid_argument("mp4: the frames are " + std::to_string(W) + "x" +
+                                std::to_string(H) + " but MP4 needs even sizes");
     }
-    std::vector<animate::Keyframe> keys;  // by frame number in `frame`
-    for (const AnimateKeySpec& spec : job.keyframes) {
-        if (spec.frame < first || spec.frame > last) {
-            return invalid_argument(job_path_ + ": keyframe " + std::to_string(spec.frame) +
-                                    " is outside the frames " + std::to_string(first) + ".." +
-                                    std::to_string(last));
-        }
-        auto key = load_key(spec, spec.frame, base.style_output.channels());
-        if (!key.ok()) return key.status();
-        if (key->image.width() != W || key->image.height() != H) {
-            return invalid_argument(spec.image + ": keyframe is " + size_str(key->image) +
-                                    " but the frames are " + size_str(*frame0));
-        }
-        keys.push_back(std::move(key).value());
-    }
-    auto output_path = [&](int number) {
-        return video::format_frame_path(job.output, number).value();
+    auto path_of = [](const std::string& pattern, int number) {
+        return video::format_frame_path(pattern, number).value();
     };
+    auto output_path = [&](int number) { return path_of(job.output, number); };
+    // A frame is finished when its output (and, with layers, every layer's) exists.
     auto exists = [&](int number) {
         std::error_code ec;
-        return fs::exists(output_path(number), ec);
+        if (!fs::exists(output_path(number), ec)) return false;
+        for (const Source& src : sources) {
+            if (layered && !fs::exists(path_of(src.output, number), ec)) return false;
+        }
+        return true;
     };
     auto done = [&](int number) { return resume_ && exists(number); };
     // A neighbour's output is handed over when it is outside the range, or (inside it) when it
@@ -219,77 +266,97 @@ Status AnimateCommand::run(const Streams& streams) const {
     ProgressBar bar(streams.err, "animate", !quiet_ && streams.err_is_terminal);
     int solved = 0;
     for (const auto& [a, b] : runs) {
-        // Hand-over: finished neighbours become full keyframes. Runs are solved in order, so
-        // the run before this one has been written already.
+        // Hand-over: finished neighbours become full keyframes (each layer its own output).
+        // Runs are solved in order, so the run before this one has been written already.
         const bool before = handed_over(a - 1);
         const bool after = handed_over(b + 1);
         const int s0 = before ? a - 1 : a, s1 = after ? b + 1 : b;
-        animate::AnimationInput in;
-        in.style_input = base.style_input;
-        in.style_output = base.style_output;
-        in.frame_count = s1 - s0 + 1;
-        const int index0 = s0 - first;  // sequence index of the run's first frame
-        in.frame = [&, index0](int t) -> Result<Image> {
-            auto f = frames.read(index0 + t);
-            if (f.ok() && (f->width() != W || f->height() != H)) {
-                return invalid_argument(frames.frame_name(index0 + t) + ": is " + size_str(*f) +
-                                        " but the first frame is " + std::to_string(W) + "x" +
-                                        std::to_string(H));
-            }
-            return f;
-        };
-        in.style_lines = base.style_lines;
-        if (!job.lines.empty()) {
-            in.lines = [&, s0](int t) -> Result<Image> {
-                auto file = video::format_frame_path(job.lines, s0 + t);
-                if (!file.ok()) return invalid_argument("lines: " + file.status().message());
-                return load_image(*file);
-            };
-        }
-        if (!job.estimate_flow) {
-            in.motion = [&, s0](int t) -> Result<video::FlowPair> {
-                video::FlowPair pair;
-                const std::pair<const std::string*, int> files[] = {
-                    {&job.forward_flow, s0 + t}, {&job.backward_flow, s0 + t + 1}};
-                for (int k = 0; k < 2; ++k) {
-                    auto file = video::format_frame_path(*files[k].first, files[k].second);
-                    if (!file.ok()) return invalid_argument("flows: " + file.status().message());
-                    auto flow = load_flow(*file, job.flow_layer);
-                    if (!flow.ok()) return flow.status();
-                    if (flow->width() != W || flow->height() != H) {
-                        return invalid_argument(*file + ": flow is " + size_str(*flow) +
-                                                " but the frames are " + std::to_string(W) + "x" +
-                                                std::to_string(H));
-                    }
-                    (k == 0 ? pair.forward : pair.backward) = std::move(flow).value();
+        std::vector<animate::Layer> layers;
+        for (Source& src : sources) {
+            const AnimateSourceSpec& spec = *src.spec;
+            animate::AnimationInput in;
+            in.style_input = src.style_input;
+            in.style_output = src.style_output;
+            in.frame_count = s1 - s0 + 1;
+            const int index0 = s0 - first;  // sequence index of the run's first frame
+            video::FrameSequence& frames = *src.frames;
+            in.frame = [&frames, index0, W, H](int t) -> Result<Image> {
+                auto f = frames.read(index0 + t);
+                if (f.ok() && (f->width() != W || f->height() != H)) {
+                    return invalid_argument(frames.frame_name(index0 + t) + ": is " + size_str(*f) +
+                                            " but the first frame is " + std::to_string(W) + "x" +
+                                            std::to_string(H));
                 }
-                return pair;
+                return f;
             };
-        }
-        for (const animate::Keyframe& k : keys) {
-            if (k.frame < s0 || k.frame > s1) continue;
-            if ((before && k.frame == s0) || (after && k.frame == s1)) continue;
-            animate::Keyframe local = k;
-            local.frame -= s0;
-            in.keyframes.push_back(std::move(local));
-        }
-        for (int n : {before ? s0 : -1, after ? s1 : -1}) {
-            if (n < 0) continue;
-            auto handed = load_image(output_path(n));
-            if (!handed.ok()) return handed.status();
-            if (handed->channels() > base.style_output.channels()) {
-                handed = extract_channels(*handed, 0, base.style_output.channels());
+            in.style_lines = src.style_lines;
+            if (!spec.lines.empty()) {
+                in.lines = [&spec, s0](int t) -> Result<Image> {
+                    auto file = video::format_frame_path(spec.lines, s0 + t);
+                    if (!file.ok()) return invalid_argument("lines: " + file.status().message());
+                    return load_image(*file);
+                };
             }
-            in.keyframes.push_back({n - s0, std::move(handed).value(), {}});
+            if (!spec.estimate_flow) {
+                in.motion = [&spec, s0, W, H](int t) -> Result<video::FlowPair> {
+                    video::FlowPair pair;
+                    const std::pair<const std::string*, int> files[] = {
+                        {&spec.forward_flow, s0 + t}, {&spec.backward_flow, s0 + t + 1}};
+                    for (int k = 0; k < 2; ++k) {
+                        auto file = video::format_frame_path(*files[k].first, files[k].second);
+                        if (!file.ok()) {
+                            return invalid_argument("flows: " + file.status().message());
+                        }
+                        auto flow = load_flow(*file, spec.flow_layer);
+                        if (!flow.ok()) return flow.status();
+                        if (flow->width() != W || flow->height() != H) {
+                            return invalid_argument(*file + ": flow is " + size_str(*flow) +
+                                                    " but the frames are " + std::to_string(W) +
+                                                    "x" + std::to_string(H));
+                        }
+                        (k == 0 ? pair.forward : pair.backward) = std::move(flow).value();
+                    }
+                    return pair;
+                };
+            }
+            for (const animate::Keyframe& k : src.keys) {
+                if (k.frame < s0 || k.frame > s1) continue;
+                if ((before && k.frame == s0) || (after && k.frame == s1)) continue;
+                animate::Keyframe local = k;
+                local.frame -= s0;
+                in.keyframes.push_back(std::move(local));
+            }
+            for (int n : {before ? s0 : -1, after ? s1 : -1}) {
+                if (n < 0) continue;
+                auto handed = load_image(path_of(src.output, n));
+                if (!handed.ok()) return handed.status();
+                if (handed->channels() > src.style_output.channels()) {
+                    handed = extract_channels(*handed, 0, src.style_output.channels());
+                }
+                in.keyframes.push_back({n - s0, std::move(handed).value(), {}});
+            }
+            animate::Layer layer{std::move(in), {}};
+            if (!spec.coverage.empty()) {
+                layer.coverage = [&spec, s0](int t) -> Result<Image> {
+                    auto file = video::format_frame_path(spec.coverage, s0 + t);
+                    if (!file.ok()) return invalid_argument("coverage: " + file.status().message());
+                    auto c = load_image(*file);
+                    if (!c.ok()) return c.status();
+                    return extract_channels(*c, 0, 1);
+                };
+            } else {
+                layer.coverage = [W, H](int) -> Result<Image> { return Image(W, H, 1, 1.0f); };
+            }
+            layers.push_back(std::move(layer));
         }
 
         animate::AnimateOptions options = job.options;
         options.keep_frames = false;
-        options.on_frame = [&, s0, a, b](int t, const Image& image) -> Status {
+        auto write_frame = [&, s0, a, b](int t, const Image& image,
+                                         const std::string& pattern) -> Status {
             const int n = s0 + t;
-            if (n < a || n > b) return Status::ok();  // a hand-over frame: already written
-            written[static_cast<std::size_t>(n - first)] = 1;
-            return save_image(image, output_path(n));  // atomic
+            if (n < a || n > b) return Status::ok();        // a hand-over frame: already written
+            return save_image(image, path_of(pattern, n));  // atomic
         };
         RunContext context(threads_);
         const int run_frames = b - a + 1;
@@ -300,10 +367,37 @@ Status AnimateCommand::run(const Streams& streams) const {
                           e.iterations);
             bar.update((solved + e.fraction * run_frames) / std::max(1, todo), detail);
         };
-        auto result = animate::animate(in, options, context);
-        if (!result.ok()) {
+        Status status;
+        if (!layered) {
+            options.on_frame = [&](int t, const Image& image) -> Status {
+                EXEMPLAR_RETURN_IF_ERROR(write_frame(t, image, job.output));
+                if (s0 + t >= a && s0 + t <= b)
+                    written[static_cast<std::size_t>(s0 + t - first)] = 1;
+                return Status::ok();
+            };
+            auto result = animate::animate(layers.front().input, options, context);
+            status = result.status();
+        } else {
+            auto result = animate::animate_layers(layers, options, context);
+            status = result.status();
+            // Every layer's output first, the composite last: the composite marks the frame done.
+            for (int t = 0; status.is_ok() && t < s1 - s0 + 1; ++t) {
+                for (std::size_t l = 0; status.is_ok() && l < sources.size(); ++l) {
+                    status = write_frame(t, result->layers[l][static_cast<std::size_t>(t)],
+                                         sources[l].output);
+                }
+                if (status.is_ok()) {
+                    status =
+                        write_frame(t, result->frames[static_cast<std::size_t>(t)], job.output);
+                }
+                if (status.is_ok() && s0 + t >= a && s0 + t <= b) {
+                    written[static_cast<std::size_t>(s0 + t - first)] = 1;
+                }
+            }
+        }
+        if (!status.is_ok()) {
             bar.finish();
-            return result.status();
+            return status;
         }
         solved += run_frames;
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <utility>
 #include <vector>
@@ -69,59 +70,59 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
         return Status::ok();
     };
 
-    AnimateJob job;
-    animate::AnimateOptions& o = job.options;
-    for (const auto& [raw_key, value] : doc.items()) {
-        const std::string key = canonical_key(raw_key);
-        if (key == "frames") {
-            EXEMPLAR_RETURN_IF_ERROR(path_of(value, raw_key, job.frames));
-        } else if (key == "first") {
-            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, job.first));
-        } else if (key == "last") {
-            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, job.last));
-        } else if (key == "output") {
-            EXEMPLAR_RETURN_IF_ERROR(path_of(value, raw_key, job.output));
-        } else if (key == "mp4") {
-            EXEMPLAR_RETURN_IF_ERROR(path_of(value, raw_key, job.mp4));
-        } else if (key == "fps") {
-            float fps = 0.0f;
-            EXEMPLAR_RETURN_IF_ERROR(number_of(value, raw_key, fps));
-            job.fps = fps;
-        } else if (key == "chunk") {
-            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, job.chunk));
-        } else if (key == "flows") {
+    // Keys describing inputs: the job's own and each layer's.
+    auto parse_source = [&](const std::string& key, const std::string& raw_key, const json& value,
+                            AnimateSourceSpec& src, bool& handled) -> Status {
+        handled = true;
+        if (key == "frames") return path_of(value, raw_key, src.frames);
+        if (key == "coverage") return path_of(value, raw_key, src.coverage);
+        if (key == "style") {
+            EXEMPLAR_RETURN_IF_ERROR(paths_of(
+                value, raw_key, {{"input", &src.style_input}, {"output", &src.style_output}}));
+            return Status::ok();
+        }
+        if (key == "lines") {
+            EXEMPLAR_RETURN_IF_ERROR(
+                paths_of(value, raw_key, {{"style", &src.style_lines}, {"frames", &src.lines}}));
+            if (src.style_lines.empty() || src.lines.empty()) {
+                return invalid_argument(path + ": key '" + raw_key +
+                                        "' needs both \"style\" and \"frames\"");
+            }
+            return Status::ok();
+        }
+        if (key == "flows") {
+            src.flows_given = true;
             if (value.is_string() && value.get<std::string>() == "estimate") {
-                job.estimate_flow = true;
-                continue;
+                src.estimate_flow = true;
+                return Status::ok();
             }
             if (!value.is_object()) {
                 return type_error(path, raw_key,
                                   "\"estimate\" or {\"forward\": pattern, \"backward\": "
                                   "pattern, \"layer\": name}");
             }
-            job.estimate_flow = false;
+            src.estimate_flow = false;
             for (const auto& [fk_raw, fv] : value.items()) {
                 const std::string fk = canonical_key(fk_raw);
                 const std::string name = raw_key + "." + fk_raw;
                 if (fk == "forward") {
-                    EXEMPLAR_RETURN_IF_ERROR(path_of(fv, name, job.forward_flow));
+                    EXEMPLAR_RETURN_IF_ERROR(path_of(fv, name, src.forward_flow));
                 } else if (fk == "backward") {
-                    EXEMPLAR_RETURN_IF_ERROR(path_of(fv, name, job.backward_flow));
+                    EXEMPLAR_RETURN_IF_ERROR(path_of(fv, name, src.backward_flow));
                 } else if (fk == "layer") {
-                    EXEMPLAR_RETURN_IF_ERROR(string_of(fv, name, job.flow_layer));
+                    EXEMPLAR_RETURN_IF_ERROR(string_of(fv, name, src.flow_layer));
                 } else {
                     return invalid_argument(path + ": unknown key '" + name +
                                             "' (flows take forward, backward, layer)");
                 }
             }
-            if (job.forward_flow.empty() || job.backward_flow.empty()) {
+            if (src.forward_flow.empty() || src.backward_flow.empty()) {
                 return invalid_argument(path + ": key '" + raw_key +
                                         "' needs both \"forward\" and \"backward\" patterns");
             }
-        } else if (key == "style") {
-            EXEMPLAR_RETURN_IF_ERROR(paths_of(
-                value, raw_key, {{"input", &job.style_input}, {"output", &job.style_output}}));
-        } else if (key == "keyframes") {
+            return Status::ok();
+        }
+        if (key == "keyframes") {
             if (!value.is_array()) return type_error(path, raw_key, "an array of keyframes");
             for (const json& k : value) {
                 if (!k.is_object() || !k.contains("frame") || !k.contains("image")) {
@@ -143,17 +144,59 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                                                 "' (keyframes take frame, image, mask)");
                     }
                 }
-                job.keyframes.push_back(std::move(spec));
+                src.keyframes.push_back(std::move(spec));
             }
-        } else if (key == "lines") {
-            EXEMPLAR_RETURN_IF_ERROR(
-                paths_of(value, raw_key, {{"style", &job.style_lines}, {"frames", &job.lines}}));
-            if (job.style_lines.empty() || job.lines.empty()) {
-                return invalid_argument(path + ": key '" + raw_key +
-                                        "' needs both \"style\" and \"frames\"");
+            return Status::ok();
+        }
+        handled = false;
+        return Status::ok();
+    };
+
+    AnimateJob job;
+    animate::AnimateOptions& o = job.options;
+    float fps = static_cast<float>(job.fps);
+    const std::map<std::string, int*> integers = {
+        {"first", &job.first}, {"last", &job.last},
+        {"chunk", &job.chunk}, {"levels", &o.levels},
+        {"sweeps", &o.sweeps}, {"backward-em-iterations", &o.backward_em_iterations}};
+    const std::map<std::string, float*> numbers = {
+        {"fps", &fps},
+        {"line-max-distance", &o.line_max_distance_px},
+        {"occlusion-tolerance", &o.occlusion_tolerance_sq_px}};
+    const std::map<std::string, std::string*> files = {{"output", &job.output}, {"mp4", &job.mp4}};
+    for (const auto& [raw_key, value] : doc.items()) {
+        const std::string key = canonical_key(raw_key);
+        bool handled = false;
+        if (key != "coverage") {
+            EXEMPLAR_RETURN_IF_ERROR(parse_source(key, raw_key, value, job.base, handled));
+        }
+        if (handled) continue;
+        if (auto i = integers.find(key); i != integers.end()) {
+            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, *i->second));
+        } else if (auto n = numbers.find(key); n != numbers.end()) {
+            EXEMPLAR_RETURN_IF_ERROR(number_of(value, raw_key, *n->second));
+        } else if (auto f = files.find(key); f != files.end()) {
+            EXEMPLAR_RETURN_IF_ERROR(path_of(value, raw_key, *f->second));
+        } else if (key == "layers") {
+            if (!value.is_array() || value.empty()) {
+                return type_error(path, raw_key, "a non-empty array of layer objects");
             }
-        } else if (key == "line-max-distance") {
-            EXEMPLAR_RETURN_IF_ERROR(number_of(value, raw_key, o.line_max_distance_px));
+            for (const json& l : value) {
+                if (!l.is_object()) return type_error(path, raw_key, "an array of objects");
+                AnimateSourceSpec layer;
+                for (const auto& [lk_raw, lv] : l.items()) {
+                    bool ok = false;
+                    const std::string name = "layers." + lk_raw;
+                    EXEMPLAR_RETURN_IF_ERROR(
+                        parse_source(canonical_key(lk_raw), name, lv, layer, ok));
+                    if (!ok) {
+                        return invalid_argument(path + ": unknown key '" + name +
+                                                "' (layers take frames, coverage, flows, style, "
+                                                "keyframes, lines)");
+                    }
+                }
+                job.layers.push_back(std::move(layer));
+            }
         } else if (key == "weights") {
             if (!value.is_object()) return type_error(path, raw_key, "an object of numbers");
             for (const auto& [wk_raw, wv] : value.items()) {
@@ -172,14 +215,6 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                 }
                 EXEMPLAR_RETURN_IF_ERROR(number_of(wv, name, *field));
             }
-        } else if (key == "levels") {
-            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, o.levels));
-        } else if (key == "sweeps") {
-            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, o.sweeps));
-        } else if (key == "backward-em-iterations") {
-            EXEMPLAR_RETURN_IF_ERROR(int_of(value, raw_key, o.backward_em_iterations));
-        } else if (key == "occlusion-tolerance") {
-            EXEMPLAR_RETURN_IF_ERROR(number_of(value, raw_key, o.occlusion_tolerance_sq_px));
         } else if (key == "orientation") {
             if (!value.is_boolean()) return type_error(path, raw_key, "true or false");
             o.orientation = value.get<bool>();
@@ -203,10 +238,46 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
             return invalid_argument(path + ": unknown key '" + raw_key + "'");
         }
     }
-    if (job.frames.empty()) return invalid_argument(path + ": key 'frames' is missing");
-    if (job.style_input.empty() || job.style_output.empty()) {
-        return invalid_argument(path + ": key 'style' needs \"input\" and \"output\"");
+    if (!job.layers.empty()) {
+        if (!job.base.keyframes.empty()) {
+            return invalid_argument(path +
+                                    ": key 'keyframes' belongs to a layer when layers are given");
+        }
+        // A layer inherits the inputs it does not name.
+        for (std::size_t i = 0; i < job.layers.size(); ++i) {
+            AnimateSourceSpec& l = job.layers[i];
+            const AnimateSourceSpec& b = job.base;
+            if (l.frames.empty()) l.frames = b.frames;
+            if (!l.flows_given) {
+                l.estimate_flow = b.estimate_flow;
+                l.forward_flow = b.forward_flow;
+                l.backward_flow = b.backward_flow;
+                l.flow_layer = b.flow_layer;
+            }
+            if (l.style_input.empty()) l.style_input = b.style_input;
+            if (l.style_output.empty()) l.style_output = b.style_output;
+            if (l.lines.empty()) {
+                l.lines = b.lines;
+                l.style_lines = b.style_lines;
+            }
+            const std::string name = path + ": layer " + std::to_string(i);
+            if (l.frames.empty()) return invalid_argument(name + ": key 'frames' is missing");
+            if (l.style_input.empty() || l.style_output.empty()) {
+                return invalid_argument(name + ": key 'style' needs \"input\" and \"output\"");
+            }
+            if (i > 0 && l.coverage.empty()) {
+                return invalid_argument(name +
+                                        ": key 'coverage' is missing (every layer but the "
+                                        "backmost needs one)");
+            }
+        }
+    } else {
+        if (job.base.frames.empty()) return invalid_argument(path + ": key 'frames' is missing");
+        if (job.base.style_input.empty() || job.base.style_output.empty()) {
+            return invalid_argument(path + ": key 'style' needs \"input\" and \"output\"");
+        }
     }
+    job.fps = fps;
     if (!(job.fps > 0.0)) return invalid_argument(path + ": key 'fps' must be > 0");
     if (job.chunk < 0 || job.chunk == 1) {
         return invalid_argument(path + ": key 'chunk' must be 0 (whole range) or >= 2");

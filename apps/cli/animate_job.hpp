@@ -16,11 +16,11 @@ struct AnimateKeySpec {
     std::string mask;   ///< Optional coverage image (channel 0), overrides the alpha.
 };
 
-/// Everything a job file says. Paths are resolved against the job file's folder.
-struct AnimateJob {
-    std::string frames;         ///< printf pattern, folder or video file.
-    int first = -1, last = -1;  ///< Frame numbers of a pattern (inclusive).
+/// Where one layer's inputs come from (the whole animation when the job has no layers).
+struct AnimateSourceSpec {
+    std::string frames;  ///< printf pattern, folder or video file.
     bool estimate_flow = true;
+    bool flows_given = false;   ///< "flows" appeared (a layer without it inherits the job's).
     std::string forward_flow;   ///< Pattern: file n holds the flow n → n+1.
     std::string backward_flow;  ///< Pattern: file n holds the flow n → n−1.
     std::string flow_layer;     ///< EXR layer of the flow files ("" = the first 2 channels).
@@ -28,8 +28,16 @@ struct AnimateJob {
     std::vector<AnimateKeySpec> keyframes;
     std::string style_lines;  ///< Line drawing of S (g_dt), with `lines`.
     std::string lines;        ///< Pattern of the frames' line drawings (frame numbers).
-    std::string output;       ///< Pattern of the output frames.
-    std::string mp4;          ///< Optional MP4 of the written range.
+    std::string coverage;     ///< Layers: pattern of the layer's coverage per frame.
+};
+
+/// Everything a job file says. Paths are resolved against the job file's folder.
+struct AnimateJob {
+    AnimateSourceSpec base;                 ///< The top-level inputs.
+    std::vector<AnimateSourceSpec> layers;  ///< Back to front; each inherits what it omits.
+    int first = -1, last = -1;              ///< Frame numbers of a pattern (inclusive).
+    std::string output;                     ///< Pattern of the output frames.
+    std::string mp4;                        ///< Optional MP4 of the written range.
     double fps = 24.0;
     int chunk = 24;  ///< Frames per solve (0 = the whole range at once).
     animate::AnimateOptions options;

@@ -168,6 +168,51 @@ TEST_F(AnimateCli, LineDrawingsFeedTheLineTerm) {
     EXPECT_TRUE(fs::exists(out(2)));
 }
 
+TEST_F(AnimateCli, LayersAreSolvedApartAndComposited) {
+    fs::create_directories(dir_ / "bg");
+    fs::create_directories(dir_ / "mask");
+    Scene empty = scene_;
+    empty.square = 0;
+    for (int t = 0; t < scene_.frames; ++t) {
+        char name[32];
+        std::snprintf(name, sizeof name, "bg/%02d.png", t);
+        write(name, empty.frame(t));
+        Image m(scene_.width, scene_.height, 1, 0.0f);
+        for (int y = 0; y < scene_.height; ++y) {
+            for (int x = 0; x < scene_.width; ++x) m.at(x, y, 0) = scene_.in_square(x, y, t);
+        }
+        std::snprintf(name, sizeof name, "mask/%02d.png", t);
+        write(name, m);
+    }
+    const std::string j = job(R"("layers": [{"frames": "bg/%02d.png", "flows": "estimate"},)"
+                              R"( {"frames": "frames/%02d.png", "coverage": "mask/%02d.png"}])");
+    CliRun r = run({"animate", j, "-q", "--frames", "0-3"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (int t = 0; t < 4; ++t) {
+        char name[32];
+        std::snprintf(name, sizeof name, "out/%02d.layer1.png", t);
+        ASSERT_TRUE(fs::exists(path(name))) << name;
+    }
+    const Image composite = read("out/02.png"), back = read("out/02.layer0.png"),
+                front = read("out/02.layer1.png");
+    for (int y = 0; y < scene_.height; ++y) {
+        for (int x = 0; x < scene_.width; ++x) {
+            const Image& want = scene_.in_square(x, y, 2) ? front : back;
+            for (int c = 0; c < 3; ++c) ASSERT_EQ(composite.at(x, y, c), want.at(x, y, c));
+        }
+    }
+    // The next range hands each layer its own frame 3 over.
+    r = run({"animate", j, "-q", "--frames", "4-5"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const double seam = seam_error(read("out/03.png"), read("out/04.png"), 4);
+    EXPECT_LT(seam, 0.001) << seam;
+
+    expect_failure_as_is({"animate", job(R"("layers": [{}, {"frames": "frames/%02d.png"}])")}, 1,
+                         path("job.json") + ": layer 1: key 'coverage' is missing");
+    expect_failure_as_is({"animate", job(R"("layers": [{"colour": 1}])")}, 1,
+                         path("job.json") + ": unknown key 'layers.colour'");
+}
+
 TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
     expect_failure_as_is({"animate", job(R"("framez": 3)")}, 1,
                          path("job.json") + ": unknown key 'framez'");
