@@ -2,7 +2,11 @@
 // 960x540 sequence (a textured disc moving over a textured background) stylized after Starry
 // Night (shared data; S = its blurred luminance, Ŝ = the painting), default settings.
 //
-//   bench_animate [frames=6] [threads=2] [--given-flow] [--scale s] [--set name=value ...]
+//   bench_animate [frames=6] [threads=2] [--given-flow] [--keys] [--scale s]
+//                 [--set name=value ...]
+//
+// --keys adds full keyframes at the first and last frame (the painting resized to the frame:
+// only their cost matters here, the source atlas grows by two frames).
 //
 // --set changes an engine option of every call (names of `exemplar stylize --help`).
 //
@@ -23,7 +27,7 @@ using namespace exemplar;
 
 int main(int argc, char** argv) {
     int frames = 6, threads = 2;
-    bool given = false;
+    bool given = false, keys = false;
     float scale = 1.0f;
     int positional = 0;
     animate::AnimateOptions options;
@@ -31,6 +35,8 @@ int main(int argc, char** argv) {
         const std::string a = argv[i];
         if (a == "--given-flow") {
             given = true;
+        } else if (a == "--keys") {
+            keys = true;
         } else if (a == "--set" && i + 1 < argc) {
             const std::string kv = argv[++i];
             const auto eq = kv.find('=');
@@ -77,6 +83,10 @@ int main(int argc, char** argv) {
     in.frame_count = frames;
     in.frame = [&](int t) -> Result<Image> { return scene.frame(t); };
     if (given) in.motion = [&](int t) -> Result<video::FlowPair> { return scene.motion(t); };
+    if (keys) {
+        const Image key = resize(out, scene.width, scene.height, ResampleFilter::Gaussian);
+        in.keyframes = {{0, key, {}}, {frames - 1, key, {}}};
+    }
     RunContext context(threads);
     const auto start = std::chrono::steady_clock::now();
     auto r = animate::animate(in, options, context);
@@ -87,8 +97,9 @@ int main(int argc, char** argv) {
         return 1;
     }
     const animate::StageTimes& s = r->times;
-    std::printf("%dx%d, %d frames, %d threads, motion %s\n", scene.width, scene.height, frames,
-                threads, given ? "given" : "estimated (DIS medium)");
+    std::printf("%dx%d, %d frames, %d threads, motion %s%s\n", scene.width, scene.height, frames,
+                threads, given ? "given" : "estimated (DIS medium)",
+                keys ? ", keys at the first and last frame" : "");
     std::printf("%-10s %9s %9s\n", "stage", "total s", "per frame");
     const std::pair<const char*, double> rows[] = {
         {"motion", s.flow},       {"occlusion", s.occlusion}, {"forward", s.forward},
