@@ -52,6 +52,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     StylitCommand stylit(app);
     FlowCommand flow(app);
     BeautifyCommand beautify(app);
+    AnimateCommand animate(app);
     const Streams streams{out, err, err_is_terminal};
 
     Status status;
@@ -69,6 +70,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = flow.run(streams);
         } else if (beautify.parsed()) {
             status = beautify.run(streams);
+        } else if (animate.parsed()) {
+            status = animate.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);
