@@ -66,18 +66,25 @@ void BM_PatchDistanceFast(benchmark::State& state) {
 }
 BENCHMARK(BM_PatchDistanceFast)->Arg(0)->Arg(1);
 
+// range(0): threads; range(1): image side (1024: features of 16 MiB per image, past the caches,
+// which is the regime of the finest levels of real runs).
 void BM_PatchMatchIteration(benchmark::State& state) {
     set_simd_enabled(true);
-    Setup& s = setup(256);
+    const int size = static_cast<int>(state.range(1));
+    Setup& s = setup(size);
     ForwardProblem all{s.L, s.L.target_active.data()};
     for (auto _ : state) {
         Nnf nnf = s.nnf;
         run_patchmatch(all, nnf, 1, 7, static_cast<int>(state.range(0)));
         benchmark::DoNotOptimize(nnf.matches().data());
     }
-    state.SetItemsProcessed(state.iterations() * 256 * 256);
+    state.SetItemsProcessed(state.iterations() * size * size);
 }
-BENCHMARK(BM_PatchMatchIteration)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PatchMatchIteration)
+    ->Args({1, 256})
+    ->Args({2, 256})
+    ->Args({1, 1024})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Vote(benchmark::State& state) {
     Setup& s = setup(256);
