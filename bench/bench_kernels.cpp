@@ -21,18 +21,18 @@ struct Setup {
     Nnf nnf;
 };
 
-Setup& setup(int size) {
-    static std::map<int, Setup> cache;
-    auto it = cache.find(size);
+// `weight_maps`: every guide gets a per-pixel target weight map (as the animation solver's
+// occlusion-aware temporal term does).
+Setup& setup(int size, bool weight_maps = false) {
+    static std::map<std::pair<int, bool>, Setup> cache;
+    auto it = cache.find({size, weight_maps});
     if (it != cache.end()) return it->second;
-    Setup& s = cache[size];
+    Setup& s = cache[{size, weight_maps}];
     s.in.style = testing::texture(size, size, 3, 1);
     for (int g = 0; g < 4; ++g) {
-        s.in.guides.push_back(GuidePair{"g",
-                                        testing::texture(size, size, 3, 10 + g),
-                                        testing::texture(size, size, 3, 20 + g),
-                                        0.5f,
-                                        {}});
+        s.in.guides.push_back(GuidePair{
+            "g", testing::texture(size, size, 3, 10 + g), testing::texture(size, size, 3, 20 + g),
+            0.5f, weight_maps ? testing::texture(size, size, 1, 30 + g) : Image()});
     }
     LevelBuilder builder(s.in, s.opt, 1, 1);
     s.L = builder.build(0);
@@ -68,6 +68,22 @@ BENCHMARK(BM_PatchDistanceFast)->Arg(0)->Arg(1);
 
 // range(0): threads; range(1): image side (1024: features of 16 MiB per image, past the caches,
 // which is the regime of the finest levels of real runs).
+// Per-pixel guide weights: range(0) 0 = the general (reference) path, 1 = the SIMD fast path.
+void BM_PatchDistanceWeightMap(benchmark::State& state) {
+    set_simd_enabled(true);
+    const Level& L = setup(128, true).L;
+    const bool fast = state.range(0) != 0;
+    state.SetLabel(fast ? "fast path" : "general path");
+    int i = 0;
+    for (auto _ : state) {
+        const int tx = 10 + i % 100, sy = 40 + i % 50;
+        benchmark::DoNotOptimize(fast ? patch_distance(L, tx, 20, 30, sy, 0)
+                                      : patch_distance_reference(L, tx, 20, 30, sy, 0));
+        ++i;
+    }
+}
+BENCHMARK(BM_PatchDistanceWeightMap)->Arg(0)->Arg(1);
+
 void BM_PatchMatchIteration(benchmark::State& state) {
     set_simd_enabled(true);
     const int size = static_cast<int>(state.range(1));

@@ -65,10 +65,8 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
 }
 
 /// Runs `iterations` PatchMatch iterations on `field` (whose active entries must be evaluated).
-/// The random search starts at radius `max_radius` (0: the whole database), halving down to 1.
 template <class Problem>
-void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t key, int threads,
-                    int max_radius = 0) {
+void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t key, int threads) {
     const int w = field.width();
     const int h = field.height();
     const int bands = (h + kBandRows - 1) / kBandRows;
@@ -128,9 +126,8 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
 
                     // Random search in shrinking windows around the best match.
                     KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
-                    const int full = std::max(P.db_width(), P.db_height());
-                    for (int radius = max_radius > 0 ? std::min(max_radius, full) : full;
-                         radius >= 1; radius /= 2) {
+                    for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
+                         radius /= 2) {
                         const int cx =
                             std::clamp(best.x + rng.range(-radius, radius), 0, P.db_width() - 1);
                         const int cy =

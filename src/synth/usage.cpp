@@ -17,10 +17,6 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 // Uniform usage: rounds of reversed retrieval before the remaining targets are assigned by a
 // capacity-limited forward search (guarantees termination; see docs/algorithms.md).
 constexpr int kUniformMaxReverseRounds = 64;
-// Warm reversed rounds search random radii from max(W, H) / kWarmRadiusDivisor down: on the
-// stylit and facestyle examples this saves 9-11% of the distance evaluations at unchanged
-// texture and error (docs/PERFORMANCE.md, "Warm search radius").
-constexpr int kWarmRadiusDivisor = 8;
 
 int search_iterations(const SearchSetup& setup) {
     return setup.warm ? setup.options.warm_search_iterations : setup.options.search_iterations;
@@ -90,13 +86,9 @@ public:
         // The first round starts from the previous EM iteration's first-round field (warm), an
         // upsampled coarser level's field or random matches; later rounds from this search's.
         const bool warm = round > 0 || warm_;
-        // A warm field is already close: its random search skips the largest radii, whose
-        // candidates are nearly uniform draws and rarely win (the per-pixel uniform draw of
-        // run_patchmatch still explores the whole target).
-        const int radius = warm ? std::max(L_.tw, L_.th) / kWarmRadiusDivisor : 0;
         run_patchmatch(problem, reverse_,
                        warm ? s_.options.warm_search_iterations : s_.options.search_iterations,
-                       hash_keys(key, 1), s_.threads, radius);
+                       hash_keys(key, 1), s_.threads);
         // Later rounds pull the field toward the few targets still free; the next EM
         // iteration (all targets free again) starts better from this round's field.
         if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;
