@@ -16,10 +16,6 @@ namespace {
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
-Status type_error(const std::string& file, const std::string& key, const char* expected) {
-    return invalid_argument(file + ": key '" + key + "' must be " + expected);
-}
-
 }  // namespace
 
 Result<AnimateJob> load_animate_job(const std::string& path) {

@@ -5,6 +5,10 @@
 
 namespace exemplar::cli {
 
+Status type_error(const std::string& file, const std::string& key, const char* expected) {
+    return invalid_argument(file + ": key '" + key + "' must be " + expected);
+}
+
 Result<nlohmann::json> read_json_object(const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code ec;

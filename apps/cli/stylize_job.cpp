@@ -15,10 +15,6 @@ namespace {
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
-Status type_error(const std::string& file, const std::string& key, const char* expected) {
-    return invalid_argument(file + ": key '" + key + "' must be " + expected);
-}
-
 // Every key of the job file `path` goes to `visit(raw_key, canonical_key, value, resolve)`.
 using Resolver = std::function<std::string(const std::string&)>;
 using KeyVisitor =
