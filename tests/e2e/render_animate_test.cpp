@@ -12,6 +12,7 @@
 #include "cli_fixture.hpp"
 #include "exemplar/animate/animate.hpp"
 #include "exemplar/filters/resample.hpp"
+#include "exemplar/io/flow_io.hpp"
 #include "exemplar/render/animation.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "synthetic_scene.hpp"
@@ -149,3 +150,66 @@ TEST(RenderAnimate, TurntableIsCoherentWithExactFlowsAndKeepsTheTexture) {
 
 }  // namespace
 }  // namespace exemplar
+
+namespace exemplar::cli::testing {
+namespace {
+
+// The command-line recipe of examples/animate/README.md: `exemplar render --frames` into
+// out/turntable/frame_%04d/, then `exemplar animate examples/animate/turntable_job.json` on the
+// rendered fullgi and flows. The job file is used as checked in (copied with the StyLit pair it
+// names into the same relative places): its frames 0-11 rendered tiny, the first three solved.
+class TurntableJob : public Cli {};
+
+TEST_F(TurntableJob, CheckedInJobStylizesRenderedFrames) {
+    const std::string src = EXEMPLAR_SOURCE_DIR;
+    for (const char* folder : {"examples/animate", "examples/stylit", "out/turntable"}) {
+        fs::create_directories(path(folder));
+    }
+    for (const char* file :
+         {"examples/animate/turntable_job.json", "examples/stylit/source_fullgi.png",
+          "examples/stylit/source_style.png"}) {
+        fs::copy_file(src + "/" + file, path(file));
+    }
+    const CliRun r = run({"render", "--scene", src + "/examples/render/spot-turntable.json",
+                          "--width", "64", "--height", "48", "--spp", "2", "--frames", "0-11",
+                          "--threads", "2", "--output", path("out/turntable/frame_%04d"), "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const CliRun a = run({"animate", path("examples/animate/turntable_job.json"), "--frames", "0-2",
+                          "-j", "2", "-q"});
+    ASSERT_EQ(a.code, 0) << a.err;
+    EXPECT_TRUE(fs::exists(path("out/turntable/spot_turntable.mp4")));
+
+    std::vector<Image> out, in;
+    for (int t = 0; t < 3; ++t) {
+        char name[64];
+        std::snprintf(name, sizeof name, "out/turntable/stylized_%04d.png", t);
+        out.push_back(read(name));
+        std::snprintf(name, sizeof name, "out/turntable/frame_%04d/fullgi.png", t);
+        in.push_back(read(name));
+        ASSERT_EQ(out.back().width(), 64);
+        ASSERT_EQ(out.back().height(), 48);
+        ASSERT_EQ(out.back().channels(), 3);
+    }
+    // The outputs follow the rendered motion: along the rendered flows they change less than
+    // the (noisy, relit) input frames do.
+    double e_out = 0.0, e_in = 0.0;
+    for (int t = 1; t < 3; ++t) {
+        char dir[64];
+        std::snprintf(dir, sizeof dir, "out/turntable/frame_%04d/", t);
+        auto backward = load_flow(path(std::string(dir) + "backward_flow.exr"));
+        ASSERT_TRUE(backward.ok()) << backward.status().message();
+        const Image visible_before = read(std::string(dir) + "disocclusion.png");
+        e_out += animate::testing::warp_error_visible(out[static_cast<std::size_t>(t - 1)],
+                                                      out[static_cast<std::size_t>(t)], *backward,
+                                                      visible_before);
+        e_in += animate::testing::warp_error_visible(in[static_cast<std::size_t>(t - 1)],
+                                                     in[static_cast<std::size_t>(t)], *backward,
+                                                     visible_before);
+    }
+    std::printf("turntable job at 64x48: warp error outputs %.5f, input frames %.5f\n", e_out / 2,
+                e_in / 2);
+    EXPECT_LT(e_out, 0.5 * e_in);
+}
+
+}  // namespace
+}  // namespace exemplar::cli::testing
