@@ -143,11 +143,10 @@ inline AnimationInput make_input(const Scene& scene, const Style& style) {
 }
 
 // Mean squared difference between frame t and frame t−1 pulled along the backward flow of t,
-// over pixels that pass the occlusion test χ⁻ (and whose sample is inside frame t−1).
-inline double warp_error(const Image& previous, const Image& current, const Image& backward,
-                         const Image& forward_of_previous, float tolerance = 2.0f) {
-    const Image occluded =
-        video::occlusion_mask(backward, forward_of_previous, {tolerance}, 1).value();
+// over pixels not marked in `occluded` (1 channel, 1 = not visible in frame t−1; e.g. a
+// renderer's disocclusion buffer) and whose sample is inside frame t−1.
+inline double warp_error_visible(const Image& previous, const Image& current, const Image& backward,
+                                 const Image& occluded) {
     const video::WarpResult w = video::backward_warp(previous, backward, 1).value();
     double sum = 0.0;
     std::size_t n = 0;
@@ -162,6 +161,14 @@ inline double warp_error(const Image& previous, const Image& current, const Imag
         ++n;
     }
     return n == 0 ? 0.0 : sum / static_cast<double>(n * static_cast<std::size_t>(C));
+}
+
+// The same over pixels that pass the occlusion test χ⁻ of the flows.
+inline double warp_error(const Image& previous, const Image& current, const Image& backward,
+                         const Image& forward_of_previous, float tolerance = 2.0f) {
+    return warp_error_visible(
+        previous, current, backward,
+        video::occlusion_mask(backward, forward_of_previous, {tolerance}, 1).value());
 }
 
 // Mean squared luminance gradient (forward differences) of an RGB or grey image.
