@@ -302,12 +302,14 @@ Status AnimateCommand::run(const Streams& streams) const {
                     video::FlowPair pair;
                     const std::pair<const std::string*, int> files[] = {
                         {&spec.forward_flow, s0 + t}, {&spec.backward_flow, s0 + t + 1}};
+                    const std::string* flow_layers[] = {&spec.forward_flow_layer,
+                                                        &spec.backward_flow_layer};
                     for (int k = 0; k < 2; ++k) {
                         auto file = video::format_frame_path(*files[k].first, files[k].second);
                         if (!file.ok()) {
                             return invalid_argument("flows: " + file.status().message());
                         }
-                        auto flow = load_flow(*file, spec.flow_layer);
+                        auto flow = load_flow(*file, *flow_layers[k]);
                         if (!flow.ok()) return flow.status();
                         if (flow->width() != W || flow->height() != H) {
                             return invalid_argument(*file + ": flow is " + size_str(*flow) +

@@ -106,10 +106,16 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                 } else if (fk == "backward") {
                     EXEMPLAR_RETURN_IF_ERROR(path_of(fv, name, src.backward_flow));
                 } else if (fk == "layer") {
-                    EXEMPLAR_RETURN_IF_ERROR(string_of(fv, name, src.flow_layer));
+                    EXEMPLAR_RETURN_IF_ERROR(string_of(fv, name, src.forward_flow_layer));
+                    src.backward_flow_layer = src.forward_flow_layer;
+                } else if (fk == "forward-layer") {
+                    EXEMPLAR_RETURN_IF_ERROR(string_of(fv, name, src.forward_flow_layer));
+                } else if (fk == "backward-layer") {
+                    EXEMPLAR_RETURN_IF_ERROR(string_of(fv, name, src.backward_flow_layer));
                 } else {
                     return invalid_argument(path + ": unknown key '" + name +
-                                            "' (flows take forward, backward, layer)");
+                                            "' (flows take forward, backward, layer, "
+                                            "forward_layer, backward_layer)");
                 }
             }
             if (src.forward_flow.empty() || src.backward_flow.empty()) {
@@ -248,7 +254,8 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
                 l.estimate_flow = b.estimate_flow;
                 l.forward_flow = b.forward_flow;
                 l.backward_flow = b.backward_flow;
-                l.flow_layer = b.flow_layer;
+                l.forward_flow_layer = b.forward_flow_layer;
+                l.backward_flow_layer = b.backward_flow_layer;
             }
             if (l.style_input.empty()) l.style_input = b.style_input;
             if (l.style_output.empty()) l.style_output = b.style_output;

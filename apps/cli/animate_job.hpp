@@ -23,7 +23,9 @@ struct AnimateSourceSpec {
     bool flows_given = false;   ///< "flows" appeared (a layer without it inherits the job's).
     std::string forward_flow;   ///< Pattern: file n holds the flow n → n+1.
     std::string backward_flow;  ///< Pattern: file n holds the flow n → n−1.
-    std::string flow_layer;     ///< EXR layer of the flow files ("" = the first 2 channels).
+    /// EXR layers of the forward and backward flow files ("" = the first 2 channels), e.g.
+    /// `forward_flow` and `backward_flow` of one multi-layer render per frame.
+    std::string forward_flow_layer, backward_flow_layer;
     std::string style_input, style_output;
     std::vector<AnimateKeySpec> keyframes;
     std::string style_lines;  ///< Line drawing of S (g_dt), with `lines`.

@@ -1,10 +1,12 @@
 // `exemplar animate`: job files, frame ranges with hand-over, resume, keyframes with alpha, and
 // one-line errors.
 
+#include <algorithm>
 #include <fstream>
 
 #include "cli_fixture.hpp"
 #include "exemplar/io/flow_io.hpp"
+#include "exemplar/io/image_io.hpp"
 #include "exemplar/video/frame_sequence.hpp"
 #include "synthetic_scene.hpp"
 
@@ -211,6 +213,40 @@ TEST_F(AnimateCli, LayersAreSolvedApartAndComposited) {
                          path("job.json") + ": layer 1: key 'coverage' is missing");
     expect_failure_as_is({"animate", job(R"("layers": [{"colour": 1}])")}, 1,
                          path("job.json") + ": unknown key 'layers.colour'");
+}
+
+// One multi-layer EXR per frame holding both directions (as `exemplar render --frames` writes
+// them): flows.forward_layer / backward_layer pick a layer each; the result equals the same
+// flows given as .flo files.
+TEST_F(AnimateCli, FlowsFromLayersOfOneExrPerFrame) {
+    for (int t = 0; t < scene_.frames; ++t) {
+        Image forward(scene_.width, scene_.height, 2), backward(scene_.width, scene_.height, 2);
+        if (t + 1 < scene_.frames) forward = scene_.motion(t).forward;
+        if (t > 0) backward = scene_.motion(t - 1).backward;
+        forward.set_channel_names({"u", "v"});
+        backward.set_channel_names({"u", "v"});
+        char name[32];
+        std::snprintf(name, sizeof name, "flow/m%02d.exr", t);
+        ASSERT_TRUE(
+            save_exr_layers({{"forward_flow", &forward}, {"backward_flow", &backward}}, path(name))
+                .is_ok());
+    }
+    CliRun r = run({"animate", job(), "--frames", "0-2", "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Image from_flo = read("out/02.png");
+    fs::remove_all(dir_ / "out");
+    fs::create_directories(dir_ / "out");
+    std::ofstream(path("layers.json"))
+        << R"({"frames": "frames/%02d.png", "first": 0, "last": )" << scene_.frames - 1
+        << R"(, "flows": {"forward": "flow/m%02d.exr", "backward": "flow/m%02d.exr",)"
+        << R"( "forward_layer": "forward_flow", "backward_layer": "backward_flow"},)"
+        << R"( "style": {"input": "s_in.png", "output": "s_out.png"}, "output": "out/%02d.png"})";
+    r = run({"animate", path("layers.json"), "--frames", "0-2", "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Image from_layers = read("out/02.png");
+    ASSERT_TRUE(from_layers.same_size(from_flo));
+    EXPECT_TRUE(
+        std::equal(from_layers.data().begin(), from_layers.data().end(), from_flo.data().begin()));
 }
 
 TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
