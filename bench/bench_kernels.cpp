@@ -21,18 +21,18 @@ struct Setup {
     Nnf nnf;
 };
 
-Setup& setup(int size) {
-    static std::map<int, Setup> cache;
-    auto it = cache.find(size);
+// `weight_maps`: every guide gets a per-pixel target weight map (as the animation solver's
+// occlusion-aware temporal term does).
+Setup& setup(int size, bool weight_maps = false) {
+    static std::map<std::pair<int, bool>, Setup> cache;
+    auto it = cache.find({size, weight_maps});
     if (it != cache.end()) return it->second;
-    Setup& s = cache[size];
+    Setup& s = cache[{size, weight_maps}];
     s.in.style = testing::texture(size, size, 3, 1);
     for (int g = 0; g < 4; ++g) {
-        s.in.guides.push_back(GuidePair{"g",
-                                        testing::texture(size, size, 3, 10 + g),
-                                        testing::texture(size, size, 3, 20 + g),
-                                        0.5f,
-                                        {}});
+        s.in.guides.push_back(GuidePair{
+            "g", testing::texture(size, size, 3, 10 + g), testing::texture(size, size, 3, 20 + g),
+            0.5f, weight_maps ? testing::texture(size, size, 1, 30 + g) : Image()});
     }
     LevelBuilder builder(s.in, s.opt, 1, 1);
     s.L = builder.build(0);
@@ -66,18 +66,41 @@ void BM_PatchDistanceFast(benchmark::State& state) {
 }
 BENCHMARK(BM_PatchDistanceFast)->Arg(0)->Arg(1);
 
+// range(0): threads; range(1): image side (1024: features of 16 MiB per image, past the caches,
+// which is the regime of the finest levels of real runs).
+// Per-pixel guide weights: range(0) 0 = the general (reference) path, 1 = the SIMD fast path.
+void BM_PatchDistanceWeightMap(benchmark::State& state) {
+    set_simd_enabled(true);
+    const Level& L = setup(128, true).L;
+    const bool fast = state.range(0) != 0;
+    state.SetLabel(fast ? "fast path" : "general path");
+    int i = 0;
+    for (auto _ : state) {
+        const int tx = 10 + i % 100, sy = 40 + i % 50;
+        benchmark::DoNotOptimize(fast ? patch_distance(L, tx, 20, 30, sy, 0)
+                                      : patch_distance_reference(L, tx, 20, 30, sy, 0));
+        ++i;
+    }
+}
+BENCHMARK(BM_PatchDistanceWeightMap)->Arg(0)->Arg(1);
+
 void BM_PatchMatchIteration(benchmark::State& state) {
     set_simd_enabled(true);
-    Setup& s = setup(256);
+    const int size = static_cast<int>(state.range(1));
+    Setup& s = setup(size);
     ForwardProblem all{s.L, s.L.target_active.data()};
     for (auto _ : state) {
         Nnf nnf = s.nnf;
         run_patchmatch(all, nnf, 1, 7, static_cast<int>(state.range(0)));
         benchmark::DoNotOptimize(nnf.matches().data());
     }
-    state.SetItemsProcessed(state.iterations() * 256 * 256);
+    state.SetItemsProcessed(state.iterations() * size * size);
 }
-BENCHMARK(BM_PatchMatchIteration)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PatchMatchIteration)
+    ->Args({1, 256})
+    ->Args({2, 256})
+    ->Args({1, 1024})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Vote(benchmark::State& state) {
     Setup& s = setup(256);

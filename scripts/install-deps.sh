@@ -12,6 +12,7 @@ packages=(
   libembree-dev libtinyobjloader-dev     # renderer: ray queries, OBJ meshes
   libfmt-dev libspdlog-dev
   libopencv-dev libeigen3-dev libcairo2-dev  # stylit: scan alignment, PCA, PDF sheet
+  libtinyxml2-dev                        # sketch: SVG import
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   libpoppler-cpp-dev zlib1g-dev          # tests: the PDF sheet read back
   clang-format

@@ -51,6 +51,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     RenderCommand render(app);
     StylitCommand stylit(app);
     FlowCommand flow(app);
+    BeautifyCommand beautify(app);
+    AnimateCommand animate(app);
     const Streams streams{out, err, err_is_terminal};
 
     Status status;
@@ -66,6 +68,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = stylit.run(streams);
         } else if (flow.parsed()) {
             status = flow.run(streams);
+        } else if (beautify.parsed()) {
+            status = beautify.run(streams);
+        } else if (animate.parsed()) {
+            status = animate.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

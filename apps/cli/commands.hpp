@@ -153,4 +153,47 @@ private:
     bool quiet_ = false;
 };
 
+/// `exemplar beautify`: ShipShape beautification of an SVG sketch, stroke by stroke.
+class BeautifyCommand {
+public:
+    /// Adds the `beautify` subcommand and its flags to `app`.
+    explicit BeautifyCommand(CLI::App& app);
+    BeautifyCommand(const BeautifyCommand&) = delete;
+    BeautifyCommand& operator=(const BeautifyCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string input_, output_, report_, suggestions_, preview_;
+    int max_suggestions_ = 10;
+    double fit_px_ = 0.0;
+    bool quiet_ = false;
+};
+
+/// `exemplar animate`: temporally coherent stylization of a frame sequence from a job file.
+class AnimateCommand {
+public:
+    /// Adds the `animate` subcommand and its flags to `app`.
+    explicit AnimateCommand(CLI::App& app);
+    AnimateCommand(const AnimateCommand&) = delete;
+    AnimateCommand& operator=(const AnimateCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    CLI::Option* seed_flag_ = nullptr;
+    std::string job_path_, frames_, output_, mp4_;
+    int chunk_ = -1;
+    int threads_ = 0;
+    std::uint64_t seed_ = 1;
+    bool resume_ = true;
+    bool quiet_ = false;
+};
+
 }  // namespace exemplar::cli

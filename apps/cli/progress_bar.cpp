@@ -14,22 +14,28 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::update(const ProgressEvent& e) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "level %d/%d  iter %d/%d", e.level + 1, e.levels,
+                  e.iteration + 1, e.iterations);
+    update(e.fraction, detail);
+}
+
+void ProgressBar::update(double fraction, const std::string& detail) {
     if (!enabled_) return;
     const auto now = Clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     if (elapsed < 1.0) return;  // short runs stay silent
-    if (drawn_ && now - last_draw_ < std::chrono::milliseconds(100) && e.fraction < 1.0) return;
+    if (drawn_ && now - last_draw_ < std::chrono::milliseconds(100) && fraction < 1.0) return;
     last_draw_ = now;
     constexpr int kWidth = 24;
-    const double f = std::clamp(e.fraction, 0.0, 1.0);
+    const double f = std::clamp(fraction, 0.0, 1.0);
     const int filled = static_cast<int>(std::lround(f * kWidth));
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.append(static_cast<std::size_t>(kWidth - filled), '.');
-    char line[160];
+    char line[200];
     const double eta = f > 0.01 ? elapsed * (1.0 - f) / f : 0.0;
-    std::snprintf(line, sizeof line, "\r%s [%s] %3d%%  level %d/%d  iter %d/%d  ETA %ds  ",
-                  label_.c_str(), bar.c_str(), static_cast<int>(f * 100.0), e.level + 1, e.levels,
-                  e.iteration + 1, e.iterations, static_cast<int>(std::lround(eta)));
+    std::snprintf(line, sizeof line, "\r%s [%s] %3d%%  %s  ETA %ds  ", label_.c_str(), bar.c_str(),
+                  static_cast<int>(f * 100.0), detail.c_str(), static_cast<int>(std::lround(eta)));
     out_ << line << std::flush;
     drawn_ = true;
 }

@@ -16,6 +16,8 @@ public:
 
     /// Updates the bar (rate-limited to ~10 redraws per second).
     void update(const ProgressEvent& event);
+    /// Same with a free-form detail after the percentage and before the ETA.
+    void update(double fraction, const std::string& detail);
     /// Ends the line if anything was drawn.
     void finish();
 

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 
 #include "exemplar/synth/options.hpp"
+#include "json_file.hpp"
 
 namespace exemplar::cli {
 
@@ -15,39 +15,15 @@ namespace {
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
-std::string canonical_key(std::string key) {
-    for (char& c : key) {
-        if (c == '_') c = '-';
-    }
-    return key;
-}
-
-Status type_error(const std::string& file, const std::string& key, const char* expected) {
-    return invalid_argument(file + ": key '" + key + "' must be " + expected);
-}
-
 // Every key of the job file `path` goes to `visit(raw_key, canonical_key, value, resolve)`.
 using Resolver = std::function<std::string(const std::string&)>;
 using KeyVisitor =
     std::function<Status(const std::string&, const std::string&, const json&, const Resolver&)>;
 
 Status visit_job_file(const std::string& path, const KeyVisitor& visit) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) return io_error(path + ": no such file");
-    if (fs::is_directory(path, ec)) return io_error(path + ": is a folder, not a job file");
-    std::ifstream in(path);
-    if (!in) return io_error(path + ": cannot open job file");
-    json doc;
-    try {
-        doc = json::parse(in);
-    } catch (const json::parse_error& e) {
-        std::string what = e.what();
-        for (char& c : what) {
-            if (c == '\n') c = ' ';
-        }
-        return invalid_argument(path + ": not valid JSON (" + what + ")");
-    }
-    if (!doc.is_object()) return invalid_argument(path + ": must hold a JSON object");
+    auto parsed = read_json_object(path);
+    if (!parsed.ok()) return parsed.status();
+    const json& doc = *parsed;
     const fs::path base = fs::path(path).parent_path();
     const Resolver resolve = [&](const std::string& p) {
         if (p.empty() || fs::path(p).is_absolute()) return p;

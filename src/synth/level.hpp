@@ -27,8 +27,11 @@ struct Level {
 
     // Target.
     int tw = 0, th = 0;
-    FeatureImage target_features;   ///< F channels: B' (updated by voting) then the guides B_i.
-    Image target_weights;           ///< Empty, or F channels of per-pixel weight multipliers.
+    FeatureImage target_features;  ///< F channels: B' (updated by voting) then the guides B_i.
+    Image target_weights;          ///< Empty, or F channels of per-pixel weight multipliers.
+    /// With target_weights: per target pixel, `stride` floats channel_weight[c] *
+    /// target_weights(c) (0 on padding bytes), the weights of the SIMD fast path.
+    std::vector<float> target_pixel_weight;
     std::vector<int> target_label;  ///< Label group of each target pixel; empty if unused.
     std::vector<float> target_angle;
     std::vector<std::uint8_t> target_active;  ///< Patch centres being optimized.

@@ -204,6 +204,18 @@ Level LevelBuilder::build(int index, int patch_size) const {
         }
         offset += C;
     }
+    if (any_map) {
+        const auto stride = static_cast<std::size_t>(L.target_features.stride());
+        L.target_pixel_weight.assign(L.target_weights.pixel_count() * stride, 0.0f);
+        for (std::size_t i = 0; i < L.target_weights.pixel_count(); ++i) {
+            for (int c = 0; c < F; ++c) {
+                L.target_pixel_weight[i * stride + static_cast<std::size_t>(c)] =
+                    L.channel_weight[static_cast<std::size_t>(c)] *
+                    L.target_weights
+                        .data()[i * static_cast<std::size_t>(F) + static_cast<std::size_t>(c)];
+            }
+        }
+    }
 
     if (options_.falloff_sigma_px > 0.0f) {
         const float s2 = 2.0f * options_.falloff_sigma_px * options_.falloff_sigma_px;

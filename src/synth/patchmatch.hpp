@@ -8,9 +8,9 @@
 // the reversed retrieval of the usage strategies (query = source patch, database = target pixel).
 //
 // Determinism: the query grid is cut into fixed bands of kBandRows rows, processed in parallel.
-// Inside a band, propagation reads the current field; across band borders it reads a snapshot
-// taken at the start of the iteration. Random numbers are keyed by (key, iteration, pixel).
-// Hence the result does not depend on the number of threads.
+// Inside a band, propagation reads the current field; across band borders it reads a copy of
+// the neighbouring band's border row taken at the start of the iteration. Random numbers are keyed
+// by (key, iteration, pixel). Hence the result does not depend on the number of threads.
 
 #include <algorithm>
 #include <cstdint>
@@ -70,11 +70,17 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
     const int w = field.width();
     const int h = field.height();
     const int bands = (h + kBandRows - 1) / kBandRows;
-    Nnf snapshot;
+    // The one row each band reads across its border, as it was at the start of the iteration.
+    std::vector<Match> border(static_cast<std::size_t>(bands) * static_cast<std::size_t>(w));
     for (int iter = 0; iter < iterations; ++iter) {
-        snapshot = field;
         const bool forward_scan = iter % 2 == 0;
         const int step = forward_scan ? 1 : -1;
+        for (int band = 0; band < bands; ++band) {
+            const int row = forward_scan ? band * kBandRows - 1 : (band + 1) * kBandRows;
+            if (row < 0 || row >= h) continue;
+            std::copy_n(&field[static_cast<std::size_t>(row) * w], w,
+                        border.begin() + static_cast<std::ptrdiff_t>(band) * w);
+        }
         parallel_for(0, bands, threads, [&](int band) {
             const int y0 = band * kBandRows;
             const int y1 = std::min(h, y0 + kBandRows);
@@ -110,7 +116,9 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         const std::size_t ni = static_cast<std::size_t>(ny) * w + x;
                         if (P.query_active(ni)) {
                             const bool same_band = ny >= y0 && ny < y1;
-                            const Match& m = same_band ? field[ni] : snapshot[ni];
+                            const Match& m = same_band
+                                                 ? field[ni]
+                                                 : border[static_cast<std::size_t>(band) * w + x];
                             const RotatedOffset o = rotated_step(m.angle_rad, 0, step);
                             try_candidate(m.x + o.dx, m.y + o.dy);
                         }

@@ -8,17 +8,27 @@
 
 namespace exemplar::synth {
 
+/// Where the weights of ssd_rows come from: pixel p of row r uses the `stride` floats at
+/// data + r * row_step + p * pixel_step. Steps 0 share one set of weights (per channel); a
+/// per-pixel weight map uses pixel_step = stride and row_step = floats per row of the map.
+struct SsdWeights {
+    const float* data = nullptr;
+    std::size_t row_step = 0;
+    int pixel_step = 0;
+};
+
 /// Sum over `rows` rows of sum over `pixels` pixels of sum over c < stride of
-/// weights[c] * (a[c] - b[c])^2, where a row holds `pixels` consecutive pixels of `stride`
-/// bytes, row r starts at a + r * a_stride and b + r * b_stride, and stride is a multiple of 4.
-/// Returns as soon as the running sum exceeds `bound` (after a row).
+/// w[c] * (a[c] - b[c])^2 (w: that pixel's weights, see SsdWeights), where a row holds `pixels`
+/// consecutive pixels of `stride` bytes, row r starts at a + r * a_stride and b + r * b_stride,
+/// and stride is a multiple of 4. Returns as soon as the running sum exceeds `bound` (after a
+/// row).
 float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+               std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
                float bound);
 
 /// The scalar reference of ssd_rows (same contract).
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-                      std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+                      std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
                       float bound);
 
 /// Whether ssd_rows uses the SIMD kernel (default true); false routes it to the scalar

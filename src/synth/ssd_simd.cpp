@@ -17,23 +17,25 @@ namespace hn = hwy::HWY_NAMESPACE;
 // always byte k * Lanes + i and takes that byte's weight.
 template <class DF>
 float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+               std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
                float bound) {
     const hn::RebindToSigned<DF> di;
     const hn::Rebind<std::uint8_t, DF> d8;
     const int lanes = static_cast<int>(hn::Lanes(df));
     const int blocks = stride / lanes;
     float sum = 0.0f;
-    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride) {
+    const float* wrow = weights.data;
+    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, wrow += weights.row_step) {
         auto acc0 = hn::Zero(df);
         auto acc1 = hn::Zero(df);
         const std::uint8_t* pa = a;
         const std::uint8_t* pb = b;
-        for (int p = 0; p < pixels; ++p) {
+        const float* pw = wrow;
+        for (int p = 0; p < pixels; ++p, pw += weights.pixel_step) {
             for (int k = 0; k < blocks; ++k, pa += lanes, pb += lanes) {
                 const auto d = hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, pa)),
                                                          hn::PromoteTo(di, hn::LoadU(d8, pb))));
-                const auto wd = hn::Mul(hn::LoadU(df, weights + k * lanes), d);
+                const auto wd = hn::Mul(hn::LoadU(df, pw + k * lanes), d);
                 // Two accumulators: alternate pixels, to shorten the dependency chain.
                 if (p % 2 == 0) {
                     acc0 = hn::MulAdd(wd, d, acc0);
@@ -49,7 +51,7 @@ float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::ui
 }
 
 float SsdRows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-              std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+              std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
               float bound) {
     // The widest vectors that divide the pixel stride (a multiple of 4).
     const hn::ScalableTag<float> df;
@@ -78,16 +80,18 @@ std::atomic<bool> g_simd{true};
 }
 
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-                      std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+                      std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
                       float bound) {
     float sum = 0.0f;
-    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride) {
+    const float* wrow = weights.data;
+    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, wrow += weights.row_step) {
         float row = 0.0f;
         for (int p = 0; p < pixels; ++p) {
+            const float* w = wrow + static_cast<std::ptrdiff_t>(p) * weights.pixel_step;
             for (int c = 0; c < stride; ++c) {
                 const int i = p * stride + c;
                 const auto d = static_cast<float>(static_cast<int>(a[i]) - static_cast<int>(b[i]));
-                row += weights[c] * d * d;
+                row += w[c] * d * d;
             }
         }
         sum += row;
@@ -97,7 +101,7 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
 }
 
 float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int pixels, int stride, const float* weights,
+               std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
                float bound) {
     if (!g_simd.load(std::memory_order_relaxed)) {
         return ssd_rows_scalar(a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);

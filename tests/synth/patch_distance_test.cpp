@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 
+#include <cmath>
+
 #include "level_builder.hpp"
 #include "ssd.hpp"
 #include "test_images.hpp"
@@ -147,9 +149,9 @@ TEST(SsdRows, SimdMatchesScalarForEveryShape) {
         for (int pixels : {1, 2, 3, 5, 7}) {
             for (int rows : {1, 3, 5}) {
                 const float scalar = ssd_rows_scalar(a.data(), 900, b.data() + 7, 901, rows, pixels,
-                                                     stride, w.data(), 1e30f);
+                                                     stride, SsdWeights{w.data()}, 1e30f);
                 const float simd = ssd_rows(a.data(), 900, b.data() + 7, 901, rows, pixels, stride,
-                                            w.data(), 1e30f);
+                                            SsdWeights{w.data()}, 1e30f);
                 ASSERT_GT(scalar, 0.0f);
                 ASSERT_NEAR(simd, scalar, 1e-5f * scalar)
                     << "stride=" << stride << " pixels=" << pixels << " rows=" << rows;
@@ -157,11 +159,53 @@ TEST(SsdRows, SimdMatchesScalarForEveryShape) {
         }
     }
     // Early termination: the result exceeds the bound, and is a partial sum.
-    const float full = ssd_rows(a.data(), 100, b.data(), 100, 5, 5, 16, w.data(), 1e30f);
-    const float cut = ssd_rows(a.data(), 100, b.data(), 100, 5, 5, 16, w.data(), full * 0.3f);
+    const float full =
+        ssd_rows(a.data(), 100, b.data(), 100, 5, 5, 16, SsdWeights{w.data()}, 1e30f);
+    const float cut =
+        ssd_rows(a.data(), 100, b.data(), 100, 5, 5, 16, SsdWeights{w.data()}, full * 0.3f);
     EXPECT_GT(cut, full * 0.3f);
     EXPECT_LT(cut, full);
     EXPECT_NE(std::string(simd_target_name()), "");
+}
+
+TEST(SsdRows, PerPixelWeightsMatchScalar) {
+    // Weights that change per pixel and per row (a weight map): pixel p of row r uses the
+    // `stride` floats at r * row_step + p * stride.
+    const std::vector<std::uint8_t> a = random_codes(8192, 12), b = random_codes(8192, 13);
+    const std::vector<float> w = random_weights(4096, 14);
+    for (int stride : {4, 8, 16, 32}) {
+        const std::size_t row_step = static_cast<std::size_t>(7 * stride);
+        const SsdWeights per_pixel{w.data() + 3, row_step, stride};
+        const float scalar =
+            ssd_rows_scalar(a.data(), 600, b.data(), 600, 5, 5, stride, per_pixel, 1e30f);
+        const float simd = ssd_rows(a.data(), 600, b.data(), 600, 5, 5, stride, per_pixel, 1e30f);
+        ASSERT_GT(scalar, 0.0f);
+        EXPECT_NEAR(simd, scalar, 1e-5f * scalar) << "stride=" << stride;
+        // Not the shared-weights sum: the per-pixel weights are really used.
+        const float shared = ssd_rows_scalar(a.data(), 600, b.data(), 600, 5, 5, stride,
+                                             SsdWeights{w.data() + 3}, 1e30f);
+        EXPECT_GT(std::abs(shared - scalar), 1e-3f * scalar) << "stride=" << stride;
+    }
+}
+
+TEST(PatchDistance, WeightMapFastPathMatchesReference) {
+    // A guide weight map without fall-off or rotation takes the SIMD path with per-pixel weights.
+    const Level L = make_level(5, true, 0.0f, false);
+    ASSERT_FALSE(L.target_pixel_weight.empty());
+    int compared = 0;
+    for (int ty = 2; ty < L.th - 2; ty += 2) {
+        for (int tx = 2; tx < L.tw - 2; tx += 3) {
+            for (int sy = 2; sy < L.sh - 2; sy += 5) {
+                for (int sx = 2; sx < L.sw - 2; sx += 4) {
+                    const float ref = patch_distance_reference(L, tx, ty, sx, sy, 0.0f);
+                    ASSERT_NEAR(patch_distance(L, tx, ty, sx, sy, 0.0f), ref, 1e-5f * (1.0f + ref))
+                        << "t " << tx << "," << ty << " s " << sx << "," << sy;
+                    ++compared;
+                }
+            }
+        }
+    }
+    EXPECT_GT(compared, 500);
 }
 
 TEST(SsdRows, ScalarSwitchGivesTheSameDistances) {
@@ -185,10 +229,11 @@ TEST(SsdRows, EverySupportedSimdTargetMatchesScalar) {
         const int64_t target = targets & -targets;
         hwy::SetSupportedTargetsForTest(target);
         for (int stride : {4, 8, 16, 32}) {
-            const float scalar =
-                ssd_rows_scalar(a.data(), 400, b.data(), 400, 5, 5, stride, w.data(), 1e30f);
-            EXPECT_NEAR(ssd_rows(a.data(), 400, b.data(), 400, 5, 5, stride, w.data(), 1e30f),
-                        scalar, 1e-5f * scalar)
+            const float scalar = ssd_rows_scalar(a.data(), 400, b.data(), 400, 5, 5, stride,
+                                                 SsdWeights{w.data()}, 1e30f);
+            EXPECT_NEAR(
+                ssd_rows(a.data(), 400, b.data(), 400, 5, 5, stride, SsdWeights{w.data()}, 1e30f),
+                scalar, 1e-5f * scalar)
                 << hwy::TargetName(target) << " stride=" << stride;
         }
         ++tested;

@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// Operations on offset fields (NNFs) used by the temporally coherent solver (Bénard et al.
+/// 2013 §3.3): advection along a flow field with nearest-sample lookup and extrapolation by the
+/// match's rotation, upsampling to a finer pyramid level, and the per-pixel random merge of two
+/// candidate fields. Entries with x = y = -1 are "no match" (the engine draws a random match).
+
+#include <cstdint>
+#include <vector>
+
+#include "exemplar/core/image.hpp"
+#include "exemplar/synth/nnf.hpp"
+
+namespace exemplar::animate {
+
+/// Advects the field `from` (on the grid of frame s) to frame t: for each pixel p of t with
+/// visible(p) > 0.5, q = p + flow(p) is p's position in frame s (flow on t's grid, pointing into
+/// s, e.g. the backward flow of t for s = t − 1); the nearest sample p̃ = round(q) is looked up
+/// and the sub-pixel rest is extrapolated through the match's rotation:
+///     M_t(p) = M_s(p̃) + Rot(angle) (q − p̃)   (rounded to the nearest source pixel).
+/// Entries are -1 where p is not visible, q falls outside, M_s(p̃) is "no match" or the result
+/// leaves the style (`style_width` x `style_height`). No interpolation between offsets (the
+/// paper: it produces spurious offsets across discontinuities). `visible` may be empty (all
+/// visible). Sizes must agree (checked).
+Nnf advect_nnf(const Nnf& from, const Image& flow, const Image& visible, int style_width,
+               int style_height);
+
+/// A rectangle of the source (style) image that scales on its own between pyramid levels:
+/// the solver's source is an atlas of the style and the painted keyframes side by side.
+struct AtlasSlot {
+    int x0 = 0;     ///< Left column in the atlas (the top row is 0).
+    int width = 0;  ///< Size at this level.
+    int height = 0;
+};
+
+/// The field of a coarser level on the grid of a finer one (`width` x `height`): the nearest
+/// coarse sample, its position mapped from its slot of `coarse_slots` to the same slot of
+/// `fine_slots` (same count and order), the sub-pixel rest extrapolated through the match's
+/// rotation as in advect_nnf. Matches outside every slot, or leaving their slot, become
+/// "no match". One slot covering the style is the plain case.
+Nnf upsample_nnf(const Nnf& coarse, const std::vector<AtlasSlot>& coarse_slots, int width,
+                 int height, const std::vector<AtlasSlot>& fine_slots);
+
+/// Per-pixel random merge of two candidate fields of the same size: pixel i takes `a` with
+/// probability `probability_a` and `b` otherwise, decided by a counter-based random number of
+/// (key, i) (deterministic). Where one candidate is "no match" the other is used.
+Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key);
+
+}  // namespace exemplar::animate

@@ -1,0 +1,103 @@
+// Offset-field operations of the TCIA solver (Bénard et al. 2013 §3.3, "Advecting and
+// interpolating offsets"): nearest-sample lookup plus extrapolation by the match's rotation,
+// never interpolation between offsets.
+
+#include "exemplar/animate/offsets.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "exemplar/core/check.hpp"
+#include "exemplar/core/rng.hpp"
+
+namespace exemplar::animate {
+
+namespace {
+
+constexpr Match kNoMatch{-1, -1, 0.0f, 0.0f};
+
+// m shifted by the target-space offset (du, dv), rotated into the style, on a style grid scaled
+// by (sx, sy); kNoMatch if it leaves the style.
+Match extrapolate(const Match& m, double du, double dv, double sx, double sy, int sw, int sh) {
+    const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
+    const double u = m.x + c * du - s * dv;
+    const double v = m.y + s * du + c * dv;
+    const long x = std::lround((u + 0.5) * sx - 0.5);
+    const long y = std::lround((v + 0.5) * sy - 0.5);
+    if (x < 0 || y < 0 || x >= sw || y >= sh) return kNoMatch;
+    return Match{static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), m.angle_rad, 0.0f};
+}
+
+}  // namespace
+
+Nnf advect_nnf(const Nnf& from, const Image& flow, const Image& visible, int style_width,
+               int style_height) {
+    EXEMPLAR_CHECK_EQ(flow.channels(), 2);
+    EXEMPLAR_CHECK(visible.empty() || (visible.same_size(flow) && visible.channels() == 1));
+    const int w = flow.width(), h = flow.height();
+    Nnf out(w, h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            Match& o = out.at(x, y);
+            o = kNoMatch;
+            if (!visible.empty() && !(visible.at(x, y, 0) > 0.5f)) continue;
+            const double qx = x + static_cast<double>(flow.at(x, y, 0));
+            const double qy = y + static_cast<double>(flow.at(x, y, 1));
+            if (!std::isfinite(qx) || !std::isfinite(qy)) continue;
+            const long px = std::lround(qx), py = std::lround(qy);
+            if (px < 0 || py < 0 || px >= from.width() || py >= from.height()) continue;
+            const Match& m = from.at(static_cast<int>(px), static_cast<int>(py));
+            if (m.x < 0) continue;
+            o = extrapolate(m, qx - px, qy - py, 1.0, 1.0, style_width, style_height);
+        }
+    }
+    return out;
+}
+
+Nnf upsample_nnf(const Nnf& coarse, const std::vector<AtlasSlot>& coarse_slots, int width,
+                 int height, const std::vector<AtlasSlot>& fine_slots) {
+    EXEMPLAR_CHECK_EQ(coarse_slots.size(), fine_slots.size());
+    Nnf out(width, height);
+    const double qx = static_cast<double>(coarse.width()) / width;
+    const double qy = static_cast<double>(coarse.height()) / height;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const double u = (x + 0.5) * qx - 0.5, v = (y + 0.5) * qy - 0.5;
+            const long cx = std::clamp(std::lround(u), 0L, static_cast<long>(coarse.width()) - 1);
+            const long cy = std::clamp(std::lround(v), 0L, static_cast<long>(coarse.height()) - 1);
+            Match m = coarse.at(static_cast<int>(cx), static_cast<int>(cy));
+            Match& o = out.at(x, y);
+            o = kNoMatch;
+            if (m.x < 0) continue;
+            for (std::size_t s = 0; s < coarse_slots.size(); ++s) {
+                const AtlasSlot& c = coarse_slots[s];
+                if (m.x < c.x0 || m.x >= c.x0 + c.width || m.y >= c.height) continue;
+                const AtlasSlot& f = fine_slots[s];
+                m.x -= c.x0;
+                o = extrapolate(m, u - static_cast<double>(cx), v - static_cast<double>(cy),
+                                static_cast<double>(f.width) / c.width,
+                                static_cast<double>(f.height) / c.height, f.width, f.height);
+                if (o.x >= 0) o.x += f.x0;
+                break;
+            }
+        }
+    }
+    return out;
+}
+
+Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key) {
+    EXEMPLAR_CHECK(a.width() == b.width() && a.height() == b.height());
+    Nnf out(a.width(), a.height());
+    for (std::size_t i = 0; i < out.pixel_count(); ++i) {
+        const bool a_ok = a[i].x >= 0, b_ok = b[i].x >= 0;
+        bool take_a = a_ok;
+        if (a_ok && b_ok) {
+            KeyedRng rng(key, i);
+            take_a = rng.uniform() < probability_a;
+        }
+        out[i] = take_a ? a[i] : b[i];
+    }
+    return out;
+}
+
+}  // namespace exemplar::animate

@@ -1,0 +1,108 @@
+// Offset-field operations: nearest-sample advection with extrapolation, upsampling, merge.
+
+#include "exemplar/animate/offsets.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace exemplar::animate {
+namespace {
+
+Nnf identity_field(int w, int h) {
+    Nnf f(w, h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) f.at(x, y) = Match{x, y, 0.0f, 0.0f};
+    }
+    return f;
+}
+
+TEST(Offsets, AdvectionFollowsTheFlowAndExtrapolatesSubPixelShifts) {
+    const Nnf from = identity_field(16, 16);
+    Image flow(16, 16, 2);
+    for (std::size_t i = 0; i < flow.pixel_count(); ++i) {
+        flow.data()[2 * i] = -3.0f;  // p came from p + (-3, +1.6)
+        flow.data()[2 * i + 1] = 1.6f;
+    }
+    const Nnf out = advect_nnf(from, flow, Image(), 16, 16);
+    // Pixel (8, 4): position (5, 5.6); nearest sample (5, 6) maps to (5, 6), extrapolated by
+    // (0, -0.4) → (5, 5.6) → rounded (5, 6).
+    EXPECT_EQ(out.at(8, 4).x, 5);
+    EXPECT_EQ(out.at(8, 4).y, 6);
+    // Pixels whose source position leaves the frame get "no match".
+    EXPECT_EQ(out.at(1, 4).x, -1);
+    EXPECT_EQ(out.at(8, 15).x, -1);
+}
+
+TEST(Offsets, AdvectionRotatesTheSubPixelRestWithTheMatch) {
+    Nnf from(8, 8);
+    for (Match& m : from.matches()) m = Match{20, 20, static_cast<float>(M_PI / 2), 0.0f};
+    Image flow(8, 8, 2);
+    for (std::size_t i = 0; i < flow.pixel_count(); ++i) flow.data()[2 * i] = 0.4f;
+    // Rest (+0.4, 0) rotated by 90°: (0, +0.4) → still rounds to (20, 20); with 0.6 → (20, 21)?
+    // Use a rest that does not round away: flow 0.4 → nearest sample is p itself, rest 0.4.
+    const Nnf a = advect_nnf(from, flow, Image(), 64, 64);
+    EXPECT_EQ(a.at(3, 3).x, 20);
+    EXPECT_EQ(a.at(3, 3).y, 20);
+    for (std::size_t i = 0; i < flow.pixel_count(); ++i) flow.data()[2 * i] = 1.6f;  // rest −0.4
+    // Nearest sample p + 2, rest −0.4 along x, rotated by 90° into −0.4 along y: (20, 19.6) → 20.
+    const Nnf b = advect_nnf(from, flow, Image(), 64, 64);
+    EXPECT_EQ(b.at(3, 3).x, 20);
+    EXPECT_EQ(b.at(3, 3).y, 20);
+    EXPECT_FLOAT_EQ(b.at(3, 3).angle_rad, static_cast<float>(M_PI / 2));
+}
+
+TEST(Offsets, InvisiblePixelsGetNoMatch) {
+    const Nnf from = identity_field(8, 8);
+    Image flow(8, 8, 2);
+    Image visible(8, 8, 1, 1.0f);
+    visible.at(2, 3, 0) = 0.0f;
+    const Nnf out = advect_nnf(from, flow, visible, 8, 8);
+    EXPECT_EQ(out.at(2, 3).x, -1);
+    EXPECT_EQ(out.at(3, 3).x, 3);
+}
+
+TEST(Offsets, UpsamplingDoublesPositionsAndKeepsSubPixelDetail) {
+    const Nnf coarse = identity_field(8, 8);
+    const Nnf fine = upsample_nnf(coarse, {{0, 8, 8}}, 16, 16, {{0, 16, 16}});
+    // An identity field stays an identity field (up to the rounding of pixel centres).
+    for (int y = 1; y < 15; ++y) {
+        for (int x = 1; x < 15; ++x) {
+            EXPECT_NEAR(fine.at(x, y).x, x, 1);
+            EXPECT_NEAR(fine.at(x, y).y, y, 1);
+        }
+    }
+}
+
+TEST(Offsets, UpsamplingMapsEachAtlasSlotOnItsOwn) {
+    // Coarse atlas: style 5 wide at x 0, key 8 wide at x 6; fine: style 9 wide, key 16 at x 10.
+    Nnf coarse(8, 8);
+    for (Match& m : coarse.matches()) m = Match{-1, -1, 0.0f, 0.0f};
+    coarse.at(2, 2) = Match{8, 2, 0.0f, 0.0f};  // key slot, local (2, 2)
+    coarse.at(5, 5) = Match{1, 1, 0.0f, 0.0f};  // style slot
+    const Nnf fine =
+        upsample_nnf(coarse, {{0, 5, 8}, {6, 8, 8}}, 16, 16, {{0, 9, 16}, {10, 16, 16}});
+    // Fine pixel (4, 4) sits over coarse (1.75, 1.75) → nearest (2, 2), rest (−0.25, −0.25):
+    // key-local (1.75, 1.75) → fine (4, 4) (centres aligned) → atlas x 14.
+    EXPECT_EQ(fine.at(4, 4).x, 14);
+    EXPECT_EQ(fine.at(4, 4).y, 4);
+    EXPECT_LT(fine.at(10, 10).x, 9);  // stays in the style slot
+    EXPECT_EQ(fine.at(0, 0).x, -1);
+}
+
+TEST(Offsets, RandomMergeTakesBothSourcesAndFallsBackOnNoMatch) {
+    Nnf a(32, 32), b(32, 32);
+    for (Match& m : a.matches()) m = Match{1, 1, 0.0f, 0.0f};
+    for (Match& m : b.matches()) m = Match{2, 2, 0.0f, 0.0f};
+    a.at(0, 0) = Match{-1, -1, 0.0f, 0.0f};
+    const Nnf m = random_merge(a, b, 0.25f, 42);
+    int from_a = 0;
+    for (const Match& e : m.matches()) from_a += e.x == 1;
+    EXPECT_NEAR(from_a / 1024.0, 0.25, 0.05);
+    EXPECT_EQ(m.at(0, 0).x, 2);
+    const Nnf again = random_merge(a, b, 0.25f, 42);
+    for (std::size_t i = 0; i < m.pixel_count(); ++i) EXPECT_EQ(m[i].x, again[i].x);
+}
+
+}  // namespace
+}  // namespace exemplar::animate
