@@ -14,6 +14,7 @@ packages=(
   libopencv-dev libeigen3-dev libcairo2-dev  # stylit: scan alignment, PCA, PDF sheet
   libtinyxml2-dev                        # sketch: SVG import
   libgtest-dev libbenchmark-dev          # tests and benchmarks
+  libpoppler-cpp-dev zlib1g-dev          # tests: the PDF sheet read back
   clang-format
 )
 

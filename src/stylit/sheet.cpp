@@ -9,24 +9,16 @@
 #include <cmath>
 
 #include "exemplar/core/check.hpp"
+#include "marks.hpp"
 
 namespace exemplar {
 
 namespace {
 
-// Black ring bands of a mark in units of its radius, outermost first: the top-left mark has two
-// black rings and a dot (five nested contours), the others one ring and a dot (three).
-struct Band {
-    double outer;
-    double inner;
-};
-constexpr Band kPlainMark[] = {{1.0, 0.6}, {0.3, 0.0}};
-constexpr Band kCornerMark[] = {{1.0, 0.8}, {0.6, 0.4}, {0.2, 0.0}};
-
 bool is_black(double r, bool corner) {
-    const auto in = [r](const Band& band) { return r <= band.outer && r >= band.inner; };
-    if (corner) return std::any_of(std::begin(kCornerMark), std::end(kCornerMark), in);
-    return std::any_of(std::begin(kPlainMark), std::end(kPlainMark), in);
+    const auto in = [r](const marks::Band& band) { return r <= band.outer && r >= band.inner; };
+    const auto bands = marks::bands(corner);
+    return std::any_of(bands.begin(), bands.end(), in);
 }
 
 // Ink coverage of the pixel centred at (x, y) by a mark at `centre` (4x4 supersampling).

@@ -65,8 +65,12 @@ struct PdfOptions {
     double dpi = 0.0;
 };
 
-/// Writes `sheet` (1 or 3 channels in [0, 1]) as a one-page PDF (Cairo), atomically (temporary
-/// file + rename). Errors name the file or the option.
-Status save_sheet_pdf(const Image& sheet, const std::string& path, const PdfOptions& options);
+/// Writes the sheet of `layout` as a one-page PDF (Cairo), atomically (temporary file +
+/// rename): white paper, `content` (the render's size, 1 or 3 channels in [0, 1], e.g. the
+/// output of low_contrast) as an image at the margin, and the four marks as vector paths
+/// (filled rings), so they print sharp at any resolution. The page looks like make_sheet's
+/// image. Errors name the file or the option.
+Status save_sheet_pdf(const Image& content, const SheetLayout& layout, const std::string& path,
+                      const PdfOptions& options);
 
 }  // namespace exemplar

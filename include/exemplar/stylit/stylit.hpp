@@ -9,6 +9,7 @@
 /// error-budget strategy (§8.3.3) by default. The preview mode (§8.3.4) runs at half resolution
 /// on PCA-compressed buffers; see preview.hpp.
 
+#include <optional>
 #include <vector>
 
 #include "exemplar/core/image.hpp"
@@ -28,8 +29,12 @@ struct StylitOptions {
     float guidance_weight = 2.0f;
     /// Preview mode: half resolution, buffers compressed by PCA (output at half size).
     bool preview = false;
-    /// Preview: number of principal components kept (1..16, default 3).
-    int preview_components = 3;
+    /// Preview: number of principal components kept (1..16, default 5; 3 lose the shading
+    /// that tells the figure's lit side from its shadowed back, see docs/stylit.md).
+    int preview_components = 5;
+    /// Preview: engine options; unset = preview_synthesis_options(synthesis) (fewer iterations,
+    /// see preview.hpp).
+    std::optional<SynthesisOptions> preview_synthesis;
 };
 
 /// The synthesis input StyLit builds: the exemplar painting as style, one guide per buffer pair
