@@ -50,6 +50,25 @@ Status check_mask(const Image& mask, const char* what, int w, int h) {
     return Status::ok();
 }
 
+// A given field: the target's size, every match inside the style or "no match" (-1, -1; for
+// candidate fields any x = -1).
+Status check_nnf(const Nnf& nnf, const std::string& what, int tw, int th, const Image& style) {
+    if (nnf.width() != tw || nnf.height() != th) {
+        return invalid_argument(what + ": is " + std::to_string(nnf.width()) + "x" +
+                                std::to_string(nnf.height()) + " but the target is " +
+                                std::to_string(tw) + "x" + std::to_string(th));
+    }
+    for (const Match& m : nnf.matches()) {
+        const bool no_match = m.x == -1;  // border marker of saved NNFs
+        if (!no_match && (m.x < 0 || m.y < 0 || m.x >= style.width() || m.y >= style.height())) {
+            return invalid_argument(what + ": refers to " + std::to_string(m.x) + "," +
+                                    std::to_string(m.y) + " outside the " + size_str(style) +
+                                    " style");
+        }
+    }
+    return Status::ok();
+}
+
 std::set<long> label_set(const Image& labels, const Image& mask) {
     std::set<long> out;
     for (std::size_t i = 0; i < labels.pixel_count(); ++i) {
@@ -119,6 +138,26 @@ Nnf downscale_nnf(const Nnf& full, const Image& style, const synth::Level& L) {
         }
     }
     return out;
+}
+
+// Each active entry of `field` takes the match of `candidates` at its position where that match
+// is valid for the problem (mask, labels) and costs less (the problem's own distance).
+template <class Problem>
+void adopt_candidates(const Problem& P, const Nnf& candidates, Nnf& field, int threads) {
+    parallel_for(0, field.height(), threads, [&](int y) {
+        for (int x = 0; x < field.width(); ++x) {
+            const std::size_t qi = static_cast<std::size_t>(y) * field.width() + x;
+            const Match& c = candidates[qi];
+            if (!P.query_active(qi) || c.x < 0 || c.y < 0 || c.x >= P.db_width() ||
+                c.y >= P.db_height() || !P.db_ok(qi, c.x, c.y)) {
+                continue;
+            }
+            Match& m = field[qi];
+            const float angle = P.angle(qi, c.x, c.y);
+            const float d = P.cost(x, y, c.x, c.y, angle, m.error);
+            if (d < m.error) m = Match{c.x, c.y, angle, d};
+        }
+    });
 }
 
 // Per-pixel distance of the final NNF against the final B' (0 where no patch is centred);
@@ -335,20 +374,11 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
                                 std::to_string(std::min(room, troom)) + ")");
     }
     if (!in.initial_nnf.empty()) {
-        if (in.initial_nnf.width() != tw || in.initial_nnf.height() != th) {
-            return invalid_argument("initial nnf: is " + std::to_string(in.initial_nnf.width()) +
-                                    "x" + std::to_string(in.initial_nnf.height()) +
-                                    " but the target is " + std::to_string(tw) + "x" +
-                                    std::to_string(th));
-        }
-        for (const Match& m : in.initial_nnf.matches()) {
-            const bool no_match = m.x == -1 && m.y == -1;  // border marker of saved NNFs
-            if (!no_match && (m.x < 0 || m.y < 0 || m.x >= sw || m.y >= sh)) {
-                return invalid_argument("initial nnf: refers to " + std::to_string(m.x) + "," +
-                                        std::to_string(m.y) + " outside the " + size_str(in.style) +
-                                        " style");
-            }
-        }
+        EXEMPLAR_RETURN_IF_ERROR(check_nnf(in.initial_nnf, "initial nnf", tw, th, in.style));
+    }
+    for (std::size_t i = 0; i < in.candidate_nnfs.size(); ++i) {
+        const std::string what = "candidate nnf " + std::to_string(i + 1);
+        EXEMPLAR_RETURN_IF_ERROR(check_nnf(in.candidate_nnfs[i], what, tw, th, in.style));
     }
     if (!in.source_mask.empty()) {
         // Some patch must fit entirely inside the mask at full resolution.
@@ -425,10 +455,21 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         set_target_style(L, current);
         evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
         const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
-        if (!keep_initial) {
+        auto vote_initial = [&] {
+            if (keep_initial) return;
             synth::vote(nnf, L.source_style, vote_params(L, VoteMode::Average, nnf, {}), current,
                         threads);
             set_target_style(L, current);
+        };
+        vote_initial();
+        if (!in.candidate_nnfs.empty()) {
+            // Candidates compete on costs against this initial B' (before the vote the coarsest
+            // level's B' is empty, which would favour dark patches), then B' is voted again.
+            evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
+            for (const Nnf& candidates : in.candidate_nnfs) {
+                adopt_candidates(all, downscale_nnf(candidates, in.style, L), nnf, threads);
+            }
+            vote_initial();
         }
 
         run_em(L, options, em_iterations_of_level(options, l == levels - 1), level_key, threads,

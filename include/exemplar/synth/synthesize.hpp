@@ -48,6 +48,10 @@ struct SynthesisInput {
     Image target_orientation;  ///< Angle field on the target grid.
     Image initial_target;      ///< Optional start (required with target_mask): style channels.
     Nnf initial_nnf;           ///< Optional start NNF on the target grid (finest level).
+    /// Optional extra candidate fields on the target grid: at the start of every level each
+    /// pixel also tries these matches, downscaled like `initial_nnf`, and keeps the best.
+    /// Entries with x = -1 are "none".
+    std::vector<Nnf> candidate_nnfs;
 };
 
 /// Intermediate buffers of a run, for debugging and visualisation.
