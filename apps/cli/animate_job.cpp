@@ -204,22 +204,26 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
             for (const auto& [wk_raw, wv] : value.items()) {
                 const std::string wk = canonical_key(wk_raw);
                 const std::string name = raw_key + "." + wk_raw;
-                float* field = wk == "output"     ? &o.output_weight
-                               : wk == "input"    ? &o.input_weight
-                               : wk == "temporal" ? &o.temporal_weight
-                               : wk == "keyframe" ? &o.keyframe_weight
-                               : wk == "lines"    ? &o.line_weight
-                                                  : nullptr;
+                float* field = wk == "output"             ? &o.output_weight
+                               : wk == "input"            ? &o.input_weight
+                               : wk == "temporal"         ? &o.temporal_weight
+                               : wk == "input-derivative" ? &o.input_derivative_weight
+                               : wk == "keyframe"         ? &o.keyframe_weight
+                               : wk == "lines"            ? &o.line_weight
+                                                          : nullptr;
                 if (field == nullptr) {
-                    return invalid_argument(
-                        path + ": unknown key '" + name +
-                        "' (weights are output, input, temporal, keyframe, lines)");
+                    return invalid_argument(path + ": unknown key '" + name +
+                                            "' (weights are output, input, temporal, "
+                                            "input-derivative, keyframe, lines)");
                 }
                 EXEMPLAR_RETURN_IF_ERROR(number_of(wv, name, *field));
             }
         } else if (key == "orientation") {
             if (!value.is_boolean()) return type_error(path, raw_key, "true or false");
             o.orientation = value.get<bool>();
+        } else if (key == "ribbons") {
+            if (!value.is_boolean()) return type_error(path, raw_key, "true or false");
+            o.ribbons = value.get<bool>();
         } else if (key == "flow-preset") {
             std::string name;
             EXEMPLAR_RETURN_IF_ERROR(string_of(value, raw_key, name));

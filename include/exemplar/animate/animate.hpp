@@ -61,9 +61,17 @@ struct AnimationInput {
 /// Options of the solver. Weights are the paper's w_out, w_in, w_tc (eq. 2) on the engine's
 /// scale (weighted squared differences of values, each term summed over its channels).
 struct AnimateOptions {
-    float output_weight = 1.0f;    ///< w_out: the style term (Ŝ against the current output).
-    float input_weight = 2.0f;     ///< w_in: guide (S, I_t).
-    float temporal_weight = 1.0f;  ///< w_tc: guide (Ŝ, warped neighbour output) × χ.
+    float output_weight = 1.0f;  ///< w_out: the style term (Ŝ against the current output).
+    float input_weight = 2.0f;   ///< w_in: guide (S, I_t).
+    /// w_tc: guide (Ŝ, warped neighbour output) × χ. Used without keyframes, or with keyframes
+    /// when input_derivative_weight is 0.
+    float temporal_weight = 1.0f;
+    /// w_∂in: the input time-derivative term g_∂in (Bénard eq. 10), which replaces g_tc when
+    /// there are keyframes (g_tc favours the key visited last): the output's change along the
+    /// motion, read through S at the offsets, follows the input's change I_t − I_{t∓1}. A guide
+    /// pair (S, G_t) with G_t = I_t + (S(C_{t∓1}) − I_{t∓1}) pulled along the motion, χ-masked
+    /// (G_t = I_t where χ = 0). 0 = keep g_tc with keyframes too.
+    float input_derivative_weight = 2.0f;
     /// Weight of a keyframe's painted pixels when its offsets are fitted (the keyframe's own
     /// pixels are copied exactly; this only decides how well the advected offsets reproduce it).
     float keyframe_weight = 4.0f;
@@ -83,6 +91,10 @@ struct AnimateOptions {
     /// Rotate patches by the orientation fields O(S), O(I_t) (structure tensors). Off by
     /// default: most styles are used upright.
     bool orientation = false;
+    /// Ribbons (Bénard §4.1): with keyframes, every frame's pixels also try the offsets of
+    /// their corresponding pixels (followed along the motion, while χ holds) in the last and
+    /// the next key, so the search reaches the keys' patches directly.
+    bool ribbons = true;
     video::FlowOptions flow;  ///< DIS preset when the motion is estimated.
     /// The engine's options for each call (patch size, iterations, usage, seed). `levels` and
     /// `finest_em_iterations` are set by the solver per call; the final 3x3 pass runs on the

@@ -1,0 +1,261 @@
+// Bénard §4.1 keyframe terms: the input time-derivative term g_∂in (eq. 10) against the temporal
+// term g_tc when in-betweening two painted keys of a shot whose shading changes over time.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "exemplar/animate/animate.hpp"
+#include "exemplar/core/rng.hpp"
+#include "exemplar/synth/synthesize.hpp"
+#include "synthetic_scene.hpp"
+
+namespace exemplar::animate {
+namespace {
+
+// The translating square of testing::Scene, its grey brightening linearly from 0.55 (frame 0)
+// to 0.9 (frame 7): the in-betweens of keys painted at 0 and 7 must brighten step by step.
+struct ShadedScene : testing::Scene {
+    float brightness(int t) const { return 0.55f + 0.35f * static_cast<float>(t) / (frames - 1); }
+    Image frame(int t) const {
+        Image im = testing::Scene::frame(t);
+        for (int y = y0; y < y0 + square; ++y) {
+            for (int x = square_x(t); x < square_x(t) + square; ++x) im.at(x, y, 0) = brightness(t);
+        }
+        return im;
+    }
+};
+
+// S: the background's ramp on the left, a vertical ramp 0.5..1 on the right; Ŝ: blue noise on
+// the left, red noise on the right whose red follows S's ramp (so the output's red measures
+// which grey the offsets point at).
+testing::Style shaded_style(int size = 64) {
+    testing::Style s{Image(size, size, 1), Image(size, size, 3)};
+    KeyedRng rng(11);
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const float n = 0.15f * rng.uniform();
+            if (x >= size / 2) {
+                const float r = static_cast<float>(y) / static_cast<float>(size - 1);
+                s.input.at(x, y, 0) = 0.5f + 0.5f * r;
+                s.output.at(x, y, 0) = 0.2f + 0.65f * r + n;
+                s.output.at(x, y, 1) = 0.1f + n;
+                s.output.at(x, y, 2) = 0.1f + 0.5f * n;
+            } else {
+                s.input.at(x, y, 0) =
+                    0.2f + 0.2f * static_cast<float>(x) / static_cast<float>(size / 2 - 1);
+                s.output.at(x, y, 0) = 0.1f + 0.5f * n;
+                s.output.at(x, y, 1) = 0.2f + n;
+                s.output.at(x, y, 2) = 0.55f + n;
+            }
+        }
+    }
+    return s;
+}
+
+// Mean red over the square of frame t.
+double square_red(const ShadedScene& scene, const Image& frame, int t) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = scene.y0; y < scene.y0 + scene.square; ++y) {
+        for (int x = scene.square_x(t); x < scene.square_x(t) + scene.square; ++x) {
+            sum += frame.at(x, y, 0);
+            ++n;
+        }
+    }
+    return sum / n;
+}
+
+// A painted key: a frame stylized on its own (another seed).
+Image paint(const Image& frame, const testing::Style& style) {
+    SynthesisInput in;
+    in.style = style.output;
+    in.guides.push_back({"input", style.input, frame, 2.0f, {}});
+    SynthesisOptions o = animate_default_synthesis_options();
+    o.seed = 99;
+    return synthesize(in, o, RunContext(1)).value().image;
+}
+
+struct InBetweenScore {
+    double mean_deviation = 0.0;  // mean |red(t) − linear(t)| over the in-betweens
+    double worst_step = 0.0;      // largest |red(t) − red(t−1) − ideal step| over 1..7
+    bool monotone = true;         // red never decreases
+};
+
+InBetweenScore in_between_score(const ShadedScene& scene, const std::vector<Image>& frames) {
+    const int last = scene.frames - 1;
+    const double r0 = square_red(scene, frames[0], 0);
+    const double r1 = square_red(scene, frames[static_cast<std::size_t>(last)], last);
+    const double ideal_step = (r1 - r0) / last;
+    InBetweenScore s;
+    double previous = r0;
+    for (int t = 1; t <= last; ++t) {
+        const double r = square_red(scene, frames[static_cast<std::size_t>(t)], t);
+        if (t < last) s.mean_deviation += std::abs(r - (r0 + ideal_step * t)) / (last - 1);
+        s.worst_step = std::max(s.worst_step, std::abs(r - previous - ideal_step));
+        s.monotone = s.monotone && r >= previous;
+        std::printf("  frame %d red %.4f (linear %.4f)\n", t, r, r0 + ideal_step * t);
+        previous = r;
+    }
+    return s;
+}
+
+TEST(AnimateKeyterms, InputDerivativeTermFollowsTheShadingBetweenTwoKeys) {
+    const ShadedScene scene;
+    const testing::Style style = shaded_style();
+    AnimationInput in;
+    in.style_input = style.input;
+    in.style_output = style.output;
+    in.frame_count = scene.frames;
+    in.frame = [scene](int t) -> Result<Image> { return scene.frame(t); };
+    in.motion = [scene](int t) -> Result<video::FlowPair> { return scene.motion(t); };
+    const int last = scene.frames - 1;
+    in.keyframes = {{0, paint(scene.frame(0), style), {}},
+                    {last, paint(scene.frame(last), style), {}}};
+
+    AnimateOptions derivative;  // default: g_∂in replaces g_tc with keys
+    AnimateOptions temporal;
+    temporal.input_derivative_weight = 0.0f;  // g_tc as without keys
+    auto a = animate(in, derivative, RunContext(2));
+    ASSERT_TRUE(a.ok()) << a.status().message();
+    auto b = animate(in, temporal, RunContext(2));
+    ASSERT_TRUE(b.ok()) << b.status().message();
+
+    std::printf("g_din (w = %.1f):\n", derivative.input_derivative_weight);
+    const InBetweenScore sa = in_between_score(scene, a->frames);
+    std::printf("g_tc (w = %.1f):\n", temporal.temporal_weight);
+    const InBetweenScore sb = in_between_score(scene, b->frames);
+    std::printf(
+        "g_din: mean deviation from linear %.4f, worst step error %.4f, monotone %d; "
+        "g_tc: %.4f, %.4f, %d\n",
+        sa.mean_deviation, sa.worst_step, sa.monotone, sb.mean_deviation, sb.worst_step,
+        sb.monotone);
+    EXPECT_TRUE(sa.monotone);
+    EXPECT_LT(sa.mean_deviation, 0.85 * sb.mean_deviation);
+    // The largest single step is about the same (0.067 vs 0.064 when written).
+    EXPECT_LT(sa.worst_step, 1.15 * sb.worst_step);
+}
+
+// Mean green of a frame.
+double mean_green(const Image& frame) {
+    double sum = 0.0;
+    for (std::size_t p = 0; p < frame.pixel_count(); ++p) sum += frame.data()[3 * p + 1];
+    return sum / static_cast<double>(frame.pixel_count());
+}
+
+// Key 0 and key 7 painted on the translating square, key 7 tinted green (+0.3) by the artist,
+// over an input that does not change: each pixel takes one key's patches or the other's, and
+// the in-betweens should not all look like one key. g_tc pulls each frame of the backward
+// sweep toward its already green successor, so the green reaches frame 1 (the paper: g_tc
+// "privileges the most recently visited key"); g_∂in only asks the output to change as the
+// input does, so the biased merge hands over from key 0 to key 7 in the middle of the shot.
+TEST(AnimateKeyterms, InputDerivativeTermBalancesTwoDifferentKeys) {
+    const testing::Scene scene;
+    const testing::Style style = testing::make_style();
+    AnimationInput in = testing::make_input(scene, style);
+    const int last = scene.frames - 1;
+    Image tinted = paint(scene.frame(last), style);
+    for (std::size_t p = 0; p < tinted.pixel_count(); ++p) tinted.data()[3 * p + 1] += 0.3f;
+    in.keyframes = {{0, paint(scene.frame(0), style), {}}, {last, tinted, {}}};
+
+    struct Score {
+        double share = 0.0;  // mean share of key 7's tint over the in-betweens (0.5 = balanced)
+        double worst = 0.0;  // largest share of the change made in one frame step (1/7 = linear)
+    };
+    auto score = [&](const AnimateOptions& options, const char* name) {
+        Score s;
+        auto r = animate(in, options, RunContext(2));
+        EXPECT_TRUE(r.ok()) << r.status().message();
+        if (!r.ok()) return s;
+        const double g0 = mean_green(r->frames[0]);
+        const double g1 = mean_green(r->frames[static_cast<std::size_t>(last)]);
+        double previous = g0;
+        std::printf("%s: green", name);
+        for (int t = 1; t <= last; ++t) {
+            const double g = mean_green(r->frames[static_cast<std::size_t>(t)]);
+            std::printf(" %.3f", g);
+            if (t < last) s.share += (g - g0) / (g1 - g0) / (last - 1);
+            s.worst = std::max(s.worst, std::abs(g - previous) / (g1 - g0));
+            previous = g;
+        }
+        std::printf(" (from %.3f): share of key 7 %.2f, worst step %.2f\n", g0, s.share, s.worst);
+        return s;
+    };
+    AnimateOptions temporal;
+    temporal.input_derivative_weight = 0.0f;
+    const Score a = score(AnimateOptions(), "g_din");
+    const Score b = score(temporal, "g_tc");
+    EXPECT_LT(std::abs(a.share - 0.5), 0.15);
+    EXPECT_GT(b.share, 0.9);  // g_tc: the in-betweens look like key 7
+    EXPECT_LE(a.worst, b.worst);
+}
+
+// Ribbons: keys at 0 and 7 painted alike (key 7 = key 0's square moved along the motion, the
+// background it uncovers painted fresh), so every in-between has an exact answer: the keys'
+// pixels carried along the motion. With ribbons every pixel can take its corresponding key
+// pixel directly instead of waiting for advection and propagation to bring it.
+TEST(AnimateKeyterms, RibbonsReproduceTheKeysInTheInBetweens) {
+    const testing::Scene scene;
+    const testing::Style style = testing::make_style();
+    AnimationInput in = testing::make_input(scene, style);
+    const int last = scene.frames - 1;
+    const Image key0 = paint(scene.frame(0), style);
+    const Image bg7 = paint(scene.frame(last), style);
+    // The keys' painting carried to frame t (t = 7: key 7).
+    auto carried = [&](int t) {
+        Image im = key0;
+        for (int y = 0; y < scene.height; ++y) {
+            for (int x = 0; x < scene.width; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    if (scene.in_square(x, y, t)) {
+                        im.at(x, y, c) = key0.at(x - scene.speed * t, y, c);
+                    } else if (scene.in_square(x, y, 0)) {
+                        im.at(x, y, c) = bg7.at(x, y, c);
+                    }
+                }
+            }
+        }
+        return im;
+    };
+    in.keyframes = {{0, key0, {}}, {last, carried(last), {}}};
+    auto error = [&](const AnimateOptions& options, const char* name) {
+        auto r = animate(in, options, RunContext(2));
+        EXPECT_TRUE(r.ok()) << r.status().message();
+        if (!r.ok()) return 1.0;
+        double sum = 0.0;
+        std::printf("%s: error vs the carried keys", name);
+        for (int t = 1; t < last; ++t) {
+            const Image ideal = carried(t);
+            const Image& f = r->frames[static_cast<std::size_t>(t)];
+            double e = 0.0;
+            for (std::size_t j = 0; j < f.data().size(); ++j) {
+                const double d = f.data()[j] - ideal.data()[j];
+                e += d * d;
+            }
+            e /= static_cast<double>(f.data().size());
+            std::printf(" %.2e", e);
+            sum += e / (last - 1);
+        }
+        std::printf(", mean %.2e\n", sum);
+        return sum;
+    };
+    for (int budget = 0; budget < 2; ++budget) {
+        AnimateOptions with;
+        if (budget == 0) {  // the smallest engine budget: one EM iteration of one PatchMatch
+            with.synthesis.em_iterations = with.synthesis.finest_em_iterations = 1;
+            with.synthesis.search_iterations = with.synthesis.warm_search_iterations = 1;
+        }
+        AnimateOptions without = with;
+        without.ribbons = false;
+        const double a = error(with, budget == 0 ? "ribbons, 1 iteration" : "ribbons, default");
+        const double b =
+            error(without, budget == 0 ? "no ribbons, 1 iteration" : "no ribbons, default");
+        EXPECT_LT(a, b);
+    }
+}
+
+}  // namespace
+}  // namespace exemplar::animate
