@@ -34,17 +34,32 @@ std::string size_str(const Image& im) {
     return std::to_string(im.width()) + "x" + std::to_string(im.height());
 }
 
-Result<video::FrameSequence> open_frames(const std::string& frames, int first, int last) {
+bool is_pattern(const std::string& frames) {
+    return frames.find('%') != std::string::npos;
+}
+
+// A folder or a video: every frame is listed up front. Patterns are opened per run instead
+// (open_run_frames), so frames outside the range may be missing.
+Result<video::FrameSequence> open_frames(const std::string& frames) {
     std::error_code ec;
-    if (frames.find('%') != std::string::npos) {
-        if (first < 0 || last < 0) {
-            return invalid_argument("frames " + frames +
-                                    ": a pattern needs \"first\" and \"last\" frame numbers");
-        }
-        return video::FrameSequence::from_pattern(frames, first, last);
-    }
     if (fs::is_directory(frames, ec)) return video::FrameSequence::from_folder(frames);
     return video::FrameSequence::from_video(frames);
+}
+
+// The frames `s0`..`s1` of a pattern, the job's frames being `first`..`last`: a missing file is
+// named with its frame number.
+Result<video::FrameSequence> open_run_frames(const std::string& pattern, int s0, int s1, int first,
+                                             int last) {
+    for (int n = s0; n <= s1; ++n) {
+        auto path = video::format_frame_path(pattern, n);
+        if (!path.ok()) return path.status();
+        std::error_code ec;
+        if (!fs::is_regular_file(*path, ec)) {
+            return io_error(*path + ": no such file (frame " + std::to_string(n) + " of " +
+                            std::to_string(first) + ".." + std::to_string(last) + ")");
+        }
+    }
+    return video::FrameSequence::from_pattern(pattern, s0, s1);
 }
 
 // One layer's opened inputs (the whole animation when the job has no layers).
@@ -151,14 +166,44 @@ Status AnimateCommand::run(const Streams& streams) const {
         job.layers.empty() ? std::vector<AnimateSourceSpec>{job.base} : job.layers;
     const bool layered = !job.layers.empty();
     std::vector<Source> sources(specs.size());
+    std::optional<std::pair<int, int>> range;
+    if (!frames_.empty()) {
+        auto parsed = parse_range(frames_);
+        if (!parsed.ok()) return parsed.status();
+        range = *parsed;
+    }
     int first = 0, last = -1, W = 0, H = 0;
     for (std::size_t i = 0; i < specs.size(); ++i) {
         Source& src = sources[i];
         src.spec = &specs[i];
         const std::string what = layered ? "layer " + std::to_string(i) + ": " : "";
-        auto sequence = open_frames(src.spec->frames, job.first, job.last);
-        if (!sequence.ok()) return sequence.status();
-        src.frames.emplace(std::move(sequence).value());
+        int f0 = 0, f1 = -1, probe_number = 0;
+        if (is_pattern(src.spec->frames)) {
+            // Only the frames a run reads must exist; the first of the range tells the size.
+            if (job.first < 0 || job.last < 0) {
+                return invalid_argument("frames " + src.spec->frames +
+                                        ": a pattern needs \"first\" and \"last\" frame numbers");
+            }
+            if (job.last < job.first) {
+                return invalid_argument("frames " + src.spec->frames + ": last " +
+                                        std::to_string(job.last) + " is before first " +
+                                        std::to_string(job.first));
+            }
+            f0 = job.first;
+            f1 = job.last;
+            probe_number = std::clamp(range ? range->first : f0, f0, f1);
+            auto probe_frames =
+                open_run_frames(src.spec->frames, probe_number, probe_number, f0, f1);
+            if (!probe_frames.ok()) return probe_frames.status();
+            src.frames.emplace(std::move(probe_frames).value());
+        } else {
+            auto sequence = open_frames(src.spec->frames);
+            if (!sequence.ok()) return sequence.status();
+            src.frames.emplace(std::move(sequence).value());
+            f0 = src.frames->first_number();
+            f1 = f0 + src.frames->size() - 1;
+            probe_number = f0;
+        }
         for (const auto& [file, image] : {std::pair{&src.spec->style_input, &src.style_input},
                                           std::pair{&src.spec->style_output, &src.style_output},
                                           std::pair{&src.spec->style_lines, &src.style_lines}}) {
@@ -167,9 +212,8 @@ Status AnimateCommand::run(const Streams& streams) const {
             if (!loaded_image.ok()) return loaded_image.status();
             *image = std::move(loaded_image).value();
         }
-        auto frame0 = src.frames->read(0);
+        auto frame0 = src.frames->read(probe_number - src.frames->first_number());
         if (!frame0.ok()) return frame0.status();
-        const int f0 = src.frames->first_number(), f1 = f0 + src.frames->size() - 1;
         if (i == 0) {
             first = f0;
             last = f1;
@@ -183,10 +227,10 @@ Status AnimateCommand::run(const Streams& streams) const {
                                     std::to_string(H));
         }
         if (frame0->channels() != src.style_input.channels()) {
-            return invalid_argument(src.frames->frame_name(0) + ": has " +
-                                    std::to_string(frame0->channels()) +
-                                    " channels but style input " + src.spec->style_input + " has " +
-                                    std::to_string(src.style_input.channels()));
+            return invalid_argument(
+                src.frames->frame_name(probe_number - src.frames->first_number()) + ": has " +
+                std::to_string(frame0->channels()) + " channels but style input " +
+                src.spec->style_input + " has " + std::to_string(src.style_input.channels()));
         }
         if (src.style_output.channels() != sources[0].style_output.channels()) {
             return invalid_argument(what + "style output " + src.spec->style_output + " has " +
@@ -200,6 +244,10 @@ Status AnimateCommand::run(const Streams& streams) const {
                                         std::to_string(spec.frame) + " is outside the frames " +
                                         std::to_string(first) + ".." + std::to_string(last));
             }
+            // Keys beyond the range's hand-over neighbours are never read.
+            if (range && (spec.frame < range->first - 1 || spec.frame > range->second + 1)) {
+                continue;
+            }
             auto key = load_key(spec, spec.frame, src.style_output.channels());
             if (!key.ok()) return key.status();
             if (key->image.width() != W || key->image.height() != H) {
@@ -212,9 +260,7 @@ Status AnimateCommand::run(const Streams& streams) const {
         src.output = layered ? layer_pattern(job.output, i) : job.output;
     }
     int lo = first, hi = last;
-    if (!frames_.empty()) {
-        auto range = parse_range(frames_);
-        if (!range.ok()) return range.status();
+    if (range) {
         std::tie(lo, hi) = *range;
         if (lo < first || hi > last) {
             return invalid_argument("--frames: " + frames_ + " is outside the frames " +
@@ -273,12 +319,19 @@ Status AnimateCommand::run(const Streams& streams) const {
         const int s0 = before ? a - 1 : a, s1 = after ? b + 1 : b;
         std::vector<animate::Layer> layers;
         for (Source& src : sources) {
+            if (is_pattern(src.spec->frames)) {
+                // A pattern reads only this run's frames (and needs only those to exist).
+                auto run_frames = open_run_frames(src.spec->frames, s0, s1, first, last);
+                if (!run_frames.ok()) return run_frames.status();
+                src.frames.emplace(std::move(run_frames).value());
+            }
             const AnimateSourceSpec& spec = *src.spec;
             animate::AnimationInput in;
             in.style_input = src.style_input;
             in.style_output = src.style_output;
             in.frame_count = s1 - s0 + 1;
-            const int index0 = s0 - first;  // sequence index of the run's first frame
+            // Sequence index of the run's first frame.
+            const int index0 = s0 - src.frames->first_number();
             video::FrameSequence& frames = *src.frames;
             in.frame = [&frames, index0, W, H](int t) -> Result<Image> {
                 auto f = frames.read(index0 + t);

@@ -249,6 +249,33 @@ TEST_F(AnimateCli, FlowsFromLayersOfOneExrPerFrame) {
         std::equal(from_layers.data().begin(), from_layers.data().end(), from_flo.data().begin()));
 }
 
+// A range reads only its own frames and the hand-over neighbours: the others may be missing.
+TEST_F(AnimateCli, RangeNeedsOnlyTheFramesItReads) {
+    for (int t : {0, 1, 6, 7}) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frames/%02d.png", t);
+        fs::remove(path(name));
+    }
+    // A keyframe outside the range (its file missing too) is not read either. (The keyframe
+    // terms' keys are accepted.)
+    const std::string j =
+        job(R"("keyframes": [{"frame": 7, "image": "gone.png"}], "ribbons": false,)"
+            R"( "weights": {"input_derivative": 1})");
+    CliRun r = run({"animate", j, "--frames", "2-3", "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    r = run({"animate", j, "--frames", "4-5", "-q"});  // hands over from frame 3
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (int t = 2; t <= 5; ++t) EXPECT_TRUE(fs::exists(out(t)));
+    EXPECT_FALSE(fs::exists(out(1)));
+    EXPECT_FALSE(fs::exists(out(6)));
+    // The hand-over frame's input is needed: its absence is named.
+    fs::remove(path("frames/03.png"));
+    expect_failure_as_is({"animate", j, "--frames", "4-5", "--no-resume"}, 1,
+                         path("frames/03.png") + ": no such file (frame 3 of 0..7)");
+    expect_failure_as_is({"animate", j, "--frames", "6-6"}, 1,
+                         path("frames/06.png") + ": no such file (frame 6 of 0..7)");
+}
+
 TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
     expect_failure_as_is({"animate", job(R"("framez": 3)")}, 1,
                          path("job.json") + ": unknown key 'framez'");
@@ -258,6 +285,10 @@ TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
                          path("job.json") + ": key 'lines' needs both \"style\" and \"frames\"");
     expect_failure_as_is({"animate", job(R"("weights": {"line": 2})")}, 1,
                          path("job.json") + ": unknown key 'weights.line'");
+    expect_failure_as_is({"animate", job(R"("ribbons": 1)")}, 1,
+                         path("job.json") + ": key 'ribbons' must be true or false");
+    expect_failure_as_is({"animate", job(R"("weights": {"input-derivative": -1})")}, 1,
+                         "input-derivative-weight: -1");
     expect_failure_as_is({"animate", job(), "--frames", "5-9"}, 1,
                          "--frames: 5-9 is outside the frames 0..7");
     fs::remove(path("frames/05.png"));
