@@ -3,10 +3,12 @@
 // Night (shared data; S = its blurred luminance, Ŝ = the painting), default settings.
 //
 //   bench_animate [frames=6] [threads=2] [--given-flow] [--keys] [--scale s]
-//                 [--set name=value ...]
+//                 [--no-derivative] [--no-ribbons] [--set name=value ...]
 //
 // --keys adds full keyframes at the first and last frame (the painting resized to the frame:
-// only their cost matters here, the source atlas grows by two frames).
+// only their cost matters here, the source atlas grows by two frames). With keys,
+// --no-derivative uses g_tc instead of g_din (input_derivative_weight = 0) and --no-ribbons
+// turns the ribbon candidates off: both together are the solver before those terms.
 //
 // --set changes an engine option of every call (names of `exemplar stylize --help`).
 //
@@ -37,6 +39,10 @@ int main(int argc, char** argv) {
             given = true;
         } else if (a == "--keys") {
             keys = true;
+        } else if (a == "--no-derivative") {
+            options.input_derivative_weight = 0.0f;
+        } else if (a == "--no-ribbons") {
+            options.ribbons = false;
         } else if (a == "--set" && i + 1 < argc) {
             const std::string kv = argv[++i];
             const auto eq = kv.find('=');

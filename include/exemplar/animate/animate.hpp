@@ -9,10 +9,13 @@
 /// (exemplar::synthesize) frame by frame: the output term is the style term (Ŝ), the input term
 /// the guide pair (S, I_t), the temporal term the guide pair (Ŝ, Î_{t∓1} warped along the
 /// motion) with the per-pixel weight χ∓ (0 at occlusions and disocclusions), the histogram term
-/// the engine's occurrence penalty. Frames are solved in a forward then a backward sweep per
-/// pyramid level, coarse to fine (one engine level per call); each frame starts from the random
-/// merge of the advected offsets of its neighbour and its own previous solution (coarser level
-/// or forward sweep). See docs/video.md for the defaults and the deviations from the paper.
+/// the engine's occurrence penalty; with keyframes the input time-derivative term g_∂in (guide
+/// pair (S, G_t)) replaces the temporal term and ribbons (the keys' pixels followed along the
+/// motion) are offered to the engine as candidate matches. Frames are solved in a forward then a
+/// backward sweep per pyramid level, coarse to fine (one engine level per call); each frame starts
+/// from the random merge of the advected offsets of its neighbour and its own previous solution
+/// (coarser level or forward sweep). See docs/video.md for the defaults and the deviations from the
+/// paper.
 
 #include <functional>
 #include <string>
