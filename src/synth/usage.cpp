@@ -77,7 +77,8 @@ public:
     std::vector<Candidate> retrieve(int round) {
         // After the first round, matches whose target was taken resume at the nearest free one.
         if (round > 0) update_nearest_free();
-        ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_,
+        const std::vector<std::uint64_t> free_bits = pack_mask(free_);
+        ReverseProblem problem{L_, query_.data(), free_bits.data(), free_by_group_,
                                round > 0 ? nearest_free_.data() : nullptr};
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
         // Target features do not change between the rounds of one search, so after the first
