@@ -67,6 +67,7 @@ public:
     }
 
     std::size_t free_count() const { return free_count_; }
+    const Nnf& nnf() const { return nnf_; }
     std::size_t active_count() const { return active_count_; }
     std::vector<std::uint8_t>& query_mask() { return query_; }
     const std::vector<std::uint8_t>& free_mask() const { return free_; }
@@ -309,6 +310,26 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     return stats;
 }
 
+// Late error-budget rounds: most sources' best free target is one that another source takes
+// first, so searching from every source again is mostly wasted. A free target t is most likely
+// won by a source close to its current (forward) match, or by a source no target uses yet (which
+// keeps the usage diverse); `query` keeps only those.
+void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nnf& nnf,
+                 const std::vector<std::uint8_t>& used, std::vector<std::uint8_t>& query) {
+    std::vector<std::uint8_t> near(query.size(), 0);
+    for (std::size_t t = 0; t < free.size(); ++t) {
+        if (!free[t]) continue;
+        const Match& m = nnf[t];
+        if (m.x < 0 || m.y < 0) continue;
+        for (int y = std::max(0, m.y - 1); y <= std::min(L.sh - 1, m.y + 1); ++y) {
+            for (int x = std::max(0, m.x - 1); x <= std::min(L.sw - 1, m.x + 1); ++x) {
+                near[L.source_index(x, y)] = 1;
+            }
+        }
+    }
+    for (std::size_t s = 0; s < query.size(); ++s) query[s] = query[s] && (near[s] || !used[s]);
+}
+
 // StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
 // whose summed error stays within the budget T estimated at the knee of the sorted errors; once
 // `budget_coverage` of the targets are covered the rest take forward nearest neighbours.
@@ -317,6 +338,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
     ReverseRetrieval rr(setup, nnf);
     SearchStats stats;
     const auto target_total = static_cast<double>(rr.active_count());
+    std::vector<std::uint8_t> used(static_cast<std::size_t>(L.sw) * L.sh, 0);
     while (rr.free_count() > 0 && stats.rounds < setup.options.budget_max_rounds) {
         const double covered = 1.0 - static_cast<double>(rr.free_count()) / target_total;
         if (covered >= setup.options.budget_coverage) break;
@@ -324,6 +346,10 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         for (std::size_t s = 0; s < query.size(); ++s) {
             query[s] = L.source_valid[s] &&
                        !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
+        }
+        if (stats.rounds > 0 &&
+            static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
+            focus_query(L, rr.free_mask(), rr.nnf(), used, query);
         }
         const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
         ++stats.rounds;
@@ -340,6 +366,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
             // Always take the best candidate so that every round makes progress.
             if (assigned > 0 && spent + c.error > budget) break;
             spent += c.error;
+            used[static_cast<std::size_t>(c.source)] = 1;
             rr.assign(c);
             ++assigned;
         }
