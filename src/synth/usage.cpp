@@ -1,11 +1,15 @@
 #include "usage.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 
 #include "exemplar/core/check.hpp"
+#include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
 #include "patchmatch.hpp"
 
@@ -28,6 +32,30 @@ struct Candidate {
     int target;   // target pixel index
     float angle;  // target -> source rotation
 };
+
+// Low 32 bits of a candidate key: the source pixel index; high 32 bits: the error's float bits.
+constexpr std::uint64_t kSourceMask = 0xffffffffu;
+std::uint64_t candidate_key(float error, std::size_t index) {
+    return (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(error)) << 32) |
+           static_cast<std::uint64_t>(index);
+}
+
+// Sorts ascending: halves sorted in parallel, then merged (same result as std::sort).
+void parallel_sort(std::vector<std::uint64_t>& v, int threads) {
+    const auto mid = static_cast<std::ptrdiff_t>(v.size() / 2);
+    if (threads == 1 || v.size() < 65536) {
+        std::sort(v.begin(), v.end());
+        return;
+    }
+    parallel_for(0, 2, threads, [&](int half) {
+        if (half == 0) {
+            std::sort(v.begin(), v.begin() + mid);
+        } else {
+            std::sort(v.begin() + mid, v.end());
+        }
+    });
+    std::inplace_merge(v.begin(), v.begin() + mid, v.end());
+}
 
 bool candidate_less(const Candidate& a, const Candidate& b) {
     if (a.error != b.error) return a.error < b.error;
@@ -94,23 +122,7 @@ public:
         // Later rounds pull the field toward the few targets still free; the next EM
         // iteration (all targets free again) starts better from this round's field.
         if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;
-        std::vector<Candidate> best_per_target(free_.size(), Candidate{kInf, -1, -1, 0.0f});
-        for (std::size_t si = 0; si < query_.size(); ++si) {
-            if (!query_[si]) continue;
-            const Match& m = reverse_[si];
-            if (!(m.error < kInf)) continue;
-            const int t = static_cast<int>(L_.target_index(m.x, m.y));
-            const Candidate c{m.error, static_cast<int>(si), t, -m.angle_rad};
-            if (candidate_less(c, best_per_target[static_cast<std::size_t>(t)])) {
-                best_per_target[static_cast<std::size_t>(t)] = c;
-            }
-        }
-        std::vector<Candidate> unique;
-        for (const Candidate& c : best_per_target) {
-            if (c.source >= 0) unique.push_back(c);
-        }
-        std::sort(unique.begin(), unique.end(), candidate_less);
-        return unique;
+        return collision_free_candidates();
     }
 
     void assign(const Candidate& c) {
@@ -168,6 +180,55 @@ public:
                     static_cast<int>(t));
             }
         }
+    }
+
+    // Per target, the querying source with the smallest error (ties: smaller source index), as
+    // candidates sorted by (error, source). Parallel and deterministic: a candidate is one 64-bit
+    // key (error bits, source), errors are >= 0 so their bits order like the values, and each
+    // target keeps the minimum key (order-independent).
+    std::vector<Candidate> collision_free_candidates() const {
+        constexpr std::uint64_t kNone = ~std::uint64_t{0};
+        std::vector<std::uint64_t> best(free_.size(), kNone);
+        const int threads = s_.threads;
+        parallel_for(0, L_.sh, threads, [&](int y) {
+            for (int x = 0; x < L_.sw; ++x) {
+                const std::size_t si = L_.source_index(x, y);
+                if (!query_[si]) continue;
+                const Match& m = reverse_[si];
+                if (!(m.error < kInf)) continue;
+                const std::uint64_t key = candidate_key(m.error, si);
+                std::atomic_ref<std::uint64_t> slot(best[L_.target_index(m.x, m.y)]);
+                std::uint64_t seen = slot.load(std::memory_order_relaxed);
+                while (key < seen &&
+                       !slot.compare_exchange_weak(seen, key, std::memory_order_relaxed)) {
+                }
+            }
+        });
+        // Keys per band of targets, concatenated in band order, then sorted.
+        const int bands = std::max(1, std::min<int>(64, L_.th));
+        std::vector<std::vector<std::uint64_t>> parts(static_cast<std::size_t>(bands));
+        parallel_for(0, bands, threads, [&](int b) {
+            const std::size_t t0 = best.size() * static_cast<std::size_t>(b) / bands;
+            const std::size_t t1 = best.size() * static_cast<std::size_t>(b + 1) / bands;
+            auto& part = parts[static_cast<std::size_t>(b)];
+            for (std::size_t t = t0; t < t1; ++t) {
+                if (best[t] != kNone) part.push_back(best[t]);
+            }
+        });
+        // Keys are unique (a source has one match), so the order is that of candidate_less.
+        std::vector<std::uint64_t> keys;
+        for (const auto& part : parts) keys.insert(keys.end(), part.begin(), part.end());
+        parallel_sort(keys, threads);
+        std::vector<Candidate> out(keys.size());
+        parallel_for_ranges(0, static_cast<int>(keys.size()), threads, 4096, [&](int b, int e) {
+            for (int i = b; i < e; ++i) {
+                const auto si = static_cast<int>(keys[static_cast<std::size_t>(i)] & kSourceMask);
+                const Match& m = reverse_[static_cast<std::size_t>(si)];
+                out[static_cast<std::size_t>(i)] = Candidate{
+                    m.error, si, static_cast<int>(L_.target_index(m.x, m.y)), -m.angle_rad};
+            }
+        });
+        return out;
     }
 
     // Forward search from the free targets to the sources in `allowed` (nullptr = any);
