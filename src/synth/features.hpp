@@ -13,17 +13,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "ssd.hpp"
+
 namespace exemplar::synth {
 
-/// Bytes per pixel for `channels` feature channels: rounded up to 4, 8 or a multiple of 16, so
-/// that a SIMD kernel covers a pixel in whole vectors. Padding bytes are 0 on both sides.
-inline int padded_feature_stride(int channels) {
-    if (channels <= 4) return 4;
-    if (channels <= 8) return 8;
-    return (channels + 15) / 16 * 16;
-}
-
-/// Interleaved 8-bit feature codes, `stride` bytes per pixel.
+/// Interleaved 8-bit feature codes, one byte per channel and no padding (a patch row is one run
+/// of bytes for the kernel, see ssd.hpp), with kSsdSlack readable bytes after the last pixel.
 class FeatureImage {
 public:
     FeatureImage() = default;
@@ -31,16 +26,17 @@ public:
         : width_(width),
           height_(height),
           channels_(channels),
-          stride_(padded_feature_stride(channels)),
+          stride_(channels),
           data_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
-                    static_cast<std::size_t>(stride_),
+                        static_cast<std::size_t>(stride_) +
+                    kSsdSlack,
                 0) {}
 
     int width() const { return width_; }
     int height() const { return height_; }
     int channels() const { return channels_; }
     int stride() const { return stride_; }
-    bool empty() const { return data_.empty(); }
+    bool empty() const { return width_ == 0 || height_ == 0; }
     std::size_t row_bytes() const {
         return static_cast<std::size_t>(width_) * static_cast<std::size_t>(stride_);
     }

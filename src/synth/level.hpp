@@ -29,8 +29,8 @@ struct Level {
     int tw = 0, th = 0;
     FeatureImage target_features;  ///< F channels: B' (updated by voting) then the guides B_i.
     Image target_weights;          ///< Empty, or F channels of per-pixel weight multipliers.
-    /// With target_weights: per target pixel, `stride` floats channel_weight[c] *
-    /// target_weights(c) (0 on padding bytes), the weights of the SIMD fast path.
+    /// With target_weights: per target pixel, F floats channel_weight[c] * target_weights(c),
+    /// the weights of the SIMD fast path (plus kSsdSlack zeros at the end).
     std::vector<float> target_pixel_weight;
     std::vector<int> target_label;  ///< Label group of each target pixel; empty if unused.
     std::vector<float> target_angle;
@@ -40,9 +40,12 @@ struct Level {
 
     int style_channels = 0;  ///< S: leading channels of the feature images that hold style.
     std::vector<ChannelQuantizer> quantizers;  ///< Per feature channel (F), both sides.
-    /// Per feature byte (stride): channel weight * step^2, so that the weighted SSD of the codes
-    /// approximates the weighted SSD of the values; 0 on padding bytes.
+    /// Per feature channel (F): channel weight * step^2, so that the weighted SSD of the codes
+    /// approximates the weighted SSD of the values.
     std::vector<float> channel_weight;
+    /// channel_weight repeated for the patch_size pixels of a patch row (plus kSsdSlack zeros):
+    /// the shared weights of the SIMD fast path.
+    std::vector<float> row_weight;
     std::vector<float> pixel_weight;  ///< Patch fall-off weights (P*P), empty = flat.
 
     // Valid source centres (pixel indices) grouped by label; one group when labels are unused.

@@ -147,7 +147,7 @@ Level LevelBuilder::build(int index, int patch_size) const {
     L.source_features = FeatureImage(L.sw, L.sh, F);
     L.target_features = FeatureImage(L.tw, L.th, F);
     L.quantizers.resize(static_cast<std::size_t>(F));
-    L.channel_weight.assign(static_cast<std::size_t>(L.source_features.stride()), 0.0f);
+    L.channel_weight.assign(static_cast<std::size_t>(F), 0.0f);
     auto set_channel = [&](int c, float weight, const Image& a, int ac, const Image& b, int bc) {
         float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         for (const auto& [image, channel] : {std::pair{&a, ac}, std::pair{&b, bc}}) {
@@ -204,16 +204,16 @@ Level LevelBuilder::build(int index, int patch_size) const {
         }
         offset += C;
     }
+    L.row_weight.clear();
+    for (int p = 0; p < L.patch_size; ++p) {
+        L.row_weight.insert(L.row_weight.end(), L.channel_weight.begin(), L.channel_weight.end());
+    }
+    L.row_weight.resize(L.row_weight.size() + kSsdSlack, 0.0f);
     if (any_map) {
-        const auto stride = static_cast<std::size_t>(L.target_features.stride());
-        L.target_pixel_weight.assign(L.target_weights.pixel_count() * stride, 0.0f);
-        for (std::size_t i = 0; i < L.target_weights.pixel_count(); ++i) {
-            for (int c = 0; c < F; ++c) {
-                L.target_pixel_weight[i * stride + static_cast<std::size_t>(c)] =
-                    L.channel_weight[static_cast<std::size_t>(c)] *
-                    L.target_weights
-                        .data()[i * static_cast<std::size_t>(F) + static_cast<std::size_t>(c)];
-            }
+        const auto nf = static_cast<std::size_t>(F);
+        L.target_pixel_weight.assign(L.target_weights.pixel_count() * nf + kSsdSlack, 0.0f);
+        for (std::size_t i = 0; i < L.target_weights.pixel_count() * nf; ++i) {
+            L.target_pixel_weight[i] = L.channel_weight[i % nf] * L.target_weights.data()[i];
         }
     }
 

@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 15> kSpecs{{
+const std::array<OptionSpec, 16> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -82,6 +82,10 @@ const std::array<OptionSpec, 15> kSpecs{{
      "", 0, 1, &O::budget_coverage},
     {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
      "rounds", 1, 1000, &O::budget_max_rounds},
+    {"budget-focus",
+     "Error budget: below this fraction of free target patches, rounds query only the sources "
+     "next to a free target's match or not used yet; 0 = query all sources every round.",
+     "", 0, 1, &O::budget_focus},
     {"occurrence-strength",
      "Occurrence penalty h_s: added squared error per use of a source patch above the "
      "threshold.",

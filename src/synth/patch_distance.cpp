@@ -58,17 +58,16 @@ float patch_distance(const Level& L, int tx, int ty, int sx, int sy, float angle
     // in the per-pixel weights when guides have weight maps).
     const FeatureImage& t = L.target_features;
     const FeatureImage& s = L.source_features;
-    const int stride = t.stride();
-    SsdWeights weights{L.channel_weight.data(), 0, 0};
+    const int F = t.stride();
+    SsdWeights weights{L.row_weight.data(), 0};
     if (!L.target_pixel_weight.empty()) {
-        const std::size_t row = static_cast<std::size_t>(L.tw) * static_cast<std::size_t>(stride);
-        weights =
-            SsdWeights{L.target_pixel_weight.data() + static_cast<std::size_t>(ty - r) * row +
-                           static_cast<std::size_t>(tx - r) * static_cast<std::size_t>(stride),
-                       row, stride};
+        const std::size_t row = static_cast<std::size_t>(L.tw) * static_cast<std::size_t>(F);
+        weights = SsdWeights{L.target_pixel_weight.data() + static_cast<std::size_t>(ty - r) * row +
+                                 static_cast<std::size_t>(tx - r) * static_cast<std::size_t>(F),
+                             row};
     }
     return ssd_rows(t.pixel(tx - r, ty - r), t.row_bytes(), s.pixel(sx - r, sy - r), s.row_bytes(),
-                    L.patch_size, L.patch_size, stride, weights, bound);
+                    L.patch_size, L.patch_size * F, weights, bound);
 }
 
 }  // namespace exemplar::synth

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
@@ -24,6 +25,19 @@
 namespace exemplar::synth {
 
 inline constexpr int kBandRows = 8;
+
+/// A mask packed one bit per entry: 8x smaller than a byte mask, so the random lookups of the
+/// search (is this candidate allowed?) hit the L2 cache instead of waiting on memory.
+inline std::vector<std::uint64_t> pack_mask(const std::vector<std::uint8_t>& mask) {
+    std::vector<std::uint64_t> bits((mask.size() + 63) / 64, 0);
+    for (std::size_t i = 0; i < mask.size(); ++i) {
+        if (mask[i]) bits[i / 64] |= std::uint64_t{1} << (i % 64);
+    }
+    return bits;
+}
+inline bool mask_bit(const std::uint64_t* bits, std::size_t i) {
+    return (bits[i / 64] >> (i % 64)) & 1u;
+}
 
 /// Offset of a one-pixel step (dx, dy) in a neighbour's match rotated by its angle.
 inline RotatedOffset rotated_step(float angle_rad, int dx, int dy) {
@@ -189,8 +203,8 @@ struct ForwardProblem {
 /// rotation from source to target coordinates (the negated forward angle).
 struct ReverseProblem {
     const Level& L;
-    const std::uint8_t* query_ok;     ///< Source centres that look for a target (sw*sh).
-    const std::uint8_t* target_free;  ///< Target pixels still to be assigned (tw*th).
+    const std::uint8_t* query_ok;      ///< Source centres that look for a target (sw*sh).
+    const std::uint64_t* target_free;  ///< Target pixels still to be assigned (pack_mask).
     const std::vector<std::vector<int>>& free_by_group;  ///< Free target pixels per label group.
     /// Optional (tw*th): the nearest free target pixel of every target pixel, or -1.
     const int* nearest_free = nullptr;
@@ -200,7 +214,7 @@ struct ReverseProblem {
     bool query_active(std::size_t si) const { return query_ok[si] != 0; }
     bool db_ok(std::size_t si, int tx, int ty) const {
         const std::size_t ti = L.target_index(tx, ty);
-        return target_free[ti] != 0 && L.target_group(ti) == L.source_group(si);
+        return mask_bit(target_free, ti) && L.target_group(ti) == L.source_group(si);
     }
     float angle(std::size_t si, int tx, int ty) const {
         return -L.angle_for(L.target_index(tx, ty), static_cast<int>(si % L.sw),

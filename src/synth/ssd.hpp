@@ -8,27 +8,29 @@
 
 namespace exemplar::synth {
 
-/// Where the weights of ssd_rows come from: pixel p of row r uses the `stride` floats at
-/// data + r * row_step + p * pixel_step. Steps 0 share one set of weights (per channel); a
-/// per-pixel weight map uses pixel_step = stride and row_step = floats per row of the map.
+/// How many bytes (and floats) past the end of a row ssd_rows may read; the values read there
+/// are multiplied by zero. Buffers passed to ssd_rows need this much readable slack after the
+/// last row (FeatureImage and the weight arrays of a Level have it).
+inline constexpr int kSsdSlack = 64;
+
+/// Weights of ssd_rows: byte i of row r is weighted by data[r * row_step + i]. A patch row is a
+/// run of whole pixels, so a shared per-channel weight set is tiled along the row (row_step 0),
+/// and a per-pixel weight map is read in place (row_step = floats per row of the map).
 struct SsdWeights {
     const float* data = nullptr;
     std::size_t row_step = 0;
-    int pixel_step = 0;
 };
 
-/// Sum over `rows` rows of sum over `pixels` pixels of sum over c < stride of
-/// w[c] * (a[c] - b[c])^2 (w: that pixel's weights, see SsdWeights), where a row holds `pixels`
-/// consecutive pixels of `stride` bytes, row r starts at a + r * a_stride and b + r * b_stride,
-/// and stride is a multiple of 4. Returns as soon as the running sum exceeds `bound` (after a
-/// row).
+/// Sum over `rows` rows of sum over i < row_bytes of w_r[i] * (a_r[i] - b_r[i])^2, where row r
+/// starts at a + r * a_stride and b + r * b_stride and w_r is row r's weights (see SsdWeights).
+/// Returns as soon as the running sum exceeds `bound` (after a row). May read up to kSsdSlack
+/// bytes/floats past the end of each row.
 float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
-               float bound);
+               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound);
 
-/// The scalar reference of ssd_rows (same contract).
+/// The scalar reference of ssd_rows (same contract; reads nothing past a row).
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-                      std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
+                      std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
                       float bound);
 
 /// Whether ssd_rows uses the SIMD kernel (default true); false routes it to the scalar

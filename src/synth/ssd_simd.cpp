@@ -13,36 +13,43 @@ namespace exemplar::synth {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// One pixel is stride / Lanes(df) whole vectors, so lane i of the k-th vector of a pixel is
-// always byte k * Lanes + i and takes that byte's weight.
+// A row is processed as one run of bytes, whatever the pixel stride: Lanes(df) bytes per step,
+// the last step masked by zero weights (the bytes and floats it reads past the row are finite:
+// see kSsdSlack).
 template <class DF>
 float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
-               float bound) {
+               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
     const hn::RebindToSigned<DF> di;
     const hn::Rebind<std::uint8_t, DF> d8;
     const int lanes = static_cast<int>(hn::Lanes(df));
-    const int blocks = stride / lanes;
+    const int full = row_bytes / lanes * lanes;
+    const auto tail_mask = hn::FirstN(df, static_cast<std::size_t>(row_bytes - full));
     float sum = 0.0f;
-    const float* wrow = weights.data;
-    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, wrow += weights.row_step) {
+    const float* w = weights.data;
+    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, w += weights.row_step) {
         auto acc0 = hn::Zero(df);
         auto acc1 = hn::Zero(df);
-        const std::uint8_t* pa = a;
-        const std::uint8_t* pb = b;
-        const float* pw = wrow;
-        for (int p = 0; p < pixels; ++p, pw += weights.pixel_step) {
-            for (int k = 0; k < blocks; ++k, pa += lanes, pb += lanes) {
-                const auto d = hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, pa)),
-                                                         hn::PromoteTo(di, hn::LoadU(d8, pb))));
-                const auto wd = hn::Mul(hn::LoadU(df, pw + k * lanes), d);
-                // Two accumulators: alternate pixels, to shorten the dependency chain.
-                if (p % 2 == 0) {
-                    acc0 = hn::MulAdd(wd, d, acc0);
-                } else {
-                    acc1 = hn::MulAdd(wd, d, acc1);
-                }
-            }
+        auto diff = [&](int i) {
+            return hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, a + i)),
+                                             hn::PromoteTo(di, hn::LoadU(d8, b + i))));
+        };
+        int i = 0;
+        // Two accumulators to shorten the dependency chain.
+        for (; i + 2 * lanes <= full; i += 2 * lanes) {
+            const auto d0 = diff(i);
+            const auto d1 = diff(i + lanes);
+            acc0 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i), d0), d0, acc0);
+            acc1 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i + lanes), d1), d1, acc1);
+        }
+        if (i < full) {
+            const auto d0 = diff(i);
+            acc0 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i), d0), d0, acc0);
+            i += lanes;
+        }
+        if (i < row_bytes) {
+            const auto d1 = diff(i);
+            const auto wt = hn::IfThenElseZero(tail_mask, hn::LoadU(df, w + i));
+            acc1 = hn::MulAdd(hn::Mul(wt, d1), d1, acc1);
         }
         sum += hn::GetLane(hn::SumOfLanes(df, hn::Add(acc0, acc1)));
         if (sum > bound) return sum;
@@ -51,19 +58,9 @@ float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::ui
 }
 
 float SsdRows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-              std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
-              float bound) {
-    // The widest vectors that divide the pixel stride (a multiple of 4).
+              std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
     const hn::ScalableTag<float> df;
-    if (stride % static_cast<int>(hn::Lanes(df)) == 0) {
-        return SsdRowsT(df, a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
-    }
-    const hn::CappedTag<float, 8> d8;
-    if (stride % static_cast<int>(hn::Lanes(d8)) == 0) {
-        return SsdRowsT(d8, a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
-    }
-    const hn::CappedTag<float, 4> d4;
-    return SsdRowsT(d4, a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
+    return SsdRowsT(df, a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -80,19 +77,15 @@ std::atomic<bool> g_simd{true};
 }
 
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-                      std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
+                      std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
                       float bound) {
     float sum = 0.0f;
-    const float* wrow = weights.data;
-    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, wrow += weights.row_step) {
+    const float* w = weights.data;
+    for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, w += weights.row_step) {
         float row = 0.0f;
-        for (int p = 0; p < pixels; ++p) {
-            const float* w = wrow + static_cast<std::ptrdiff_t>(p) * weights.pixel_step;
-            for (int c = 0; c < stride; ++c) {
-                const int i = p * stride + c;
-                const auto d = static_cast<float>(static_cast<int>(a[i]) - static_cast<int>(b[i]));
-                row += w[c] * d * d;
-            }
+        for (int i = 0; i < row_bytes; ++i) {
+            const auto d = static_cast<float>(static_cast<int>(a[i]) - static_cast<int>(b[i]));
+            row += w[i] * d * d;
         }
         sum += row;
         if (sum > bound) return sum;
@@ -101,13 +94,11 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
 }
 
 float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int pixels, int stride, SsdWeights weights,
-               float bound) {
+               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
     if (!g_simd.load(std::memory_order_relaxed)) {
-        return ssd_rows_scalar(a, a_stride, b, b_stride, rows, pixels, stride, weights, bound);
+        return ssd_rows_scalar(a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
     }
-    return HWY_DYNAMIC_DISPATCH(SsdRows)(a, a_stride, b, b_stride, rows, pixels, stride, weights,
-                                         bound);
+    return HWY_DYNAMIC_DISPATCH(SsdRows)(a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
 }
 
 void set_simd_enabled(bool enabled) {

@@ -1,11 +1,15 @@
 #include "usage.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 
 #include "exemplar/core/check.hpp"
+#include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
 #include "patchmatch.hpp"
 
@@ -28,6 +32,30 @@ struct Candidate {
     int target;   // target pixel index
     float angle;  // target -> source rotation
 };
+
+// Low 32 bits of a candidate key: the source pixel index; high 32 bits: the error's float bits.
+constexpr std::uint64_t kSourceMask = 0xffffffffu;
+std::uint64_t candidate_key(float error, std::size_t index) {
+    return (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(error)) << 32) |
+           static_cast<std::uint64_t>(index);
+}
+
+// Sorts ascending: halves sorted in parallel, then merged (same result as std::sort).
+void parallel_sort(std::vector<std::uint64_t>& v, int threads) {
+    const auto mid = static_cast<std::ptrdiff_t>(v.size() / 2);
+    if (threads == 1 || v.size() < 65536) {
+        std::sort(v.begin(), v.end());
+        return;
+    }
+    parallel_for(0, 2, threads, [&](int half) {
+        if (half == 0) {
+            std::sort(v.begin(), v.begin() + mid);
+        } else {
+            std::sort(v.begin() + mid, v.end());
+        }
+    });
+    std::inplace_merge(v.begin(), v.begin() + mid, v.end());
+}
 
 bool candidate_less(const Candidate& a, const Candidate& b) {
     if (a.error != b.error) return a.error < b.error;
@@ -67,6 +95,7 @@ public:
     }
 
     std::size_t free_count() const { return free_count_; }
+    const Nnf& nnf() const { return nnf_; }
     std::size_t active_count() const { return active_count_; }
     std::vector<std::uint8_t>& query_mask() { return query_; }
     const std::vector<std::uint8_t>& free_mask() const { return free_; }
@@ -77,7 +106,8 @@ public:
     std::vector<Candidate> retrieve(int round) {
         // After the first round, matches whose target was taken resume at the nearest free one.
         if (round > 0) update_nearest_free();
-        ReverseProblem problem{L_, query_.data(), free_.data(), free_by_group_,
+        const std::vector<std::uint64_t> free_bits = pack_mask(free_);
+        ReverseProblem problem{L_, query_.data(), free_bits.data(), free_by_group_,
                                round > 0 ? nearest_free_.data() : nullptr};
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
         // Target features do not change between the rounds of one search, so after the first
@@ -92,23 +122,7 @@ public:
         // Later rounds pull the field toward the few targets still free; the next EM
         // iteration (all targets free again) starts better from this round's field.
         if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;
-        std::vector<Candidate> best_per_target(free_.size(), Candidate{kInf, -1, -1, 0.0f});
-        for (std::size_t si = 0; si < query_.size(); ++si) {
-            if (!query_[si]) continue;
-            const Match& m = reverse_[si];
-            if (!(m.error < kInf)) continue;
-            const int t = static_cast<int>(L_.target_index(m.x, m.y));
-            const Candidate c{m.error, static_cast<int>(si), t, -m.angle_rad};
-            if (candidate_less(c, best_per_target[static_cast<std::size_t>(t)])) {
-                best_per_target[static_cast<std::size_t>(t)] = c;
-            }
-        }
-        std::vector<Candidate> unique;
-        for (const Candidate& c : best_per_target) {
-            if (c.source >= 0) unique.push_back(c);
-        }
-        std::sort(unique.begin(), unique.end(), candidate_less);
-        return unique;
+        return collision_free_candidates();
     }
 
     void assign(const Candidate& c) {
@@ -166,6 +180,55 @@ public:
                     static_cast<int>(t));
             }
         }
+    }
+
+    // Per target, the querying source with the smallest error (ties: smaller source index), as
+    // candidates sorted by (error, source). Parallel and deterministic: a candidate is one 64-bit
+    // key (error bits, source), errors are >= 0 so their bits order like the values, and each
+    // target keeps the minimum key (order-independent).
+    std::vector<Candidate> collision_free_candidates() const {
+        constexpr std::uint64_t kNone = ~std::uint64_t{0};
+        std::vector<std::uint64_t> best(free_.size(), kNone);
+        const int threads = s_.threads;
+        parallel_for(0, L_.sh, threads, [&](int y) {
+            for (int x = 0; x < L_.sw; ++x) {
+                const std::size_t si = L_.source_index(x, y);
+                if (!query_[si]) continue;
+                const Match& m = reverse_[si];
+                if (!(m.error < kInf)) continue;
+                const std::uint64_t key = candidate_key(m.error, si);
+                std::atomic_ref<std::uint64_t> slot(best[L_.target_index(m.x, m.y)]);
+                std::uint64_t seen = slot.load(std::memory_order_relaxed);
+                while (key < seen &&
+                       !slot.compare_exchange_weak(seen, key, std::memory_order_relaxed)) {
+                }
+            }
+        });
+        // Keys per band of targets, concatenated in band order, then sorted.
+        const int bands = std::max(1, std::min<int>(64, L_.th));
+        std::vector<std::vector<std::uint64_t>> parts(static_cast<std::size_t>(bands));
+        parallel_for(0, bands, threads, [&](int b) {
+            const std::size_t t0 = best.size() * static_cast<std::size_t>(b) / bands;
+            const std::size_t t1 = best.size() * static_cast<std::size_t>(b + 1) / bands;
+            auto& part = parts[static_cast<std::size_t>(b)];
+            for (std::size_t t = t0; t < t1; ++t) {
+                if (best[t] != kNone) part.push_back(best[t]);
+            }
+        });
+        // Keys are unique (a source has one match), so the order is that of candidate_less.
+        std::vector<std::uint64_t> keys;
+        for (const auto& part : parts) keys.insert(keys.end(), part.begin(), part.end());
+        parallel_sort(keys, threads);
+        std::vector<Candidate> out(keys.size());
+        parallel_for_ranges(0, static_cast<int>(keys.size()), threads, 4096, [&](int b, int e) {
+            for (int i = b; i < e; ++i) {
+                const auto si = static_cast<int>(keys[static_cast<std::size_t>(i)] & kSourceMask);
+                const Match& m = reverse_[static_cast<std::size_t>(si)];
+                out[static_cast<std::size_t>(i)] = Candidate{
+                    m.error, si, static_cast<int>(L_.target_index(m.x, m.y)), -m.angle_rad};
+            }
+        });
+        return out;
     }
 
     // Forward search from the free targets to the sources in `allowed` (nullptr = any);
@@ -308,6 +371,26 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     return stats;
 }
 
+// Late error-budget rounds: most sources' best free target is one that another source takes
+// first, so searching from every source again is mostly wasted. A free target t is most likely
+// won by a source close to its current (forward) match, or by a source no target uses yet (which
+// keeps the usage diverse); `query` keeps only those.
+void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nnf& nnf,
+                 const std::vector<std::uint8_t>& used, std::vector<std::uint8_t>& query) {
+    std::vector<std::uint8_t> near(query.size(), 0);
+    for (std::size_t t = 0; t < free.size(); ++t) {
+        if (!free[t]) continue;
+        const Match& m = nnf[t];
+        if (m.x < 0 || m.y < 0) continue;
+        for (int y = std::max(0, m.y - 1); y <= std::min(L.sh - 1, m.y + 1); ++y) {
+            for (int x = std::max(0, m.x - 1); x <= std::min(L.sw - 1, m.x + 1); ++x) {
+                near[L.source_index(x, y)] = 1;
+            }
+        }
+    }
+    for (std::size_t s = 0; s < query.size(); ++s) query[s] = query[s] && (near[s] || !used[s]);
+}
+
 // StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
 // whose summed error stays within the budget T estimated at the knee of the sorted errors; once
 // `budget_coverage` of the targets are covered the rest take forward nearest neighbours.
@@ -316,6 +399,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
     ReverseRetrieval rr(setup, nnf);
     SearchStats stats;
     const auto target_total = static_cast<double>(rr.active_count());
+    std::vector<std::uint8_t> used(static_cast<std::size_t>(L.sw) * L.sh, 0);
     while (rr.free_count() > 0 && stats.rounds < setup.options.budget_max_rounds) {
         const double covered = 1.0 - static_cast<double>(rr.free_count()) / target_total;
         if (covered >= setup.options.budget_coverage) break;
@@ -323,6 +407,10 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         for (std::size_t s = 0; s < query.size(); ++s) {
             query[s] = L.source_valid[s] &&
                        !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
+        }
+        if (stats.rounds > 0 &&
+            static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
+            focus_query(L, rr.free_mask(), rr.nnf(), used, query);
         }
         const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
         ++stats.rounds;
@@ -339,6 +427,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
             // Always take the best candidate so that every round makes progress.
             if (assigned > 0 && spent + c.error > budget) break;
             spent += c.error;
+            used[static_cast<std::size_t>(c.source)] = 1;
             rr.assign(c);
             ++assigned;
         }

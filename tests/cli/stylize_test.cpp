@@ -271,6 +271,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "pyramid-ratio: 2 is invalid (must be 0.3..0.95)");
     expect_failure(with(stylize_args(), {"--finest-em-iterations", "-1"}), 1,
                    "finest-em-iterations: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--budget-focus", "1.5"}), 1,
+                   "budget-focus: 1.5 is invalid (must be 0..1)");
     expect_failure(with(stylize_args(), {"--usage", "sometimes"}), 1,
                    "usage: 'sometimes' is invalid");
     expect_failure(with(stylize_args(), {"--weight", "-1"}), 1, "weight -1");

@@ -202,7 +202,13 @@ TEST(Examples, TextureByNumbersRespectsSegments) {
         // against regressions until the voting improves.
         EXPECT_GT(energy / it->second, 0.5)
             << "segment " << segment[0] << "," << segment[1] << "," << segment[2];
-        EXPECT_LT(energy / it->second, 1.2);
+        // Upper bound: no noise. The sky segment (far larger in the target than in the photo,
+        // so the occurrence penalty pushes some of it onto other segments' patches) gets
+        // 1.08-1.54x the photo's sky detail depending on the seed and on float rounding in the
+        // distance kernel (seeds 1-4, scalar and SIMD kernels); noise would be several times
+        // that.
+        EXPECT_LT(energy / it->second, 1.7)
+            << "segment " << segment[0] << "," << segment[1] << "," << segment[2];
     }
     EXPECT_GE(compared, 3);
     EXPECT_GT(segment_agreement(result->nnf, in.guides[0].source, in.guides[0].target, 0.1), 0.9);

@@ -77,6 +77,11 @@ struct SynthesisOptions {
     float budget_coverage = 0.95f;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
+    /// Error budget: once fewer than this fraction of the target patches are still free, a
+    /// round queries only the source patches that can plausibly take one of them (those next
+    /// to a free target's current match, and those not used yet in this search) instead of all
+    /// of them. 0 = every round queries every source.
+    float budget_focus = 0.25f;
     /// Occurrence penalty strength h_s (squared error per use above the threshold).
     float occurrence_strength = 0.05f;
     /// Occurrence penalty threshold h_τ in uses; 0 = automatic (2 × target/source area ratio).
