@@ -9,8 +9,6 @@
 // Prints per run: wall and CPU seconds, the time at the end of every level, the texture kept
 // (output / exemplar luminance gradient energy; plain averaging washes out to ~0.6) and the mean
 // final patch error (the synthesis energy per pixel; lower = closer to the exemplar).
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -41,13 +40,6 @@ struct Settings {
     SynthesisOptions options;
     std::string out;
 };
-
-double cpu_seconds() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    auto secs = [](const timeval& t) { return static_cast<double>(t.tv_sec) + t.tv_usec * 1e-6; };
-    return secs(usage.ru_utime) + secs(usage.ru_stime);
-}
 
 // Mean squared finite difference of the luminance: a measure of texture detail.
 double gradient_energy(const Image& im) {
@@ -97,7 +89,7 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
     const double style_energy = gradient_energy(in.style);
     for (int r = 0; r < settings.repeats; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        const double c0 = cpu_seconds();
+        const double c0 = bench::cpu_seconds();
         RunContext context(settings.threads);
         // Per-level wall time, printed after the run: where the time goes.
         std::vector<double> level_end;
@@ -109,7 +101,7 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
         auto result = synthesize(in, settings.options, context);
         const double secs =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const double cpu = cpu_seconds() - c0;
+        const double cpu = bench::cpu_seconds() - c0;
         if (!result.ok()) {
             std::fprintf(stderr, "%s\n", result.status().message().c_str());
             return 1;
@@ -157,21 +149,11 @@ bool parse_options(int argc, char** argv, int first, Settings& settings) {
         } else if (arg == "--out" && has_value) {
             settings.out = argv[++i];
         } else if (arg == "--usage" && has_value) {
-            auto usage = parse_usage_strategy(argv[++i]);
-            if (!usage.ok()) {
-                std::fprintf(stderr, "%s\n", usage.status().message().c_str());
-                return false;
-            }
-            settings.options.usage = *usage;
+            if (!bench::parse_usage(argv[++i], settings.options.usage)) return false;
         } else if (arg == "--set" && has_value) {
-            const std::string kv = argv[++i];
-            const auto eq = kv.find('=');
-            const OptionSpec* spec = find_option(kv.substr(0, eq));
-            if (eq == std::string::npos || spec == nullptr) {
-                std::fprintf(stderr, "unknown option in --set %s\n", kv.c_str());
-                return false;
-            }
-            const Status set = set_option(settings.options, *spec, std::stod(kv.substr(eq + 1)));
+            const auto [spec, value] = bench::parse_set(argv[++i]);
+            if (spec == nullptr) return false;
+            const Status set = set_option(settings.options, *spec, value);
             if (!set.is_ok()) {
                 std::fprintf(stderr, "%s\n", set.message().c_str());
                 return false;
@@ -189,15 +171,7 @@ bool parse_options(int argc, char** argv, int first, Settings& settings) {
 int main(int argc, char** argv) {
     const std::string which = argc > 1 ? argv[1] : "all";
     Settings settings;
-    int first_option = 2;
-    if (argc > 2 && argv[2][0] != '-') {
-        settings.threads = std::stoi(argv[2]);
-        first_option = 3;
-        if (argc > 3 && argv[3][0] != '-') {
-            settings.repeats = std::stoi(argv[3]);
-            first_option = 4;
-        }
-    }
+    const int first_option = bench::parse_counts(argc, argv, settings.threads, settings.repeats);
     if (!parse_options(argc, argv, first_option, settings)) return 2;
     int rc = 0;
     if (which == "all" || which == "stylit") {

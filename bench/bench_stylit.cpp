@@ -12,14 +12,13 @@
 // Prints per run the wall time and the time at the end of every level; for the preview also
 // compare_preview against the full result (colour difference at 1/4 of the preview's size and
 // texture ratio).
-#include <sys/resource.h>
-
 #include <chrono>
 #include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/stylit/preview.hpp"
 #include "exemplar/stylit/stylit.hpp"
@@ -42,13 +41,6 @@ struct Data {
     Image exemplar;
     std::vector<LpeBuffer> source, target;
 };
-
-double cpu_seconds() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    auto secs = [](const timeval& t) { return static_cast<double>(t.tv_sec) + t.tv_usec * 1e-6; };
-    return secs(usage.ru_utime) + secs(usage.ru_stime);
-}
 
 Status apply(const Settings& settings, SynthesisOptions& options) {
     if (settings.usage) options.usage = *settings.usage;
@@ -73,7 +65,7 @@ Image run(bool preview, const Data& data, const Settings& settings, const Image&
     Image last;
     for (int r = 0; r < settings.repeats; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        const double c0 = cpu_seconds();
+        const double c0 = bench::cpu_seconds();
         auto seconds = [&] {
             return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         };
@@ -84,7 +76,7 @@ Image run(bool preview, const Data& data, const Settings& settings, const Image&
         };
         auto result = stylize_render(data.exemplar, data.source, data.target, options, context);
         const double secs = seconds();
-        const double cpu = cpu_seconds() - c0;
+        const double cpu = bench::cpu_seconds() - c0;
         if (!result.ok()) {
             std::fprintf(stderr, "%s\n", result.status().message().c_str());
             return {};
@@ -130,21 +122,13 @@ bool parse_options(int argc, char** argv, int first, Settings& settings) {
         } else if (arg == "--compare") {
             settings.compare = value;
         } else if (arg == "--usage") {
-            auto usage = parse_usage_strategy(value);
-            if (!usage.ok()) {
-                std::fprintf(stderr, "%s\n", usage.status().message().c_str());
-                return false;
-            }
-            settings.usage = *usage;
+            UsageStrategy usage{};
+            if (!bench::parse_usage(value, usage)) return false;
+            settings.usage = usage;
         } else if (arg == "--set") {
-            const auto eq = value.find('=');
-            const OptionSpec* spec =
-                eq == std::string::npos ? nullptr : find_option(value.substr(0, eq));
-            if (spec == nullptr) {
-                std::fprintf(stderr, "unknown option in --set %s\n", value.c_str());
-                return false;
-            }
-            settings.overrides.emplace_back(spec, std::stod(value.substr(eq + 1)));
+            const auto set = bench::parse_set(value);
+            if (set.first == nullptr) return false;
+            settings.overrides.push_back(set);
         } else {
             std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
             return false;
@@ -179,15 +163,7 @@ int main(int argc, char** argv) {
     if (which == "compare" && argc >= 4)
         return compare_files(argv[2], argv[3], argc > 4 ? std::stoi(argv[4]) : 4);
     Settings settings;
-    int first_option = 2;
-    if (argc > 2 && argv[2][0] != '-') {
-        settings.threads = std::stoi(argv[2]);
-        first_option = 3;
-        if (argc > 3 && argv[3][0] != '-') {
-            settings.repeats = std::stoi(argv[3]);
-            first_option = 4;
-        }
-    }
+    const int first_option = bench::parse_counts(argc, argv, settings.threads, settings.repeats);
     if (!parse_options(argc, argv, first_option, settings)) return 2;
 
     const std::string dir = std::string(EXEMPLAR_SHARED_DATA_DIR) + "/guided/ebsynth/stylit/";
