@@ -106,12 +106,7 @@ InBetweenScore in_between_score(const ShadedScene& scene, const std::vector<Imag
 TEST(AnimateKeyterms, InputDerivativeTermFollowsTheShadingBetweenTwoKeys) {
     const ShadedScene scene;
     const testing::Style style = shaded_style();
-    AnimationInput in;
-    in.style_input = style.input;
-    in.style_output = style.output;
-    in.frame_count = scene.frames;
-    in.frame = [scene](int t) -> Result<Image> { return scene.frame(t); };
-    in.motion = [scene](int t) -> Result<video::FlowPair> { return scene.motion(t); };
+    AnimationInput in = testing::make_input(scene, style);
     const int last = scene.frames - 1;
     in.keyframes = {{0, paint(scene.frame(0), style), {}},
                     {last, paint(scene.frame(last), style), {}}};

@@ -132,7 +132,9 @@ inline Style make_style(int size = 64, std::uint64_t seed = 7) {
     return s;
 }
 
-inline AnimationInput make_input(const Scene& scene, const Style& style) {
+/// Any scene with `frames`, `frame(t)` and `motion(t)` (Scene, or a test's own).
+template <class AnyScene>
+AnimationInput make_input(const AnyScene& scene, const Style& style) {
     AnimationInput in;
     in.style_input = style.input;
     in.style_output = style.output;
