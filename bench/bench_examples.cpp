@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bench_args.hpp"
+#include "exemplar/filters/measures.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -40,23 +41,6 @@ struct Settings {
     SynthesisOptions options;
     std::string out;
 };
-
-// Mean squared finite difference of the luminance: a measure of texture detail.
-double gradient_energy(const Image& im) {
-    auto lum = [&](int x, int y) {
-        const float* p = im.pixel(x, y);
-        return im.channels() >= 3 ? 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2] : p[0];
-    };
-    double e = 0.0;
-    for (int y = 0; y + 1 < im.height(); ++y) {
-        for (int x = 0; x + 1 < im.width(); ++x) {
-            const double dx = lum(x + 1, y) - lum(x, y);
-            const double dy = lum(x, y + 1) - lum(x, y);
-            e += dx * dx + dy * dy;
-        }
-    }
-    return e / static_cast<double>((im.width() - 1) * (im.height() - 1));
-}
 
 bool load(const std::string& path, double scale, Image& out) {
     auto image = load_image(path);
