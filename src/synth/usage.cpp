@@ -1,6 +1,7 @@
 #include "usage.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -133,42 +134,9 @@ public:
             Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
     }
 
-    // nearest_free_[t]: a free target pixel near t (t itself if free; -1 if none), by two
-    // raster passes of 8-neighbour propagation (a chamfer-style approximation of the nearest).
+    // nearest_free_[t]: the free target pixel nearest to t (t itself if free; -1 if none).
     void update_nearest_free() {
-        const int w = L_.tw, h = L_.th;
-        nearest_free_.assign(free_.size(), -1);
-        for (std::size_t t = 0; t < free_.size(); ++t) {
-            if (free_[t]) nearest_free_[t] = static_cast<int>(t);
-        }
-        auto dist2 = [&](int a, int b) {
-            const int dx = a % w - b % w, dy = a / w - b / w;
-            return dx * dx + dy * dy;
-        };
-        auto relax = [&](int x, int y, int nx, int ny) {
-            if (nx < 0 || ny < 0 || nx >= w || ny >= h) return;
-            const int here = y * w + x;
-            const int cand = nearest_free_[static_cast<std::size_t>(ny * w + nx)];
-            if (cand < 0) return;
-            int& best = nearest_free_[static_cast<std::size_t>(here)];
-            if (best < 0 || dist2(here, cand) < dist2(here, best)) best = cand;
-        };
-        for (int y = 0; y < h; ++y) {
-            for (int x = 0; x < w; ++x) {
-                relax(x, y, x - 1, y);
-                relax(x, y, x - 1, y - 1);
-                relax(x, y, x, y - 1);
-                relax(x, y, x + 1, y - 1);
-            }
-        }
-        for (int y = h - 1; y >= 0; --y) {
-            for (int x = w - 1; x >= 0; --x) {
-                relax(x, y, x + 1, y);
-                relax(x, y, x + 1, y + 1);
-                relax(x, y, x, y + 1);
-                relax(x, y, x - 1, y + 1);
-            }
-        }
+        nearest_free_ = nearest_set_pixel(free_, L_.tw, L_.th, s_.threads);
     }
 
     void rebuild_free_lists() {
@@ -404,10 +372,13 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         const double covered = 1.0 - static_cast<double>(rr.free_count()) / target_total;
         if (covered >= setup.options.budget_coverage) break;
         std::vector<std::uint8_t>& query = rr.query_mask();
-        for (std::size_t s = 0; s < query.size(); ++s) {
-            query[s] = L.source_valid[s] &&
-                       !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
-        }
+        parallel_for(0, L.sh, setup.threads, [&](int y) {
+            for (int x = 0; x < L.sw; ++x) {
+                const std::size_t s = L.source_index(x, y);
+                query[s] = L.source_valid[s] &&
+                           !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
+            }
+        });
         if (stats.rounds > 0 &&
             static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
             focus_query(L, rr.free_mask(), rr.nnf(), used, query);
@@ -517,6 +488,78 @@ KneeFit fit_knee(std::span<const float> sorted_errors) {
     fit.knee_index =
         std::min(n, static_cast<std::size_t>(std::ceil(fit.knee_x * static_cast<double>(n - 1))));
     return fit;
+}
+
+// The separable exact transform of Felzenszwalb and Huttenlocher (2012): the nearest set pixel of
+// every column, then per row the lower envelope of the parabolas (x - x')^2 + dy(x')^2. Both
+// passes are parallel over fixed pieces, so the result does not depend on the thread count.
+std::vector<int> nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h,
+                                   int threads) {
+    EXEMPLAR_CHECK_EQ(set.size(), static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    auto index = [w](int x, int y) {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+               static_cast<std::size_t>(x);
+    };
+    // Pass 1: per pixel, the row of the nearest set pixel in its column (-1: none).
+    std::vector<int> column_row(set.size(), -1);
+    constexpr int kChunk = 64;
+    parallel_for(0, (w + kChunk - 1) / kChunk, threads, [&](int chunk) {
+        const int x0 = chunk * kChunk, x1 = std::min(w, x0 + kChunk);
+        std::array<int, kChunk> last;
+        last.fill(-1);
+        for (int y = 0; y < h; ++y) {
+            for (int x = x0; x < x1; ++x) {
+                const std::size_t t = index(x, y);
+                if (set[t]) last[static_cast<std::size_t>(x - x0)] = y;
+                column_row[t] = last[static_cast<std::size_t>(x - x0)];
+            }
+        }
+        last.fill(-1);
+        for (int y = h - 1; y >= 0; --y) {
+            for (int x = x0; x < x1; ++x) {
+                const std::size_t t = index(x, y);
+                int& below = last[static_cast<std::size_t>(x - x0)];
+                if (set[t]) below = y;
+                int& row = column_row[t];
+                if (below >= 0 && (row < 0 || below - y < y - row)) row = below;
+            }
+        }
+    });
+    // Pass 2: per row, the lower envelope of the columns' parabolas.
+    std::vector<int> nearest(set.size(), -1);
+    parallel_for(0, h, threads, [&](int y) {
+        std::vector<int> v(static_cast<std::size_t>(w));         // envelope's columns
+        std::vector<double> z(static_cast<std::size_t>(w) + 1);  // their left borders
+        auto g = [&](int x) {
+            const double dy = y - column_row[index(x, y)];
+            return dy * dy + static_cast<double>(x) * x;
+        };
+        int k = -1;
+        for (int q = 0; q < w; ++q) {
+            if (column_row[index(q, y)] < 0) continue;
+            double border = -std::numeric_limits<double>::infinity();
+            while (k >= 0) {
+                const int p = v[static_cast<std::size_t>(k)];
+                border = (g(q) - g(p)) / (2.0 * (q - p));
+                if (border > z[static_cast<std::size_t>(k)]) break;
+                --k;
+                border = -std::numeric_limits<double>::infinity();
+            }
+            ++k;
+            v[static_cast<std::size_t>(k)] = q;
+            z[static_cast<std::size_t>(k)] = border;
+        }
+        if (k < 0) return;
+        const int count = k + 1;
+        z[static_cast<std::size_t>(count)] = std::numeric_limits<double>::infinity();
+        k = 0;
+        for (int x = 0; x < w; ++x) {
+            while (z[static_cast<std::size_t>(k) + 1] < x) ++k;
+            const int column = v[static_cast<std::size_t>(k)];
+            nearest[index(x, y)] = static_cast<int>(index(column, column_row[index(column, y)]));
+        }
+    });
+    return nearest;
 }
 
 std::vector<float> usage_counts(const Level& level, const Nnf& nnf) {

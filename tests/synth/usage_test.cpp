@@ -106,6 +106,48 @@ void expect_uniform(const UsageFixture& f) {
     }
 }
 
+// The nearest set pixel against brute force: the same (squared) distance everywhere, on sparse
+// and dense random sets, single points, empty sets and thin grids; and the same pixels for any
+// thread count.
+TEST(NearestSetPixel, MatchesBruteForceDistances) {
+    const struct {
+        int w, h;
+        double density;
+    } cases[] = {{37, 29, 0.002}, {37, 29, 0.05}, {64, 48, 0.5}, {1, 40, 0.1},
+                 {40, 1, 0.1},    {150, 3, 0.01}, {13, 11, 0.0}};
+    std::uint64_t state = 7;
+    auto next = [&] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<double>(state >> 11) / 9007199254740992.0;
+    };
+    for (const auto& c : cases) {
+        std::vector<std::uint8_t> set(static_cast<std::size_t>(c.w) * c.h, 0);
+        for (auto& v : set) v = next() < c.density ? 1 : 0;
+        if (c.density > 0.0 && std::count(set.begin(), set.end(), 1) == 0) set[set.size() / 2] = 1;
+        const std::vector<int> one = nearest_set_pixel(set, c.w, c.h, 1);
+        EXPECT_EQ(one, nearest_set_pixel(set, c.w, c.h, 2));
+        for (int y = 0; y < c.h; ++y) {
+            for (int x = 0; x < c.w; ++x) {
+                long best = -1;
+                for (int i = 0; i < static_cast<int>(set.size()); ++i) {
+                    if (!set[static_cast<std::size_t>(i)]) continue;
+                    const long dx = i % c.w - x, dy = i / c.w - y;
+                    if (best < 0 || dx * dx + dy * dy < best) best = dx * dx + dy * dy;
+                }
+                const int got = one[static_cast<std::size_t>(y) * c.w + x];
+                if (best < 0) {
+                    EXPECT_EQ(got, -1);
+                    continue;
+                }
+                ASSERT_GE(got, 0);
+                ASSERT_TRUE(set[static_cast<std::size_t>(got)]);
+                const long dx = got % c.w - x, dy = got / c.w - y;
+                EXPECT_EQ(dx * dx + dy * dy, best) << c.w << "x" << c.h << " at " << x << "," << y;
+            }
+        }
+    }
+}
+
 TEST(UniformUsage, EverySourcePatchUsedKOrKPlusOneTimes) {
     // Target larger than the source: K >= 1 with a remainder.
     UsageFixture f = make(20, 18, 41, 37, UsageStrategy::Uniform, false);
