@@ -23,18 +23,6 @@ inline RotatedOffset rotate_offset(int dx, int dy, float c, float s) {
                 std::floor(s * static_cast<float>(dx) + c * static_cast<float>(dy) + 0.5f))};
 }
 
-/// Asks the cache for the first row of the patch at (x, y) of `features` (the start and the end
-/// of the row's bytes), which patch_distance reads first: a search that knows its next
-/// candidates requests them all at once, so their cache misses overlap instead of queueing.
-inline void prefetch_patch(const FeatureImage& features, int radius, int x, int y) {
-    if (x < radius || y < radius) return;
-    const std::uint8_t* row = features.pixel(x - radius, y - radius);
-    const std::size_t bytes =
-        static_cast<std::size_t>(2 * radius + 1) * static_cast<std::size_t>(features.stride());
-    __builtin_prefetch(row);
-    __builtin_prefetch(row + bytes - 1);
-}
-
 /// The simple reference: every pixel and channel, no early termination. Test oracle.
 float patch_distance_reference(const Level& level, int tx, int ty, int sx, int sy, float angle_rad);
 

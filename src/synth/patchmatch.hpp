@@ -1,8 +1,8 @@
 #pragma once
 // PatchMatch (Barnes et al. 2009) over a generic "problem": for every active query position find
 // the database position of least cost, by propagation from scan-order neighbours and random
-// search around the match after propagation, plus one uniformly drawn valid candidate per pixel
-// (this keeps label/mask-constrained searches from stalling when the allowed region is small).
+// search around the current best, plus one uniformly drawn valid candidate per pixel (this keeps
+// label/mask-constrained searches from stalling when the allowed region is small).
 //
 // The same code serves the forward search (query = target pixel, database = source patch) and
 // the reversed retrieval of the usage strategies (query = source patch, database = target pixel).
@@ -11,14 +11,8 @@
 // Inside a band, propagation reads the current field; across band borders it reads a copy of
 // the neighbouring band's border row taken at the start of the iteration. Random numbers are keyed
 // by (key, iteration, pixel). Hence the result does not depend on the number of threads.
-//
-// Speed: the search waits on memory (random patch reads), not on arithmetic. The random
-// candidates of a query do not depend on each other (all windows share one centre, as in Barnes
-// et al. 2009), so their first patch rows are requested together, one query ahead of their
-// evaluation, and the cache misses overlap.
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -31,8 +25,6 @@
 namespace exemplar::synth {
 
 inline constexpr int kBandRows = 8;
-/// Most random-search windows per query and iteration (radius 2^k for k < 31 covers any image).
-inline constexpr int kMaxWindows = 31;
 
 /// A mask packed one bit per entry: 8x smaller than a byte mask, so the random lookups of the
 /// search (is this candidate allowed?) hit the L2 cache instead of waiting on memory.
@@ -86,39 +78,6 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
     });
 }
 
-/// The random part of one query's PatchMatch step: the offsets of the search windows (around a
-/// centre known only after propagation) and the uniformly drawn candidate. It depends only on
-/// (key, iteration, query), so it can be drawn before the query's turn.
-struct RandomPlan {
-    int windows = 0;
-    std::array<int, 2 * kMaxWindows> offset{};
-    bool drawn = false;
-    int draw_x = 0, draw_y = 0;
-};
-
-template <class Problem>
-RandomPlan plan_random(const Problem& P, std::uint64_t key, int iter, std::size_t qi) {
-    KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
-    RandomPlan plan;
-    for (int radius = std::max(P.db_width(), P.db_height());
-         radius >= 1 && plan.windows < kMaxWindows; radius /= 2, ++plan.windows) {
-        plan.offset[static_cast<std::size_t>(2 * plan.windows)] = rng.range(-radius, radius);
-        plan.offset[static_cast<std::size_t>(2 * plan.windows + 1)] = rng.range(-radius, radius);
-    }
-    plan.drawn = P.random_db(qi, rng, plan.draw_x, plan.draw_y);
-    return plan;
-}
-
-/// Calls f(x, y) for every random candidate of `plan` around the centre (cx, cy).
-template <class Problem, class F>
-void for_each_random(const Problem& P, const RandomPlan& plan, int cx, int cy, F&& f) {
-    for (int i = 0; i < plan.windows; ++i) {
-        f(std::clamp(cx + plan.offset[static_cast<std::size_t>(2 * i)], 0, P.db_width() - 1),
-          std::clamp(cy + plan.offset[static_cast<std::size_t>(2 * i + 1)], 0, P.db_height() - 1));
-    }
-    if (plan.drawn) f(plan.draw_x, plan.draw_y);
-}
-
 /// Runs `iterations` PatchMatch iterations on `field` (whose active entries must be evaluated).
 template <class Problem>
 void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t key, int threads) {
@@ -139,11 +98,6 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
         parallel_for(0, bands, threads, [&](int band) {
             const int y0 = band * kBandRows;
             const int y1 = std::min(h, y0 + kBandRows);
-            // The plan of the next query in the row, drawn (and its candidates around the
-            // query's current match fetched) while this query is evaluated.
-            RandomPlan next_plan;
-            std::size_t next_qi = ~std::size_t{0};
-            auto prefetch = [&](int cx, int cy) { P.prefetch(cx, cy); };
             for (int yi = 0; yi < y1 - y0; ++yi) {
                 const int y = forward_scan ? y0 + yi : y1 - 1 - yi;
                 for (int xi = 0; xi < w; ++xi) {
@@ -151,17 +105,6 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                     const std::size_t qi = static_cast<std::size_t>(y) * w + x;
                     if (!P.query_active(qi)) continue;
                     Match best = field[qi];
-                    const RandomPlan plan =
-                        next_qi == qi ? next_plan : plan_random(P, key, iter, qi);
-                    if (next_qi != qi) for_each_random(P, plan, best.x, best.y, prefetch);
-                    const int ax = x + step;
-                    next_qi = ~std::size_t{0};
-                    if (ax >= 0 && ax < w && P.query_active(qi + step)) {
-                        next_qi = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(qi) + step);
-                        next_plan = plan_random(P, key, iter, next_qi);
-                        const Match& ahead = field[next_qi];
-                        for_each_random(P, next_plan, ahead.x, ahead.y, prefetch);
-                    }
 
                     auto try_candidate = [&](int cx, int cy) {
                         if (cx < 0 || cy < 0 || cx >= P.db_width() || cy >= P.db_height()) return;
@@ -195,15 +138,19 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         }
                     }
 
-                    // Random search in shrinking windows around the match after propagation,
-                    // and one candidate drawn from everything this query may use. If
-                    // propagation moved the match, the prefetched candidates were wrong: fetch.
-                    const Match& before = field[qi];
-                    if (best.x != before.x || best.y != before.y) {
-                        for_each_random(P, plan, best.x, best.y, prefetch);
+                    // Random search in shrinking windows around the best match.
+                    KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
+                    for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
+                         radius /= 2) {
+                        const int cx =
+                            std::clamp(best.x + rng.range(-radius, radius), 0, P.db_width() - 1);
+                        const int cy =
+                            std::clamp(best.y + rng.range(-radius, radius), 0, P.db_height() - 1);
+                        try_candidate(cx, cy);
                     }
-                    const int cx = best.x, cy = best.y;
-                    for_each_random(P, plan, cx, cy, try_candidate);
+                    // One candidate drawn from everything this query may use.
+                    int rx = 0, ry = 0;
+                    if (P.random_db(qi, rng, rx, ry)) try_candidate(rx, ry);
 
                     field[qi] = best;
                 }
@@ -229,7 +176,6 @@ struct ForwardProblem {
         return L.compatible(qi, sx, sy) && (allowed == nullptr || allowed[L.source_index(sx, sy)]);
     }
     float angle(std::size_t qi, int sx, int sy) const { return L.angle_for(qi, sx, sy); }
-    void prefetch(int sx, int sy) const { prefetch_patch(L.source_features, L.radius, sx, sy); }
     float cost(int tx, int ty, int sx, int sy, float angle_rad, float bound) const {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
@@ -274,7 +220,6 @@ struct ReverseProblem {
         return -L.angle_for(L.target_index(tx, ty), static_cast<int>(si % L.sw),
                             static_cast<int>(si / L.sw));
     }
-    void prefetch(int tx, int ty) const { prefetch_patch(L.target_features, L.radius, tx, ty); }
     float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {
         return patch_distance(L, tx, ty, sx, sy, -angle_rad, bound);
     }
