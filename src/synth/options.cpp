@@ -84,7 +84,8 @@ const std::array<OptionSpec, 16> kSpecs{{
      "rounds", 1, 1000, &O::budget_max_rounds},
     {"budget-focus",
      "Error budget: below this fraction of free target patches, rounds query only the sources "
-     "next to a free target's match or not used yet; 0 = query all sources every round.",
+     "next to a free target's match or not used yet; 0 = query all sources every round, 1 = "
+     "every round after the first.",
      "", 0, 1, &O::budget_focus},
     {"occurrence-strength",
      "Occurrence penalty h_s: added squared error per use of a source patch above the "

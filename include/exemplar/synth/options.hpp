@@ -80,8 +80,8 @@ struct SynthesisOptions {
     /// Error budget: once fewer than this fraction of the target patches are still free, a
     /// round queries only the source patches that can plausibly take one of them (those next
     /// to a free target's current match, and those not used yet in this search) instead of all
-    /// of them. 0 = every round queries every source.
-    float budget_focus = 0.25f;
+    /// of them. 0 = every round queries every source; 1 (default) = every round after the first.
+    float budget_focus = 1.0f;
     /// Occurrence penalty strength h_s (squared error per use above the threshold).
     float occurrence_strength = 0.05f;
     /// Occurrence penalty threshold h_τ in uses; 0 = automatic (2 × target/source area ratio).
