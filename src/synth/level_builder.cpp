@@ -8,6 +8,7 @@
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/filters/resample.hpp"
+#include "guide_pca.hpp"
 
 namespace exemplar::synth {
 
@@ -97,11 +98,25 @@ LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& opt
     const float ratio = options.pyramid_ratio;
     using F = ResampleFilter;
     style_ = gaussian_pyramid(in.style, levels, ratio, F::Gaussian, threads);
-    for (const GuidePair& g : in.guides) {
-        source_guides_.push_back(gaussian_pyramid(g.source, levels, ratio, F::Gaussian, threads));
-        target_guides_.push_back(gaussian_pyramid(g.target, levels, ratio, F::Gaussian, threads));
-        weight_maps_.push_back(
-            pyramid_or_empty(g.target_weight_map, levels, ratio, F::Gaussian, threads));
+    // Guides: as given, or compressed to fewer channels (projection and pyramid are both linear,
+    // so compressing the finest level equals compressing every level).
+    if (const auto compressed = compress_guides(in.guides, options.guide_pca, threads)) {
+        source_guides_.push_back(
+            gaussian_pyramid(compressed->source, levels, ratio, F::Gaussian, threads));
+        target_guides_.push_back(
+            gaussian_pyramid(compressed->target, levels, ratio, F::Gaussian, threads));
+        weight_maps_.push_back(pyramid_or_empty(Image(), levels, ratio, F::Gaussian, threads));
+        guide_weights_.push_back(1.0f);
+    } else {
+        for (const GuidePair& g : in.guides) {
+            source_guides_.push_back(
+                gaussian_pyramid(g.source, levels, ratio, F::Gaussian, threads));
+            target_guides_.push_back(
+                gaussian_pyramid(g.target, levels, ratio, F::Gaussian, threads));
+            weight_maps_.push_back(
+                pyramid_or_empty(g.target_weight_map, levels, ratio, F::Gaussian, threads));
+            guide_weights_.push_back(g.weight);
+        }
     }
     source_mask_ = pyramid_or_empty(in.source_mask, levels, ratio, F::Box, threads);
     target_mask_ = pyramid_or_empty(in.target_mask, levels, ratio, F::Box, threads);
@@ -143,7 +158,7 @@ Level LevelBuilder::build(int index, int patch_size) const {
     // votes average A' values; an initial target may widen it).
     const int S = L.style_channels;
     int F = S;
-    for (const GuidePair& g : input_.guides) F += g.source.channels();
+    for (const auto& pyramid : source_guides_) F += pyramid[d].channels();
     L.source_features = FeatureImage(L.sw, L.sh, F);
     L.target_features = FeatureImage(L.tw, L.th, F);
     L.quantizers.resize(static_cast<std::size_t>(F));
@@ -183,14 +198,14 @@ Level LevelBuilder::build(int index, int patch_size) const {
                                      [&](const auto& p) { return !p[d].empty(); });
     if (any_map) L.target_weights = Image(L.tw, L.th, F, 1.0f);
     int offset = S;
-    for (std::size_t g = 0; g < input_.guides.size(); ++g) {
+    for (std::size_t g = 0; g < source_guides_.size(); ++g) {
         const Image& sg = source_guides_[g][d];
         const Image& tg = target_guides_[g][d];
         const Image& map = weight_maps_[g][d];
         const int C = sg.channels();
         for (int c = 0; c < C; ++c) {
             const int fc = offset + c;
-            set_channel(fc, input_.guides[g].weight, sg, c, tg, c);
+            set_channel(fc, guide_weights_[g], sg, c, tg, c);
             const ChannelQuantizer& q = L.quantizers[static_cast<std::size_t>(fc)];
             encode(sg, c, q, L.source_features, fc);
             encode(tg, c, q, L.target_features, fc);

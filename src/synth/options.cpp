@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 16> kSpecs{{
+const std::array<OptionSpec, 17> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -76,6 +76,11 @@ const std::array<OptionSpec, 16> kSpecs{{
      &O::style_weight},
     {"falloff-sigma", "Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal.",
      "px", 0, 100, &O::falloff_sigma_px},
+    {"guide-pca",
+     "Guide channels are replaced by the fewest principal components that keep this fraction of "
+     "their weighted variance (faster distances, approximate guides); 0 = off. Not with "
+     "per-pixel guide weights.",
+     "", 0, 1, &O::guide_pca},
     {"budget-coverage",
      "Error budget: fraction of target patches covered by reversed retrieval before the rest "
      "falls back to forward nearest neighbours (StyLit: 0.95).",

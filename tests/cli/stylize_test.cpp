@@ -273,6 +273,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "finest-em-iterations: -1 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--budget-focus", "1.5"}), 1,
                    "budget-focus: 1.5 is invalid (must be 0..1)");
+    expect_failure(with(stylize_args(), {"--guide-pca", "-0.1"}), 1,
+                   "guide-pca: -0.1 is invalid (must be 0..1)");
     expect_failure(with(stylize_args(), {"--usage", "sometimes"}), 1,
                    "usage: 'sometimes' is invalid");
     expect_failure(with(stylize_args(), {"--weight", "-1"}), 1, "weight -1");

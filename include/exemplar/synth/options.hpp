@@ -75,6 +75,12 @@ struct SynthesisOptions {
     /// Error budget: stop reversed retrieval once this fraction of target patches is covered;
     /// the rest use forward nearest neighbours (StyLit: ~95%).
     float budget_coverage = 0.95f;
+    /// Guide channels (each scaled by sqrt(weight)) are replaced by the fewest principal
+    /// components that keep this fraction of their variance, fitted on source and target
+    /// together; fewer channels make every patch distance cheaper. 0 = off (default: the
+    /// components are coded in 8 bits over their range, which loses the exact coding of 8-bit
+    /// guides; see docs/algorithms.md). Not applied when a guide has a per-pixel weight map.
+    float guide_pca = 0.0f;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
     /// Error budget: once fewer than this fraction of the target patches are still free, a
