@@ -191,7 +191,9 @@ TEST(AnimateKeyterms, InputDerivativeTermBalancesTwoDifferentKeys) {
 // Ribbons: keys at 0 and 7 painted alike (key 7 = key 0's square moved along the motion, the
 // background it uncovers painted fresh), so every in-between has an exact answer: the keys'
 // pixels carried along the motion. With ribbons every pixel can take its corresponding key
-// pixel directly instead of waiting for advection and propagation to bring it.
+// pixel directly instead of waiting for advection and propagation to bring it, and in every
+// PatchMatch iteration, so a ribbon that loses against the start of a call can win once the
+// votes have moved the frame toward the keys.
 TEST(AnimateKeyterms, RibbonsReproduceTheKeysInTheInBetweens) {
     const testing::Scene scene;
     const testing::Style style = testing::make_style();
@@ -248,7 +250,9 @@ TEST(AnimateKeyterms, RibbonsReproduceTheKeysInTheInBetweens) {
         const double a = error(with, budget == 0 ? "ribbons, 1 iteration" : "ribbons, default");
         const double b =
             error(without, budget == 0 ? "no ribbons, 1 iteration" : "no ribbons, default");
-        EXPECT_LT(a, b);
+        // Tried in every PatchMatch iteration the ribbons cut the error to about a third (0.35
+        // and 0.32 when written); tried once per engine call only to about a half (0.54, 0.46).
+        EXPECT_LT(a, 0.4 * b);
     }
 }
 
