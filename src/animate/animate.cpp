@@ -126,7 +126,6 @@ private:
     Status solve_frame(const LevelData& L, int level, int t, int neighbour, bool backward_sweep,
                        const Nnf& initial, std::uint64_t key);
     float forward_probability(int t) const;
-    Result<Image> input_derivative_target(const LevelData& L, int t, int neighbour) const;
     void report(std::string_view stage, int level, int frame, double call_fraction) const;
 
     const AnimationInput& in_;
@@ -157,48 +156,6 @@ float Solver::forward_probability(int t) const {
     }
     if (last < 0 || next < 0) return 0.5f;
     return static_cast<float>(next - t) / static_cast<float>(next - last);
-}
-
-// The target guide G_t of g_∂in (Bénard eq. 10) against the source guide S (the atlas input):
-//     |(I_t(p) − I_n(q)) − (S(C_t(p)) − S(C_n(q)))|² = |S(C_t(p)) − G_t(p)|²,
-//     G_t(p) = I_t(p) + (S(C_n(q)) − I_n(q)),   q = p + V(p) in the neighbour frame n = t ∓ 1,
-// with C_n the neighbour's solved offsets (their centre pixel) and (S(C_n) − I_n) pulled along
-// the motion bilinearly. Where χ = 0, the sample leaves the frame or C_n has no match, G_t = I_t:
-// the term then equals g_in there (no per-pixel weight map, which costs the engine ~23%).
-Result<Image> Solver::input_derivative_target(const LevelData& L, int t, int neighbour) const {
-    const auto i = static_cast<std::size_t>(t), n = static_cast<std::size_t>(neighbour);
-    const Image& frame = L.frames[i];
-    const Image& prev = L.frames[n];
-    const Nnf& offsets = nnf_[n];
-    const int C = frame.channels();
-    // (S(C_n) − I_n, valid) on the neighbour's grid.
-    Image diff(L.w, L.h, C + 1, 0.0f);
-    for (int y = 0; y < L.h; ++y) {
-        for (int x = 0; x < L.w; ++x) {
-            const Match& m = offsets.at(x, y);
-            if (m.x < 0 || m.y < 0 || m.x >= L.atlas_input.width() ||
-                m.y >= L.atlas_input.height()) {
-                continue;
-            }
-            for (int c = 0; c < C; ++c) {
-                diff.at(x, y, c) = L.atlas_input.at(m.x, m.y, c) - prev.at(x, y, c);
-            }
-            diff.at(x, y, C) = 1.0f;
-        }
-    }
-    const Image& flow = neighbour < t ? L.backward[i] : L.forward[i];
-    const Image& visible = neighbour < t ? L.visible_prev[i] : L.visible_next[i];
-    auto warped = video::backward_warp(diff, flow, 1);
-    if (!warped.ok()) return warped.status();
-    Image target = frame;
-    for (std::size_t p = 0; p < target.pixel_count(); ++p) {
-        const float* d = warped->image.data().data() + p * static_cast<std::size_t>(C + 1);
-        if (!(visible.data()[p] > 0.5f && warped->valid.data()[p] > 0.5f && d[C] > 0.999f)) {
-            continue;
-        }
-        for (int c = 0; c < C; ++c) target.data()[p * static_cast<std::size_t>(C) + c] += d[c];
-    }
-    return target;
 }
 
 void Solver::report(std::string_view stage, int level, int frame, double call_fraction) const {
@@ -485,13 +442,13 @@ Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, 
                             options_.input_derivative_weight > 0.0f &&
                             !nnf_[static_cast<std::size_t>(neighbour)].empty();
     if (derivative) {
-        auto guide = input_derivative_target(L, t, neighbour);
+        const auto n = static_cast<std::size_t>(neighbour);
+        auto guide = input_derivative_guide(L.frames[i], L.frames[n], nnf_[n], L.atlas_input,
+                                            neighbour < t ? L.backward[i] : L.forward[i],
+                                            neighbour < t ? L.visible_prev[i] : L.visible_next[i]);
         if (!guide.ok()) return guide.status();
-        s.guides.push_back({"input-derivative",
-                            L.atlas_input,
-                            std::move(guide).value(),
-                            options_.input_derivative_weight,
-                            {}});
+        s.guides.push_back({"input-derivative", L.atlas_input, std::move(guide->target),
+                            options_.input_derivative_weight, std::move(guide->weight)});
     } else if (neighbour >= 0 && options_.temporal_weight > 0.0f) {
         // g_tc: the neighbour's output pulled along the motion, weighted by χ (and by whether
         // the sample fell inside the frame). Where χ = 0 the guide takes the frame's own

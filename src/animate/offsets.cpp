@@ -9,6 +9,7 @@
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/rng.hpp"
+#include "exemplar/video/warp.hpp"
 
 namespace exemplar::animate {
 
@@ -98,6 +99,50 @@ Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t 
         out[i] = take_a ? a[i] : b[i];
     }
     return out;
+}
+
+Result<DerivativeGuide> input_derivative_guide(const Image& frame, const Image& neighbour_frame,
+                                               const Nnf& neighbour_offsets,
+                                               const Image& source_input, const Image& flow,
+                                               const Image& visible) {
+    const int w = frame.width(), h = frame.height(), C = frame.channels();
+    EXEMPLAR_CHECK(neighbour_frame.same_size(frame) && neighbour_frame.channels() == C);
+    EXEMPLAR_CHECK(neighbour_offsets.width() == w && neighbour_offsets.height() == h);
+    EXEMPLAR_CHECK(visible.width() == w && visible.height() == h);
+    EXEMPLAR_CHECK(source_input.channels() == C);
+    // (S(C_n) − I_n, has a match) on the neighbour's grid.
+    Image diff(w, h, C + 1, 0.0f);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const Match& m = neighbour_offsets.at(x, y);
+            if (m.x < 0 || m.y < 0 || m.x >= source_input.width() || m.y >= source_input.height()) {
+                continue;
+            }
+            for (int c = 0; c < C; ++c) {
+                diff.at(x, y, c) = source_input.at(m.x, m.y, c) - neighbour_frame.at(x, y, c);
+            }
+            diff.at(x, y, C) = 1.0f;
+        }
+    }
+    auto warped = video::backward_warp(diff, flow, 1);
+    if (!warped.ok()) return warped.status();
+    DerivativeGuide guide{frame, Image(w, h, 1, 0.0f)};
+    bool all_weighted = true;
+    for (std::size_t p = 0; p < guide.target.pixel_count(); ++p) {
+        const float* d = warped->image.data().data() + p * static_cast<std::size_t>(C + 1);
+        // d[C] < 1: the bilinear sample mixed in pixels without a match.
+        if (!(visible.data()[p] > 0.5f && warped->valid.data()[p] > 0.5f && d[C] > 0.999f)) {
+            all_weighted = false;
+            continue;
+        }
+        guide.weight.data()[p] = 1.0f;
+        for (int c = 0; c < C; ++c) {
+            guide.target.data()[p * static_cast<std::size_t>(C) + static_cast<std::size_t>(c)] +=
+                d[c];
+        }
+    }
+    if (all_weighted) guide.weight = Image();
+    return guide;
 }
 
 }  // namespace exemplar::animate

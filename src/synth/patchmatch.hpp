@@ -2,7 +2,8 @@
 // PatchMatch (Barnes et al. 2009) over a generic "problem": for every active query position find
 // the database position of least cost, by propagation from scan-order neighbours and random
 // search around the current best, plus one uniformly drawn valid candidate per pixel (this keeps
-// label/mask-constrained searches from stalling when the allowed region is small).
+// label/mask-constrained searches from stalling when the allowed region is small), plus the
+// problem's extra candidates for the position if it has any (ribbons, Bénard et al. 2013 §4.1).
 //
 // The same code serves the forward search (query = target pixel, database = source patch) and
 // the reversed retrieval of the usage strategies (query = source patch, database = target pixel).
@@ -138,6 +139,13 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         }
                     }
 
+                    // Extra candidates at this position (ribbons), before the random search
+                    // so that it explores around them too.
+                    for (int k = 0; k < P.candidate_count(); ++k) {
+                        const Match& c = P.candidate(k, qi);
+                        if (c.x >= 0) try_candidate(c.x, c.y);
+                    }
+
                     // Random search in shrinking windows around the best match.
                     KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
                     for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
@@ -168,6 +176,9 @@ struct ForwardProblem {
     /// Optional: the lists random candidates are drawn from, per label group (default: every
     /// valid source centre of the group). Must agree with `allowed`.
     const std::vector<std::vector<int>>* draw_lists = nullptr;
+    /// Optional: fields on the target grid whose entry at a pixel every iteration tries as one
+    /// more candidate (x = -1: none); see SynthesisInput::candidate_nnfs.
+    const std::vector<Nnf>* candidates = nullptr;
 
     int db_width() const { return L.sw; }
     int db_height() const { return L.sh; }
@@ -179,6 +190,12 @@ struct ForwardProblem {
     float cost(int tx, int ty, int sx, int sy, float angle_rad, float bound) const {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
+    }
+    int candidate_count() const {
+        return candidates != nullptr ? static_cast<int>(candidates->size()) : 0;
+    }
+    const Match& candidate(int k, std::size_t qi) const {
+        return (*candidates)[static_cast<std::size_t>(k)][qi];
     }
     /// Replacement for an invalid entry: a random valid source centre.
     bool repair(std::size_t qi, const Match&, KeyedRng& rng, int& sx, int& sy) const {
@@ -223,6 +240,8 @@ struct ReverseProblem {
     float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {
         return patch_distance(L, tx, ty, sx, sy, -angle_rad, bound);
     }
+    int candidate_count() const { return 0; }  // candidate fields are target → source
+    Match candidate(int, std::size_t) const { return Match{-1, -1, 0.0f, 0.0f}; }
     /// Replacement for an entry whose target was taken: the free target nearest to it (similar
     /// content, so the search resumes close to its optimum), else a random free target.
     bool repair(std::size_t si, const Match& old, KeyedRng& rng, int& tx, int& ty) const {

@@ -210,10 +210,11 @@ struct ProgressTracker {
 
 // EM iterations on one level: search with the usage strategy, then vote. `reverse_field` is the
 // reversed-retrieval state; with `warm_start` the first search already counts as warm (the NNF
-// and reverse_field come from a previous pass over the same level).
+// and reverse_field come from a previous pass over the same level). Every search also tries
+// `candidates` (the level's candidate fields; empty = none).
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
-            int threads, bool warm_start, Nnf& nnf, Nnf& reverse_field, Image& current,
-            ProgressTracker& tracker, const DebugSink& debug) {
+            int threads, bool warm_start, const std::vector<Nnf>& candidates, Nnf& nnf,
+            Nnf& reverse_field, Image& current, ProgressTracker& tracker, const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
@@ -224,9 +225,13 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
             tracker.cancelled = true;
             return;
         }
-        const synth::SearchSetup setup{
-            L,       options,        hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
-            threads, &reverse_field, it > 0 || warm_start};
+        const synth::SearchSetup setup{L,
+                                       options,
+                                       hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
+                                       threads,
+                                       &reverse_field,
+                                       it > 0 || warm_start,
+                                       candidates.empty() ? nullptr : &candidates};
         synth::search(setup, nnf);
         synth::vote(nnf, L.source_style, vote_params(L, options.vote, nnf, &weights), current,
                     threads);
@@ -462,18 +467,20 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             set_target_style(L, current);
         };
         vote_initial();
-        if (!in.candidate_nnfs.empty()) {
+        // Candidate fields on this level's grid: tried once here, then in every PatchMatch
+        // iteration of the searches (as B' changes, a candidate that lost here may win later).
+        std::vector<Nnf> candidates;
+        for (const Nnf& c : in.candidate_nnfs) candidates.push_back(downscale_nnf(c, in.style, L));
+        if (!candidates.empty()) {
             // Candidates compete on costs against this initial B' (before the vote the coarsest
             // level's B' is empty, which would favour dark patches), then B' is voted again.
             evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
-            for (const Nnf& candidates : in.candidate_nnfs) {
-                adopt_candidates(all, downscale_nnf(candidates, in.style, L), nnf, threads);
-            }
+            for (const Nnf& c : candidates) adopt_candidates(all, c, nnf, threads);
             vote_initial();
         }
 
         run_em(L, options, em_iterations_of_level(options, l == levels - 1), level_key, threads,
-               /*warm_start=*/false, nnf, reverse_field, current, tracker, debug);
+               /*warm_start=*/false, candidates, nnf, reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
@@ -488,7 +495,8 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                 // Same grid as the last pass: both fields carry over (every 5x5 match is a
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
-                       threads, /*warm_start=*/true, nnf, reverse_field, current, tracker, debug);
+                       threads, /*warm_start=*/true, candidates, nnf, reverse_field, current,
+                       tracker, debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }

@@ -203,6 +203,7 @@ public:
     // returns one candidate per free target, sorted by error.
     std::vector<Candidate> forward_candidates(const std::uint8_t* allowed, int pass) {
         ForwardProblem problem{L_, free_.data(), allowed, nullptr};
+        problem.candidates = s_.candidates;
         std::vector<std::vector<int>> lists;
         if (allowed != nullptr) {
             lists.resize(L_.valid_by_group.size());
@@ -246,6 +247,7 @@ private:
 
 SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
     ForwardProblem problem{setup.level, setup.level.target_active.data(), nullptr, nullptr};
+    problem.candidates = setup.candidates;
     evaluate_field(problem, nnf, hash_keys(setup.key, 0xA), setup.threads);
     run_patchmatch(problem, nnf, search_iterations(setup), hash_keys(setup.key, 0xB),
                    setup.threads);
@@ -444,6 +446,7 @@ SearchStats search_occurrence(const SearchSetup& setup, Nnf& nnf) {
             }
         }
         ForwardProblem problem{L, L.target_active.data(), nullptr, penalty.data()};
+        problem.candidates = setup.candidates;
         const std::uint64_t key = hash_keys(setup.key, 0xC, static_cast<std::uint64_t>(iter));
         evaluate_field(problem, nnf, key, setup.threads);
         run_patchmatch(problem, nnf, 1, hash_keys(key, 1), setup.threads);

@@ -46,6 +46,10 @@ struct SearchSetup {
     /// The NNF (and reverse_field, if any) come from the previous EM iteration of this level:
     /// searches run options.warm_search_iterations instead of search_iterations.
     bool warm = false;
+    /// Optional candidate fields on the level's target grid (SynthesisInput::candidate_nnfs,
+    /// downscaled): every forward PatchMatch iteration also tries their entries per pixel. The
+    /// reversed retrieval (source → target) does not; its forward passes do.
+    const std::vector<Nnf>* candidates = nullptr;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`

@@ -104,5 +104,66 @@ TEST(Offsets, RandomMergeTakesBothSourcesAndFallsBackOnNoMatch) {
     for (std::size_t i = 0; i < m.pixel_count(); ++i) EXPECT_EQ(m[i].x, again[i].x);
 }
 
+// g_∂in's guide: G_t = I_t + (S(C_n) − I_n) pulled along the flow where χ holds, weight 0 (and
+// G_t = I_t) where χ = 0, the sample leaves the frame or the neighbour has no match.
+TEST(Offsets, InputDerivativeGuideHasZeroWeightWhereChiIsZero) {
+    const int w = 8, h = 6;
+    Image frame(w, h, 1), prev(w, h, 1), source(10, h, 1);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            frame.at(x, y, 0) = 0.1f * x + 0.01f * y;
+            prev.at(x, y, 0) = 0.05f * x;
+        }
+        for (int x = 0; x < 10; ++x) source.at(x, y, 0) = 0.3f + 0.02f * x * y;
+    }
+    Nnf offsets(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) offsets.at(x, y) = Match{x + 2, y, 0.0f, 0.0f};
+    Image flow(w, h, 2, 0.0f);  // t's pixel p came from p + (1, 0) in the neighbour
+    for (std::size_t i = 0; i < flow.pixel_count(); ++i) flow.data()[2 * i] = 1.0f;
+    Image visible(w, h, 1, 1.0f);
+
+    // Everything visible and matched except the last column (its sample leaves the frame).
+    {
+        auto g = input_derivative_guide(frame, prev, offsets, source, flow, visible);
+        ASSERT_TRUE(g.ok()) << g.status().message();
+        ASSERT_FALSE(g->weight.empty());
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                if (x == w - 1) {
+                    EXPECT_EQ(g->weight.at(x, y, 0), 0.0f);
+                    EXPECT_EQ(g->target.at(x, y, 0), frame.at(x, y, 0));
+                    continue;
+                }
+                EXPECT_EQ(g->weight.at(x, y, 0), 1.0f);
+                const float expected =
+                    frame.at(x, y, 0) + source.at(x + 3, y, 0) - prev.at(x + 1, y, 0);
+                EXPECT_NEAR(g->target.at(x, y, 0), expected, 1e-6f) << x << "," << y;
+            }
+        }
+    }
+    // χ = 0 at (2, 3) and no neighbour match under (4, 1): weight 0 there, G_t = I_t.
+    visible.at(2, 3, 0) = 0.0f;
+    offsets.at(5, 1) = Match{-1, -1, 0.0f, 0.0f};
+    {
+        auto g = input_derivative_guide(frame, prev, offsets, source, flow, visible);
+        ASSERT_TRUE(g.ok()) << g.status().message();
+        for (auto [x, y] : {std::pair{2, 3}, std::pair{4, 1}}) {
+            EXPECT_EQ(g->weight.at(x, y, 0), 0.0f) << x << "," << y;
+            EXPECT_EQ(g->target.at(x, y, 0), frame.at(x, y, 0));
+        }
+        EXPECT_EQ(g->weight.at(3, 3, 0), 1.0f);
+    }
+    // No flow and every pixel matched and visible: no weight map at all.
+    {
+        visible.at(2, 3, 0) = 1.0f;
+        offsets.at(5, 1) = Match{7, 1, 0.0f, 0.0f};
+        auto g =
+            input_derivative_guide(frame, prev, offsets, source, Image(w, h, 2, 0.0f), visible);
+        ASSERT_TRUE(g.ok()) << g.status().message();
+        EXPECT_TRUE(g->weight.empty());
+    }
+}
+
 }  // namespace
 }  // namespace exemplar::animate

@@ -1,4 +1,5 @@
-// SynthesisInput::candidate_nnfs: extra candidate matches tried at the start of every level.
+// SynthesisInput::candidate_nnfs: extra candidate matches tried at the start of every level and
+// in every PatchMatch iteration of the searches.
 
 #include <gtest/gtest.h>
 
@@ -6,7 +7,10 @@
 #include <cstdio>
 
 #include "exemplar/synth/synthesize.hpp"
+#include "level_builder.hpp"
+#include "patchmatch.hpp"
 #include "test_images.hpp"
+#include "usage.hpp"
 
 namespace exemplar {
 namespace {
@@ -112,6 +116,70 @@ TEST(SynthesizeCandidates, BadCandidateFieldIsNamed) {
     in.candidate_nnfs[0].at(3, 4) = Match{kStyleW, 0, 0.0f, 0.0f};
     EXPECT_EQ(validate_input(in, short_run()).message(),
               "candidate nnf 1: refers to 100,0 outside the 100x52 style");
+}
+
+// A candidate that loses against B' as it is at the start of a level but wins once the vote has
+// changed B' (here: B' set by hand between two searches, as run_em's vote does) must be taken by
+// the later search: candidates are tried in every search, not only at the level start.
+TEST(SynthesizeCandidates, LaterSearchesTryTheCandidatesAgain) {
+    SynthesisInput in;
+    // Noise: every patch unique and no smooth basin that leads the random search to the crop.
+    in.style = testing::texture(kStyleW, kStyleH, 3, 31, /*noise=*/1.0f);
+    in.target_width = kSide;
+    in.target_height = kSide;
+    SynthesisOptions o = short_run();
+    o.warm_search_iterations = 1;
+    synth::LevelBuilder builder(in, o, 1, 1);
+    const std::vector<Nnf> candidates = {exact_field()};
+    // The B' the exact field reproduces: the style's crop at (kCopyX, kDy).
+    Image crop(kSide, kSide, 3);
+    for (int y = 0; y < kSide; ++y)
+        for (int x = 0; x < kSide; ++x)
+            for (int c = 0; c < 3; ++c) crop.at(x, y, c) = in.style.at(x + kCopyX, y + kDy, c);
+
+    auto run = [&](const std::vector<Nnf>* offered, int& first, int& second) {
+        synth::Level L = builder.build(0);
+        Nnf nnf(kSide, kSide);
+        for (Match& m : nnf.matches()) m = Match{-1, -1, 0.0f, 0.0f};
+        // First search: B' is another texture, against which the candidates cost as much as
+        // any patch.
+        synth::set_target_style(L, testing::texture(kSide, kSide, 3, 77));
+        synth::ForwardProblem all{L, L.target_active.data()};
+        evaluate_field(all, nnf, 1, 1);
+        synth::search(synth::SearchSetup{L, o, 5, 1, nullptr, false, offered}, nnf);
+        first = exact_matches(nnf);
+        // Second search: B' is the crop, which only the candidates reproduce exactly.
+        synth::set_target_style(L, crop);
+        synth::search(synth::SearchSetup{L, o, 6, 1, nullptr, true, offered}, nnf);
+        second = exact_matches(nnf);
+    };
+    int with_first = 0, with_second = 0, without_first = 0, without_second = 0;
+    run(&candidates, with_first, with_second);
+    run(nullptr, without_first, without_second);
+    const int total = (kHi - kLo) * (kHi - kLo);
+    std::printf("exact matches of %d: with candidates %d then %d, without %d then %d\n", total,
+                with_first, with_second, without_first, without_second);
+    EXPECT_LT(with_first, total / 4);
+    EXPECT_EQ(with_second, total);
+    EXPECT_LT(without_second, total * 3 / 4);
+}
+
+// The same through synthesize(): with candidates and without, an empty candidate list leaves the
+// result bit for bit as before (the candidate loop does not touch the random streams).
+TEST(SynthesizeCandidates, EmptyCandidateFieldsChangeNothing) {
+    SynthesisInput in = crop_input();
+    SynthesisOptions o = short_run();
+    o.em_iterations = o.finest_em_iterations = 2;
+    auto a = synthesize(in, o, RunContext{1});
+    ASSERT_TRUE(a.ok()) << a.status().message();
+    // A field of "none" entries is tried everywhere and never taken.
+    Nnf none(kSide, kSide);
+    for (Match& m : none.matches()) m = Match{-1, -1, 0.0f, 0.0f};
+    in.candidate_nnfs = {none};
+    auto b = synthesize(in, o, RunContext{2});
+    ASSERT_TRUE(b.ok()) << b.status().message();
+    EXPECT_TRUE(
+        std::equal(a->image.data().begin(), a->image.data().end(), b->image.data().begin()));
 }
 
 }  // namespace

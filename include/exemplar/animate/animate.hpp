@@ -10,8 +10,9 @@
 /// the guide pair (S, I_t), the temporal term the guide pair (Ŝ, Î_{t∓1} warped along the
 /// motion) with the per-pixel weight χ∓ (0 at occlusions and disocclusions), the histogram term
 /// the engine's occurrence penalty; with keyframes the input time-derivative term g_∂in (guide
-/// pair (S, G_t)) replaces the temporal term and ribbons (the keys' pixels followed along the
-/// motion) are offered to the engine as candidate matches. Frames are solved in a forward then a
+/// pair (S, G_t), weight χ∓) replaces the temporal term and ribbons (the keys' pixels followed
+/// along the motion) are offered to the engine as candidate matches, tried in every PatchMatch
+/// iteration. Frames are solved in a forward then a
 /// backward sweep per pyramid level, coarse to fine (one engine level per call); each frame starts
 /// from the random merge of the advected offsets of its neighbour and its own previous solution
 /// (coarser level or forward sweep). See docs/video.md for the defaults and the deviations from the
@@ -72,9 +73,11 @@ struct AnimateOptions {
     /// w_∂in: the input time-derivative term g_∂in (Bénard eq. 10), which replaces g_tc when
     /// there are keyframes (g_tc favours the key visited last): the output's change along the
     /// motion, read through S at the offsets, follows the input's change I_t − I_{t∓1}. A guide
-    /// pair (S, G_t) with G_t = I_t + (S(C_{t∓1}) − I_{t∓1}) pulled along the motion, χ-masked
-    /// (G_t = I_t where χ = 0). 0 = keep g_tc with keyframes too.
-    float input_derivative_weight = 2.0f;
+    /// pair (S, G_t) with G_t = I_t + (S(C_{t∓1}) − I_{t∓1}) pulled along the motion, weight 0
+    /// where χ = 0 (input_derivative_guide). 0 = keep g_tc with keyframes too. Default 1: the
+    /// in-betweens follow the input's shading more closely than with 2 or more, measured in
+    /// docs/video.md.
+    float input_derivative_weight = 1.0f;
     /// Weight of a keyframe's painted pixels when its offsets are fitted (the keyframe's own
     /// pixels are copied exactly; this only decides how well the advected offsets reproduce it).
     float keyframe_weight = 4.0f;

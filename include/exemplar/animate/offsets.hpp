@@ -3,12 +3,14 @@
 /// Operations on offset fields (NNFs) used by the temporally coherent solver (Bénard et al.
 /// 2013 §3.3): advection along a flow field with nearest-sample lookup and extrapolation by the
 /// match's rotation, upsampling to a finer pyramid level, and the per-pixel random merge of two
-/// candidate fields. Entries with x = y = -1 are "no match" (the engine draws a random match).
+/// candidate fields, and the input time-derivative guide built from a neighbour's offsets.
+/// Entries with x = y = -1 are "no match" (the engine draws a random match).
 
 #include <cstdint>
 #include <vector>
 
 #include "exemplar/core/image.hpp"
+#include "exemplar/core/status.hpp"
 #include "exemplar/synth/nnf.hpp"
 
 namespace exemplar::animate {
@@ -45,5 +47,23 @@ Nnf upsample_nnf(const Nnf& coarse, const std::vector<AtlasSlot>& coarse_slots, 
 /// probability `probability_a` and `b` otherwise, decided by a counter-based random number of
 /// (key, i) (deterministic). Where one candidate is "no match" the other is used.
 Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key);
+
+/// Target guide and per-pixel weight of the input time-derivative term g_∂in (Bénard eq. 10).
+struct DerivativeGuide {
+    Image target;  ///< G_t, the frame's size and channels.
+    Image weight;  ///< 1 channel: 1 where the term applies, 0 elsewhere; empty = 1 everywhere.
+};
+
+/// g_∂in of frame t against its solved neighbour n = t ∓ 1 as a guide pair (S, G_t):
+///     |(I_t(p) − I_n(q)) − (S(C_t(p)) − S(C_n(q)))|² = |S(C_t(p)) − G_t(p)|²,
+///     G_t(p) = I_t(p) + (S(C_n(q)) − I_n(q)),   q = p + V(p),
+/// with C_n = `neighbour_offsets` (their centre pixel, into `source_input` = S) and
+/// (S(C_n) − I_n) pulled along `flow` (t's grid, pointing into n) bilinearly. Where
+/// `visible` (χ) ≤ 0.5, the sample leaves the frame or C_n has no match the weight is 0, as in
+/// the paper, and G_t = I_t (keeps the guide in the frames' value range). Sizes must agree.
+Result<DerivativeGuide> input_derivative_guide(const Image& frame, const Image& neighbour_frame,
+                                               const Nnf& neighbour_offsets,
+                                               const Image& source_input, const Image& flow,
+                                               const Image& visible);
 
 }  // namespace exemplar::animate

@@ -48,9 +48,12 @@ struct SynthesisInput {
     Image target_orientation;  ///< Angle field on the target grid.
     Image initial_target;      ///< Optional start (required with target_mask): style channels.
     Nnf initial_nnf;           ///< Optional start NNF on the target grid (finest level).
-    /// Optional extra candidate fields on the target grid: at the start of every level each
-    /// pixel also tries these matches, downscaled like `initial_nnf`, and keeps the best.
-    /// Entries with x = -1 are "none".
+    /// Optional extra candidate fields on the target grid (e.g. ribbons, Bénard et al. 2013
+    /// §4.1): downscaled like `initial_nnf`, each pixel tries its entries at the start of every
+    /// level and again in every forward PatchMatch iteration (next to propagation and random
+    /// search), keeping whichever costs least. Entries with x = -1 are "none". The reversed
+    /// retrieval of the uniform and error-budget strategies does not try them (it searches from
+    /// source to target); their forward passes do.
     std::vector<Nnf> candidate_nnfs;
 };
 
