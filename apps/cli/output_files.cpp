@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 #include <vector>
 
@@ -197,6 +198,21 @@ std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outp
     return "exemplar: note: " + outputs.save_nnf + " was made with patch size " +
            std::to_string(result.nnf_patch_size) + " (apply-nnf --patch-size " +
            std::to_string(result.nnf_patch_size) + ")\n";
+}
+
+std::string guide_compression_note(const SynthesisResult& result, float guide_pca) {
+    const SynthesisResult::GuideCompression& c = result.guide_compression;
+    if (!(guide_pca > 0.0f)) return "";
+    if (c.channels_after == c.channels_before) {
+        return "exemplar: note: guide-pca: guides used as given (no channel could be dropped, or "
+               "a guide has a weight map)\n";
+    }
+    std::ostringstream note;
+    note.precision(4);
+    note << "exemplar: note: guide-pca: " << c.channels_before << " guide channels compressed to "
+         << c.channels_after << " principal components (" << 100.0 * c.explained_variance
+         << "% of their weighted variance)\n";
+    return note.str();
 }
 
 bool same_file(const std::string& a, const std::string& b) {

@@ -57,6 +57,9 @@ Status save_nnf_and_error(const SynthesisResult& result, const SynthesisOutputs&
 /// The note printed after a run that saved an NNF: the patch size to give apply-nnf.
 std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outputs);
 
+/// The note on what --guide-pca did ("" when it is off).
+std::string guide_compression_note(const SynthesisResult& result, float guide_pca);
+
 /// True if both paths name the same file (after resolving `.`, `..` and symbolic links).
 bool same_file(const std::string& a, const std::string& b);
 

@@ -281,6 +281,7 @@ Status StylizeCommand::run(const Streams& streams) {
     if (!quiet) {
         streams.out << job.output << '\n';
         streams.err << nnf_note(*result, outputs_of(job));
+        streams.err << guide_compression_note(*result, options.guide_pca);
     }
     return Status::ok();
 }

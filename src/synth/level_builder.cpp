@@ -100,7 +100,11 @@ LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& opt
     style_ = gaussian_pyramid(in.style, levels, ratio, F::Gaussian, threads);
     // Guides: as given, or compressed to fewer channels (projection and pyramid are both linear,
     // so compressing the finest level equals compressing every level).
+    for (const GuidePair& g : in.guides) compression_.channels_before += g.source.channels();
+    compression_.channels_after = compression_.channels_before;
     if (const auto compressed = compress_guides(in.guides, options.guide_pca, threads)) {
+        compression_.channels_after = compressed->kept;
+        compression_.explained_variance = compressed->explained_variance;
         source_guides_.push_back(
             gaussian_pyramid(compressed->source, levels, ratio, F::Gaussian, threads));
         target_guides_.push_back(

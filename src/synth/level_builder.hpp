@@ -34,6 +34,8 @@ public:
     int levels() const { return levels_; }
     int target_width() const { return tw_; }
     int target_height() const { return th_; }
+    /// What guide compression did (options.guide_pca).
+    const SynthesisResult::GuideCompression& guide_compression() const { return compression_; }
 
     /// Everything of level `index` except the style part of target_features (set it with
     /// set_target_style once B' is known), for patches of `patch_size` (default: the options').
@@ -52,6 +54,7 @@ private:
     // The guides the levels use (the input's, or their principal components) and their weights.
     std::vector<std::vector<Image>> source_guides_, target_guides_, weight_maps_;
     std::vector<float> guide_weights_;
+    SynthesisResult::GuideCompression compression_;
     std::vector<Image> source_mask_, target_mask_, source_labels_, target_labels_;
     std::vector<Image> source_angle_, target_angle_, initial_;
 };

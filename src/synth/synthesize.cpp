@@ -434,6 +434,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
     Image current;      // B' at the current level
     int prev_sw = 0, prev_sh = 0, prev_tw = 0, prev_th = 0;
     SynthesisResult result;
+    result.guide_compression = builder.guide_compression();
     for (int l = 0; l < levels; ++l) {
         if (context.cancelled()) return cancelled();
         synth::Level L = builder.build(l);

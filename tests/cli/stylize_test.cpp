@@ -30,6 +30,18 @@ TEST_F(Cli, StylizeWritesTheOutputAndPrintsItsPath) {
     EXPECT_EQ(error.height(), 30);
 }
 
+TEST_F(Cli, GuidePcaTellsWhatItKept) {
+    // The same ramp twice: rank-deficient guides lose a channel.
+    const CliRun r = run(with(stylize_args(), {"--guide", path("ramp_a.exr"), path("ramp_b.exr"),
+                                               "--guide", path("ramp_a.exr"), path("ramp_b.exr"),
+                                               "--guide-pca", "0.999", "-o", path("out.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("principal components"), std::string::npos) << r.err;
+    const CliRun off = run(with(stylize_args(), {"-o", path("off.png")}));
+    ASSERT_EQ(off.code, 0) << off.err;
+    EXPECT_EQ(off.err.find("guide-pca"), std::string::npos) << off.err;
+}
+
 TEST_F(Cli, QuietPrintsNothing) {
     const CliRun r = run(with(stylize_args(), {"-q", "-o", path("out.png")}));
     ASSERT_EQ(r.code, 0) << r.err;

@@ -77,6 +77,13 @@ struct SynthesisResult {
     /// Per-pixel patch distance of the final NNF against the final image (1 channel; 0 where
     /// the pixel is not a patch centre).
     Image error;
+    /// What SynthesisOptions::guide_pca did: guide channels before and after (equal when the
+    /// guides were used as given) and the fraction of their weighted variance kept.
+    struct GuideCompression {
+        int channels_before = 0;
+        int channels_after = 0;
+        double explained_variance = 1.0;
+    } guide_compression;
 };
 
 /// Checks inputs (sizes, channel counts, masks, finite values) and options; returns the first
