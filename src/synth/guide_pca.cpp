@@ -65,12 +65,15 @@ Image project(const std::vector<const Image*>& images, const std::vector<double>
     Image out(first.width(), first.height(), kept);
     const std::size_t n = first.pixel_count();
     parallel_for(0, kPieces, threads, [&](int piece) {
+        // Both vectors are allocated once per piece, not per pixel.
         Eigen::VectorXd x(basis.rows());
+        Eigen::VectorXd y(kept);
         const std::size_t i0 = n * static_cast<std::size_t>(piece) / kPieces;
         const std::size_t i1 = n * static_cast<std::size_t>(piece + 1) / kPieces;
         for (std::size_t i = i0; i < i1; ++i) {
             stacked_pixel(images, scales, i, x);
-            const Eigen::VectorXd y = basis.transpose() * (x - mean);
+            x -= mean;
+            y.noalias() = basis.transpose() * x;
             float* p = out.data().data() + i * static_cast<std::size_t>(kept);
             for (int k = 0; k < kept; ++k) p[k] = static_cast<float>(y[k]);
         }
