@@ -4,6 +4,12 @@
 // search around the current best, plus one uniformly drawn valid candidate per pixel (this keeps
 // label/mask-constrained searches from stalling when the allowed region is small), plus the
 // problem's extra candidates for the position if it has any (ribbons, Bénard et al. 2013 §4.1).
+// Far exploration (windows wider than kNearRadius, and in the reversed retrieval the uniform
+// draw) runs for half of the queries of an iteration, on a checkerboard that alternates between
+// iterations: its candidates are the ones that miss the caches, they rarely win, and propagation
+// hands a far find to the neighbours (measurements in docs/PERFORMANCE.md). The forward search
+// draws for every query: there the draw is what finds rare allowed patches (thin strokes,
+// small label regions), and it is a small share of the candidates.
 //
 // The same code serves the forward search (query = target pixel, database = source patch) and
 // the reversed retrieval of the usage strategies (query = source patch, database = target pixel).
@@ -26,6 +32,18 @@
 namespace exemplar::synth {
 
 inline constexpr int kBandRows = 8;
+/// Random-search windows up to this radius (pixels of the database grid) are sampled for every
+/// query; wider ones (and the reversed retrieval's uniform draw) only for the queries of
+/// far_exploration().
+inline constexpr int kNearRadius = 64;
+
+/// Whether query (x, y) explores far (wide windows, uniform draw) in PatchMatch iteration
+/// `iter` of a run keyed `key`: a checkerboard whose phase flips every iteration and depends on
+/// the key, so every query explores far in every other iteration of a run and in half of the
+/// one-iteration runs (occurrence penalty, animation sweeps).
+inline bool far_exploration(int x, int y, int iter, std::uint64_t key) {
+    return ((static_cast<std::uint64_t>(x + y + iter) + (key >> 17)) & 1u) == 0;
+}
 
 /// A mask packed one bit per entry: 8x smaller than a byte mask, so the random lookups of the
 /// search (is this candidate allowed?) hit the L2 cache instead of waiting on memory.
@@ -148,8 +166,10 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
 
                     // Random search in shrinking windows around the best match.
                     KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
+                    const bool far = far_exploration(x, y, iter, key);
                     for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
                          radius /= 2) {
+                        if (radius > kNearRadius && !far) continue;
                         const int cx =
                             std::clamp(best.x + rng.range(-radius, radius), 0, P.db_width() - 1);
                         const int cy =
@@ -158,7 +178,9 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                     }
                     // One candidate drawn from everything this query may use.
                     int rx = 0, ry = 0;
-                    if (P.random_db(qi, rng, rx, ry)) try_candidate(rx, ry);
+                    if ((far || !P.sparse_draw()) && P.random_db(qi, rng, rx, ry)) {
+                        try_candidate(rx, ry);
+                    }
 
                     field[qi] = best;
                 }
@@ -197,6 +219,8 @@ struct ForwardProblem {
     const Match& candidate(int k, std::size_t qi) const {
         return (*candidates)[static_cast<std::size_t>(k)][qi];
     }
+    /// Every query draws a uniform candidate in every iteration (see the file comment).
+    bool sparse_draw() const { return false; }
     /// Replacement for an invalid entry: a random valid source centre.
     bool repair(std::size_t qi, const Match&, KeyedRng& rng, int& sx, int& sy) const {
         return random_db(qi, rng, sx, sy);
@@ -242,6 +266,8 @@ struct ReverseProblem {
     }
     int candidate_count() const { return 0; }  // candidate fields are target → source
     Match candidate(int, std::size_t) const { return Match{-1, -1, 0.0f, 0.0f}; }
+    /// The uniform draw is part of the far exploration (see the file comment).
+    bool sparse_draw() const { return true; }
     /// Replacement for an entry whose target was taken: the free target nearest to it (similar
     /// content, so the search resumes close to its optimum), else a random free target.
     bool repair(std::size_t si, const Match& old, KeyedRng& rng, int& tx, int& ty) const {
