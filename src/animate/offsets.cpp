@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/rng.hpp"
@@ -86,17 +88,74 @@ Nnf upsample_nnf(const Nnf& coarse, const std::vector<AtlasSlot>& coarse_slots, 
     return out;
 }
 
-Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key) {
+namespace {
+
+// Pixel i of the merge takes a[i] if both are matches and take_a(i), else whichever is one.
+template <class TakeA>
+Nnf merge_where(const Nnf& a, const Nnf& b, TakeA take_a) {
     EXEMPLAR_CHECK(a.width() == b.width() && a.height() == b.height());
     Nnf out(a.width(), a.height());
     for (std::size_t i = 0; i < out.pixel_count(); ++i) {
         const bool a_ok = a[i].x >= 0, b_ok = b[i].x >= 0;
-        bool take_a = a_ok;
-        if (a_ok && b_ok) {
-            KeyedRng rng(key, i);
-            take_a = rng.uniform() < probability_a;
+        out[i] = (a_ok && (!b_ok || take_a(i))) ? a[i] : b[i];
+    }
+    return out;
+}
+
+}  // namespace
+
+Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key) {
+    return merge_where(a, b, [&](std::size_t i) {
+        KeyedRng rng(key, i);
+        return rng.uniform() < probability_a;
+    });
+}
+
+Nnf threshold_merge(const Nnf& a, const Nnf& b, float probability_a, const Image& draw) {
+    EXEMPLAR_CHECK(draw.width() == a.width() && draw.height() == a.height() &&
+                   draw.channels() == 1);
+    return merge_where(a, b, [&](std::size_t i) { return draw.data()[i] < probability_a; });
+}
+
+Image dot_screen(int width, int height, float cell_px, std::uint64_t seed) {
+    EXEMPLAR_CHECK(width > 0 && height > 0 && cell_px > 0.0f);
+    // Distance (in cells) from (u, v) to the nearest centre of a lattice shifted by `shift`
+    // cells; centres stay 0.15 of a cell away from their cell's sides, so the nearest one is in
+    // the 3 x 3 cells around.
+    auto nearest = [&](double u, double v, double shift, std::uint64_t lattice) {
+        const auto i = static_cast<long>(std::floor(u - shift));
+        const auto j = static_cast<long>(std::floor(v - shift));
+        double best = std::numeric_limits<double>::max();
+        for (long b = j - 1; b <= j + 1; ++b) {
+            for (long a = i - 1; a <= i + 1; ++a) {
+                // Cell -1 exists too: offset the key so that it stays unsigned.
+                KeyedRng rng(seed, lattice, static_cast<std::uint64_t>(a + 1),
+                             static_cast<std::uint64_t>(b + 1));
+                const double dx = u - (shift + a + 0.15 + 0.7 * rng.uniform());
+                const double dy = v - (shift + b + 0.15 + 0.7 * rng.uniform());
+                best = std::min(best, dx * dx + dy * dy);
+            }
         }
-        out[i] = take_a ? a[i] : b[i];
+        return std::sqrt(best);
+    };
+    const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    std::vector<double> value(n);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const double u = (x + 0.5) / cell_px, v = (y + 0.5) / cell_px;
+            const double low = nearest(u, v, 0.0, 0), high = nearest(u, v, 0.5, 1);
+            value[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)] = low / (low + high);
+        }
+    }
+    // Rank (ties by position) / n: uniform in [0, 1).
+    std::vector<std::size_t> order(n);
+    for (std::size_t p = 0; p < n; ++p) order[p] = p;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t l, std::size_t r) { return value[l] < value[r]; });
+    Image out(width, height, 1);
+    for (std::size_t k = 0; k < n; ++k) {
+        out.data()[order[k]] = static_cast<float>(static_cast<double>(k) / static_cast<double>(n));
     }
     return out;
 }

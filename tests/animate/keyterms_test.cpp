@@ -152,7 +152,64 @@ double mean_green(const Image& frame) {
 struct HandOverScore {
     double share = 0.0;  // mean share of key 7's tint over the in-betweens (0.5 = balanced)
     double worst = 0.0;  // largest share of the change made in one frame step (1/7 = linear)
+    // Per pixel, followed along the motion: which key it looks like (see key7_look).
+    std::vector<double> switched;    // per frame, the share of pixels that look like key 7
+    double worst_switch_step = 0.0;  // largest increase of that share in one frame step
+    bool switched_monotone = true;   // the share never drops by more than 0.02
+    double mean_switches = 0.0;      // mean number of look changes of a pixel over 0..7
+    double many_switches = 0.0;      // share of pixels that change their look more than once
 };
+
+// Whether pixel (x, y) of a frame looks like key 7: the style's pixels have green = blue − 0.35
+// (blue side) or green = red − 0.5 (red side) whatever their noise, so the green above that
+// line is the artist's tint (0 in key 0, 0.3 in key 7); a pixel looks like key 7 above half.
+bool key7_look(const Image& frame, int x, int y) {
+    const float r = frame.at(x, y, 0), g = frame.at(x, y, 1), b = frame.at(x, y, 2);
+    const float tint = b > r ? g - (b - 0.35f) : g - (r - 0.5f);
+    return tint > 0.15f;
+}
+
+// The hand-over measured on the pixels whose look is well defined: trajectories that stay 3 px
+// or more away from the square's edges in every frame (votes mix the two sides of the style
+// there), the square's pixels followed along its motion.
+void score_switches(const testing::Scene& scene, const std::vector<Image>& frames,
+                    HandOverScore& s) {
+    const int last = scene.frames - 1, m = 3;
+    std::vector<std::pair<int, int>> tracks;  // position at frame 0; square pixels move
+    for (int y = 0; y < scene.height; ++y) {
+        for (int x = 0; x < scene.width; ++x) {
+            const bool row_clear = y < scene.y0 - m || y >= scene.y0 + scene.square + m;
+            const bool column_clear =
+                x < scene.x0 - m || x >= scene.square_x(last) + scene.square + m;
+            const bool inside = x >= scene.x0 + m && x < scene.x0 + scene.square - m &&
+                                y >= scene.y0 + m && y < scene.y0 + scene.square - m;
+            if (row_clear || column_clear || inside) tracks.emplace_back(x, y);
+        }
+    }
+    s.switched.assign(static_cast<std::size_t>(scene.frames), 0.0);
+    double switches = 0.0, many = 0.0;
+    for (const auto& [x0, y] : tracks) {
+        const bool moves = scene.in_square(x0, y, 0);
+        int changes = 0;
+        bool before = false;
+        for (int t = 0; t <= last; ++t) {
+            const int x = moves ? x0 + scene.speed * t : x0;
+            const bool now = key7_look(frames[static_cast<std::size_t>(t)], x, y);
+            s.switched[static_cast<std::size_t>(t)] += now ? 1.0 / tracks.size() : 0.0;
+            if (t > 0 && now != before) ++changes;
+            before = now;
+        }
+        switches += changes;
+        many += changes > 1 ? 1.0 : 0.0;
+    }
+    s.mean_switches = switches / tracks.size();
+    s.many_switches = many / tracks.size();
+    for (int t = 1; t <= last; ++t) {
+        const double step = s.switched[static_cast<std::size_t>(t)] - s.switched[t - 1u];
+        s.worst_switch_step = std::max(s.worst_switch_step, step);
+        s.switched_monotone = s.switched_monotone && step >= -0.02;
+    }
+}
 
 HandOverScore hand_over_score(const AnimateOptions& options, const char* name) {
     const testing::Scene scene;
@@ -178,6 +235,11 @@ HandOverScore hand_over_score(const AnimateOptions& options, const char* name) {
         previous = g;
     }
     std::printf(" (from %.3f): share of key 7 %.2f, worst step %.2f\n", g0, s.share, s.worst);
+    score_switches(scene, r->frames, s);
+    std::printf("%s: pixels like key 7", name);
+    for (double v : s.switched) std::printf(" %.3f", v);
+    std::printf(": worst step %.2f, switches per pixel %.2f, more than once %.3f\n",
+                s.worst_switch_step, s.mean_switches, s.many_switches);
     return s;
 }
 
