@@ -1,7 +1,8 @@
 // TCIA solver (Bénard et al. 2013 §3.3, §4.1) on top of the engine's public API: coarse-to-fine
 // outer loop, forward then backward sweeps per level, one exemplar::synthesize call per frame and
 // level (levels = 1), offsets advected along the motion and randomly merged with the frame's own
-// previous solution, keyframes copied in when a sweep reaches them.
+// previous solution (between two keys by a draw fixed per point: a gradual hand-over),
+// keyframes copied in when a sweep reaches them.
 
 #include "exemplar/animate/animate.hpp"
 

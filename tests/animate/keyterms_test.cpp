@@ -132,7 +132,8 @@ TEST(AnimateKeyterms, InputDerivativeTermFollowsTheShadingBetweenTwoKeys) {
         sb.monotone);
     EXPECT_TRUE(sa.monotone);
     EXPECT_LT(sa.mean_deviation, 0.85 * sb.mean_deviation);
-    // The largest single step is smaller (0.051 vs 0.067 when written, w_∂in = 1).
+    // The largest single step is not much larger (0.054 vs 0.050 when written, w_∂in = 1; 0.051
+    // vs 0.067 before the hand-over's fixed draw, which moves both).
     EXPECT_LT(sa.worst_step, 1.15 * sb.worst_step);
 }
 
