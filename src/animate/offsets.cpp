@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "exemplar/core/check.hpp"
@@ -119,43 +120,62 @@ Nnf threshold_merge(const Nnf& a, const Nnf& b, float probability_a, const Image
 
 Image dot_screen(int width, int height, float cell_px, std::uint64_t seed) {
     EXEMPLAR_CHECK(width > 0 && height > 0 && cell_px > 0.0f);
-    // Distance (in cells) from (u, v) to the nearest centre of a lattice shifted by `shift`
-    // cells; centres stay 0.15 of a cell away from their cell's sides, so the nearest one is in
-    // the 3 x 3 cells around.
-    auto nearest = [&](double u, double v, double shift, std::uint64_t lattice) {
-        const auto i = static_cast<long>(std::floor(u - shift));
-        const auto j = static_cast<long>(std::floor(v - shift));
+    // Centres of lattice l (shifted by l / 2 cells) in cells a = -2 .. columns, b likewise; they
+    // stay 0.15 of a cell away from their cell's sides, so a point's nearest one is in the 3 x 3
+    // cells around it.
+    const int columns = static_cast<int>(std::ceil(width / cell_px)) + 1;
+    const int rows = static_cast<int>(std::ceil(height / cell_px)) + 1;
+    const auto stride = static_cast<std::size_t>(columns + 2);
+    std::vector<double> centres(2 * stride * static_cast<std::size_t>(rows + 2) * 2);
+    auto centre = [&](int lattice, long a, long b) {
+        return centres.data() +
+               2 * ((static_cast<std::size_t>(lattice) * static_cast<std::size_t>(rows + 2) +
+                     static_cast<std::size_t>(b + 2)) *
+                        stride +
+                    static_cast<std::size_t>(a + 2));
+    };
+    for (int lattice = 0; lattice < 2; ++lattice) {
+        for (long b = -2; b < rows; ++b) {
+            for (long a = -2; a < columns; ++a) {
+                // Keyed by a + 1, b + 1 (cell -2 wraps to 2^64 - 1: still its own key).
+                KeyedRng rng(seed, static_cast<std::uint64_t>(lattice),
+                             static_cast<std::uint64_t>(a + 1), static_cast<std::uint64_t>(b + 1));
+                double* c = centre(lattice, a, b);
+                c[0] = 0.5 * lattice + a + 0.15 + 0.7 * rng.uniform();
+                c[1] = 0.5 * lattice + b + 0.15 + 0.7 * rng.uniform();
+            }
+        }
+    }
+    // Distance (in cells) from (u, v) to the nearest centre of a lattice.
+    auto nearest = [&](double u, double v, int lattice) {
+        const auto i = static_cast<long>(std::floor(u - 0.5 * lattice));
+        const auto j = static_cast<long>(std::floor(v - 0.5 * lattice));
         double best = std::numeric_limits<double>::max();
         for (long b = j - 1; b <= j + 1; ++b) {
             for (long a = i - 1; a <= i + 1; ++a) {
-                // Cell -1 exists too: offset the key so that it stays unsigned.
-                KeyedRng rng(seed, lattice, static_cast<std::uint64_t>(a + 1),
-                             static_cast<std::uint64_t>(b + 1));
-                const double dx = u - (shift + a + 0.15 + 0.7 * rng.uniform());
-                const double dy = v - (shift + b + 0.15 + 0.7 * rng.uniform());
-                best = std::min(best, dx * dx + dy * dy);
+                const double* c = centre(lattice, a, b);
+                best = std::min(best, (u - c[0]) * (u - c[0]) + (v - c[1]) * (v - c[1]));
             }
         }
         return std::sqrt(best);
     };
+    // (value, position), sorted: the rank, ties by position, / n is uniform in [0, 1).
     const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    std::vector<double> value(n);
+    std::vector<std::pair<double, std::size_t>> order(n);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const double u = (x + 0.5) / cell_px, v = (y + 0.5) / cell_px;
-            const double low = nearest(u, v, 0.0, 0), high = nearest(u, v, 0.5, 1);
-            value[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                  static_cast<std::size_t>(x)] = low / (low + high);
+            const double low = nearest(u, v, 0), high = nearest(u, v, 1);
+            const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                  static_cast<std::size_t>(x);
+            order[p] = {low / (low + high), p};
         }
     }
-    // Rank (ties by position) / n: uniform in [0, 1).
-    std::vector<std::size_t> order(n);
-    for (std::size_t p = 0; p < n; ++p) order[p] = p;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t l, std::size_t r) { return value[l] < value[r]; });
+    std::sort(order.begin(), order.end());
     Image out(width, height, 1);
     for (std::size_t k = 0; k < n; ++k) {
-        out.data()[order[k]] = static_cast<float>(static_cast<double>(k) / static_cast<double>(n));
+        out.data()[order[k].second] =
+            static_cast<float>(static_cast<double>(k) / static_cast<double>(n));
     }
     return out;
 }
