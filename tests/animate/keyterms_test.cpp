@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "exemplar/animate/animate.hpp"
@@ -119,12 +120,24 @@ InBetweenScore brightening_score(const AnimateOptions& options, const char* name
     return in_between_score(scene, r->frames);
 }
 
+// Averaged over seeds 1-3: the worst step of one run moves by ~0.007 from seed to seed, as
+// much as the difference between the two terms.
 TEST(AnimateKeyterms, InputDerivativeTermFollowsTheShadingBetweenTwoKeys) {
-    AnimateOptions derivative;  // default: g_∂in replaces g_tc with keys
-    AnimateOptions temporal;
-    temporal.input_derivative_weight = 0.0f;  // g_tc as without keys
-    const InBetweenScore sa = brightening_score(derivative, "g_din");
-    const InBetweenScore sb = brightening_score(temporal, "g_tc");
+    InBetweenScore sa, sb;  // means; monotone in every run
+    constexpr int kSeeds = 3;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        AnimateOptions derivative;  // default: g_∂in replaces g_tc with keys
+        derivative.synthesis.seed = static_cast<std::uint64_t>(seed);
+        AnimateOptions temporal = derivative;
+        temporal.input_derivative_weight = 0.0f;  // g_tc as without keys
+        for (auto [options, score, name] :
+             {std::tuple{&derivative, &sa, "g_din"}, std::tuple{&temporal, &sb, "g_tc"}}) {
+            const InBetweenScore s = brightening_score(*options, name);
+            score->mean_deviation += s.mean_deviation / kSeeds;
+            score->worst_step += s.worst_step / kSeeds;
+            score->monotone = score->monotone && s.monotone;
+        }
+    }
     std::printf(
         "g_din: mean deviation from linear %.4f, worst step error %.4f, monotone %d; "
         "g_tc: %.4f, %.4f, %d\n",
@@ -132,8 +145,8 @@ TEST(AnimateKeyterms, InputDerivativeTermFollowsTheShadingBetweenTwoKeys) {
         sb.monotone);
     EXPECT_TRUE(sa.monotone);
     EXPECT_LT(sa.mean_deviation, 0.85 * sb.mean_deviation);
-    // The largest single step is not much larger (0.054 vs 0.050 when written, w_∂in = 1; 0.051
-    // vs 0.067 before the hand-over's fixed draw, which moves both).
+    // The largest single step is not larger (0.0562 vs 0.0571 when written, w_∂in = 1; 0.0526
+    // vs 0.0699 before the hand-over's fixed draw, which made g_tc's steadier too).
     EXPECT_LT(sa.worst_step, 1.15 * sb.worst_step);
 }
 
