@@ -1,7 +1,8 @@
 // TCIA solver (Bénard et al. 2013 §3.3, §4.1) on top of the engine's public API: coarse-to-fine
 // outer loop, forward then backward sweeps per level, one exemplar::synthesize call per frame and
 // level (levels = 1), offsets advected along the motion and randomly merged with the frame's own
-// previous solution, keyframes copied in when a sweep reaches them.
+// previous solution (between two keys by a draw fixed per point: a gradual hand-over),
+// keyframes copied in when a sweep reaches them.
 
 #include "exemplar/animate/animate.hpp"
 
@@ -25,6 +26,10 @@ namespace exemplar::animate {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Cell of the hand-over's dot screen, in patches of the finest level (measured with 2, 3 and
+// 4: docs/video.md, "Keyframe terms").
+constexpr float kDissolveCellPatches = 3.0f;
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
@@ -91,6 +96,9 @@ struct LevelData {
     // Ribbons (empty when off or without keys): per frame, offsets into the last / next key's
     // slot at the pixel's corresponding position there ("no match" where there is none).
     std::vector<Nnf> ribbon_prev, ribbon_next;
+    // Per frame strictly between two keys: the merges' fixed draw (the dot screen at the pixel's
+    // position in the last key's frame, carried along the motion); empty elsewhere.
+    std::vector<Image> dissolve;
 };
 
 // Per-channel mean of an image (fills the temporal guide where it has no weight, so that the
@@ -122,6 +130,11 @@ private:
     Status load();
     void build_level(int level, LevelData& L) const;
     void build_ribbons(LevelData& L) const;
+    void build_dissolve(LevelData& L) const;
+    // Merge of the forward pass's field `a` and the backward pass's `b` at frame t of level L,
+    // biased toward the nearest key: the fixed draw between two keys, a fresh one elsewhere.
+    Nnf biased_merge(const LevelData& L, int t, const Nnf& a, const Nnf& b,
+                     std::uint64_t key) const;
     // Solves frame t on level L. `neighbour` is t − 1 (forward) or t + 1 (backward), or −1.
     Status solve_frame(const LevelData& L, int level, int t, int neighbour, bool backward_sweep,
                        const Nnf& initial, std::uint64_t key);
@@ -426,6 +439,58 @@ void Solver::build_ribbons(LevelData& L) const {
     follow(-1, L.ribbon_next);
 }
 
+// The hand-over between two keys (Bénard §4.1, "bias towards the closest keyframe"): frame t
+// takes the backward pass's offsets with probability (t − t_l)/(t_n − t_l). Drawn afresh per
+// frame and pixel that choice is salt-and-pepper noise that the frame's optimization collapses
+// to the majority (measured on the finest level, keys 0 and 7: the merge at frame 4 holds 60%
+// offsets into key 7, the solved frame 91%; at frame 3 39%, solved 8%), so the whole frame
+// snaps from one key to the other where the probability crosses 1/2. Instead all the frames
+// between two keys share one draw per point, followed along the motion from the last key and
+// taken from a clustered-dot screen whose cells are kDissolveCellPatches patches wide: a pixel
+// switches to the next key once the probability passes 1 − its draw, so the switched set only
+// grows, in dots that the optimization keeps, at about the same pace in every part of the frame.
+void Solver::build_dissolve(LevelData& L) const {
+    const auto n = static_cast<std::size_t>(T_);
+    L.dissolve.assign(n, Image());
+    if (keys_.size() < 2) return;
+    // The same dots on every level (the cell scaled with the level).
+    const Image screen =
+        dot_screen(L.w, L.h,
+                   kDissolveCellPatches * static_cast<float>(options_.synthesis.patch_size) *
+                       static_cast<float>(L.w) / static_cast<float>(W_),
+                   hash_keys(options_.synthesis.seed, 0xD1));
+    // Per pixel its position in the last key's frame as a match into that frame; "no match" once
+    // the motion loses it (disoccluded since the key): the last key never saw the point, the
+    // forward pass has no painting of it to keep, and it takes the next key's at once (draw 1).
+    Nnf carried;
+    for (int t = keys_.front()->frame; t < keys_.back()->frame; ++t) {
+        const auto i = static_cast<std::size_t>(t);
+        if (key_of_[i] != nullptr) {
+            carried = Nnf(L.w, L.h);
+            for (int y = 0; y < L.h; ++y) {
+                for (int x = 0; x < L.w; ++x) carried.at(x, y) = Match{x, y, 0.0f, 0.0f};
+            }
+            continue;
+        }
+        carried = advect_nnf(carried, L.backward[i], L.visible_prev[i], L.w, L.h);
+        Image& draw = L.dissolve[i];
+        draw = Image(L.w, L.h, 1);
+        for (int y = 0; y < L.h; ++y) {
+            for (int x = 0; x < L.w; ++x) {
+                const Match& m = carried.at(x, y);
+                draw.at(x, y, 0) = m.x < 0 ? 1.0f : screen.at(m.x, m.y, 0);
+            }
+        }
+    }
+}
+
+Nnf Solver::biased_merge(const LevelData& L, int t, const Nnf& a, const Nnf& b,
+                         std::uint64_t key) const {
+    const Image& draw = L.dissolve[static_cast<std::size_t>(t)];
+    if (draw.empty()) return random_merge(a, b, forward_probability(t), key);
+    return threshold_merge(a, b, forward_probability(t), draw);
+}
+
 Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, bool backward_sweep,
                            const Nnf& initial, std::uint64_t key) {
     const auto i = static_cast<std::size_t>(t);
@@ -580,6 +645,7 @@ Result<AnimationResult> Solver::run() {
         LevelData L;
         build_level(level, L);
         build_ribbons(L);
+        build_dissolve(L);
         fill_ = channel_means(L.style_output);
         const int sw = L.atlas_output.width(), sh = L.atlas_output.height();
         finest_ = level == levels_ - 1;
@@ -623,7 +689,7 @@ Result<AnimationResult> Solver::run() {
                     if (t < T_ - 1) {
                         Nnf advected =
                             advect_nnf(nnf_[i + 1], L.forward[i], L.visible_next[i], sw, sh);
-                        initial = random_merge(nnf_[i], advected, forward_probability(t),
+                        initial = biased_merge(L, t, nnf_[i], advected,
                                                hash_keys(seed, 0xB0, level, sweep, i));
                     }
                     result_.times.merge += seconds_since(start);

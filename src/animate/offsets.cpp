@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/rng.hpp"
@@ -86,17 +89,93 @@ Nnf upsample_nnf(const Nnf& coarse, const std::vector<AtlasSlot>& coarse_slots, 
     return out;
 }
 
-Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key) {
+namespace {
+
+// Pixel i of the merge takes a[i] if both are matches and take_a(i), else whichever is one.
+template <class TakeA>
+Nnf merge_where(const Nnf& a, const Nnf& b, TakeA take_a) {
     EXEMPLAR_CHECK(a.width() == b.width() && a.height() == b.height());
     Nnf out(a.width(), a.height());
     for (std::size_t i = 0; i < out.pixel_count(); ++i) {
         const bool a_ok = a[i].x >= 0, b_ok = b[i].x >= 0;
-        bool take_a = a_ok;
-        if (a_ok && b_ok) {
-            KeyedRng rng(key, i);
-            take_a = rng.uniform() < probability_a;
+        out[i] = (a_ok && (!b_ok || take_a(i))) ? a[i] : b[i];
+    }
+    return out;
+}
+
+}  // namespace
+
+Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key) {
+    return merge_where(a, b, [&](std::size_t i) {
+        KeyedRng rng(key, i);
+        return rng.uniform() < probability_a;
+    });
+}
+
+Nnf threshold_merge(const Nnf& a, const Nnf& b, float probability_a, const Image& draw) {
+    EXEMPLAR_CHECK(draw.width() == a.width() && draw.height() == a.height() &&
+                   draw.channels() == 1);
+    return merge_where(a, b, [&](std::size_t i) { return draw.data()[i] < probability_a; });
+}
+
+Image dot_screen(int width, int height, float cell_px, std::uint64_t seed) {
+    EXEMPLAR_CHECK(width > 0 && height > 0 && cell_px > 0.0f);
+    // Centres of lattice l (shifted by l / 2 cells) in cells a = -2 .. columns, b likewise; they
+    // stay 0.15 of a cell away from their cell's sides, so a point's nearest one is in the 3 x 3
+    // cells around it.
+    const int columns = static_cast<int>(std::ceil(width / cell_px)) + 1;
+    const int rows = static_cast<int>(std::ceil(height / cell_px)) + 1;
+    const auto stride = static_cast<std::size_t>(columns + 2);
+    std::vector<double> centres(2 * stride * static_cast<std::size_t>(rows + 2) * 2);
+    auto centre = [&](int lattice, long a, long b) {
+        return centres.data() +
+               2 * ((static_cast<std::size_t>(lattice) * static_cast<std::size_t>(rows + 2) +
+                     static_cast<std::size_t>(b + 2)) *
+                        stride +
+                    static_cast<std::size_t>(a + 2));
+    };
+    for (int lattice = 0; lattice < 2; ++lattice) {
+        for (long b = -2; b < rows; ++b) {
+            for (long a = -2; a < columns; ++a) {
+                // Keyed by a + 1, b + 1 (cell -2 wraps to 2^64 - 1: still its own key).
+                KeyedRng rng(seed, static_cast<std::uint64_t>(lattice),
+                             static_cast<std::uint64_t>(a + 1), static_cast<std::uint64_t>(b + 1));
+                double* c = centre(lattice, a, b);
+                c[0] = 0.5 * lattice + a + 0.15 + 0.7 * rng.uniform();
+                c[1] = 0.5 * lattice + b + 0.15 + 0.7 * rng.uniform();
+            }
         }
-        out[i] = take_a ? a[i] : b[i];
+    }
+    // Distance (in cells) from (u, v) to the nearest centre of a lattice.
+    auto nearest = [&](double u, double v, int lattice) {
+        const auto i = static_cast<long>(std::floor(u - 0.5 * lattice));
+        const auto j = static_cast<long>(std::floor(v - 0.5 * lattice));
+        double best = std::numeric_limits<double>::max();
+        for (long b = j - 1; b <= j + 1; ++b) {
+            for (long a = i - 1; a <= i + 1; ++a) {
+                const double* c = centre(lattice, a, b);
+                best = std::min(best, (u - c[0]) * (u - c[0]) + (v - c[1]) * (v - c[1]));
+            }
+        }
+        return std::sqrt(best);
+    };
+    // (value, position), sorted: the rank, ties by position, / n is uniform in [0, 1).
+    const auto n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    std::vector<std::pair<double, std::size_t>> order(n);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const double u = (x + 0.5) / cell_px, v = (y + 0.5) / cell_px;
+            const double low = nearest(u, v, 0), high = nearest(u, v, 1);
+            const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                  static_cast<std::size_t>(x);
+            order[p] = {low / (low + high), p};
+        }
+    }
+    std::sort(order.begin(), order.end());
+    Image out(width, height, 1);
+    for (std::size_t k = 0; k < n; ++k) {
+        out.data()[order[k].second] =
+            static_cast<float>(static_cast<double>(k) / static_cast<double>(n));
     }
     return out;
 }

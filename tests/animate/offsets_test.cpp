@@ -1,4 +1,5 @@
-// Offset-field operations: nearest-sample advection with extrapolation, upsampling, merge.
+// Offset-field operations: nearest-sample advection with extrapolation, upsampling, merges,
+// the dot screen.
 
 #include "exemplar/animate/offsets.hpp"
 
@@ -102,6 +103,61 @@ TEST(Offsets, RandomMergeTakesBothSourcesAndFallsBackOnNoMatch) {
     EXPECT_EQ(m.at(0, 0).x, 2);
     const Nnf again = random_merge(a, b, 0.25f, 42);
     for (std::size_t i = 0; i < m.pixel_count(); ++i) EXPECT_EQ(m[i].x, again[i].x);
+}
+
+// One draw for every frame: the pixels that take b at a probability of a also take it at any
+// lower one (a dissolve only grows), and "no match" still falls back on the other field.
+TEST(Offsets, ThresholdMergeTakesBWhereTheDrawReachesTheProbability) {
+    Nnf a(16, 16), b(16, 16);
+    for (Match& m : a.matches()) m = Match{1, 1, 0.0f, 0.0f};
+    for (Match& m : b.matches()) m = Match{2, 2, 0.0f, 0.0f};
+    a.at(0, 0) = Match{-1, -1, 0.0f, 0.0f};
+    b.at(1, 0) = Match{-1, -1, 0.0f, 0.0f};
+    const Image draw = dot_screen(16, 16, 6.0f, 5);
+    Nnf previous = threshold_merge(a, b, 1.0f, draw);
+    for (float p : {0.8f, 0.5f, 0.2f}) {
+        const Nnf m = threshold_merge(a, b, p, draw);
+        for (std::size_t i = 0; i < m.pixel_count(); ++i) {
+            if (i == 0 || i == 1) continue;
+            EXPECT_EQ(m[i].x, draw.data()[i] < p ? 1 : 2);
+            if (previous[i].x == 2) {
+                EXPECT_EQ(m[i].x, 2);  // switched pixels stay switched
+            }
+        }
+        EXPECT_EQ(m.at(0, 0).x, 2);
+        EXPECT_EQ(m.at(1, 0).x, 1);
+        previous = m;
+    }
+}
+
+// The dot screen: values uniform in [0, 1) (a share s of the pixels below s), the same for a
+// seed, smooth (blobs, not pixel noise: neighbours differ by far less than independent draws'
+// 1/3) and balanced (every block of 2 x 2 cells holds about half its pixels below 1/2).
+TEST(Offsets, DotScreenIsUniformSmoothAndBalanced) {
+    const int w = 96, h = 64;
+    const float cell = 16.0f;
+    const Image s = dot_screen(w, h, cell, 3);
+    const Image again = dot_screen(w, h, cell, 3);
+    for (std::size_t i = 0; i < s.pixel_count(); ++i) EXPECT_EQ(s.data()[i], again.data()[i]);
+    for (float q : {0.1f, 0.5f, 0.9f}) {
+        int below = 0;
+        for (float v : s.data()) below += v < q ? 1 : 0;
+        EXPECT_NEAR(below / static_cast<double>(w * h), q, 1.0 / (w * h));
+    }
+    double step = 0.0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 1; x < w; ++x) step += std::abs(s.at(x, y, 0) - s.at(x - 1, y, 0));
+    }
+    EXPECT_LT(step / ((w - 1) * h), 0.08);
+    for (int by = 0; by + 32 <= h; by += 32) {
+        for (int bx = 0; bx + 32 <= w; bx += 32) {
+            int below = 0;
+            for (int y = by; y < by + 32; ++y) {
+                for (int x = bx; x < bx + 32; ++x) below += s.at(x, y, 0) < 0.5f ? 1 : 0;
+            }
+            EXPECT_NEAR(below / 1024.0, 0.5, 0.15) << "block at " << bx << "," << by;
+        }
+    }
 }
 
 // g_∂in's guide: G_t = I_t + (S(C_n) − I_n) pulled along the flow where χ holds, weight 0 (and

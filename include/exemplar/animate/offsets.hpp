@@ -3,7 +3,8 @@
 /// Operations on offset fields (NNFs) used by the temporally coherent solver (Bénard et al.
 /// 2013 §3.3): advection along a flow field with nearest-sample lookup and extrapolation by the
 /// match's rotation, upsampling to a finer pyramid level, and the per-pixel random merge of two
-/// candidate fields, and the input time-derivative guide built from a neighbour's offsets.
+/// candidate fields (with a fresh or a fixed draw per pixel), the dot screen of the fixed draw,
+/// and the input time-derivative guide built from a neighbour's offsets.
 /// Entries with x = y = -1 are "no match" (the engine draws a random match).
 
 #include <cstdint>
@@ -47,6 +48,23 @@ Nnf upsample_nnf(const Nnf& coarse, const std::vector<AtlasSlot>& coarse_slots, 
 /// probability `probability_a` and `b` otherwise, decided by a counter-based random number of
 /// (key, i) (deterministic). Where one candidate is "no match" the other is used.
 Nnf random_merge(const Nnf& a, const Nnf& b, float probability_a, std::uint64_t key);
+
+/// The merge with a given draw per pixel instead of a fresh one: pixel i takes `a` where
+/// draw(i) < `probability_a` and `b` otherwise (`draw`: 1 channel, the fields' size, values in
+/// [0, 1)); where one candidate is "no match" the other is used. With one draw for every frame
+/// of a shot and a probability that falls over time, the set of pixels that take `b` only
+/// grows: a dissolve from a to b, each pixel switching once.
+Nnf threshold_merge(const Nnf& a, const Nnf& b, float probability_a, const Image& draw);
+
+/// The fixed draw of a dissolve, a stochastic clustered-dot screen (a halftone screen with
+/// jittered dots): two lattices of centres, one at a random place in each `cell_px` x `cell_px`
+/// cell and one in each cell shifted by half a cell (keyed by `seed`), and each pixel's value
+/// its rank by d_low / (d_low + d_high), the distances to the nearest centre of each, so the
+/// values are uniform in [0, 1). The pixels above 1 − s are a round dot around every "high"
+/// centre, about s of a cell, that grows with s until the dots meet and the rest shrinks to
+/// dots around the "low" centres: every region of a few cells holds about the share s, in
+/// blobs at both ends rather than single pixels. 1 channel, `width` x `height`; `cell_px` > 0.
+Image dot_screen(int width, int height, float cell_px, std::uint64_t seed);
 
 /// Target guide and per-pixel weight of the input time-derivative term g_∂in (Bénard eq. 10).
 struct DerivativeGuide {
