@@ -58,6 +58,16 @@ void parallel_sort(std::vector<std::uint64_t>& v, int threads) {
     std::inplace_merge(v.begin(), v.begin() + mid, v.end());
 }
 
+// The forward problem of a search over the target pixels in `process`, from the sources in
+// `allowed` (nullptr = any), with an optional per-source penalty; it tries the setup's
+// candidate fields (ribbons) in every PatchMatch iteration.
+ForwardProblem forward_problem(const SearchSetup& setup, const std::uint8_t* process,
+                               const std::uint8_t* allowed, const float* penalty) {
+    ForwardProblem problem{setup.level, process, allowed, penalty};
+    problem.candidates = setup.candidates;
+    return problem;
+}
+
 bool candidate_less(const Candidate& a, const Candidate& b) {
     if (a.error != b.error) return a.error < b.error;
     return a.source < b.source;
@@ -202,8 +212,7 @@ public:
     // Forward search from the free targets to the sources in `allowed` (nullptr = any);
     // returns one candidate per free target, sorted by error.
     std::vector<Candidate> forward_candidates(const std::uint8_t* allowed, int pass) {
-        ForwardProblem problem{L_, free_.data(), allowed, nullptr};
-        problem.candidates = s_.candidates;
+        ForwardProblem problem = forward_problem(s_, free_.data(), allowed, nullptr);
         std::vector<std::vector<int>> lists;
         if (allowed != nullptr) {
             lists.resize(L_.valid_by_group.size());
@@ -246,8 +255,8 @@ private:
 };
 
 SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
-    ForwardProblem problem{setup.level, setup.level.target_active.data(), nullptr, nullptr};
-    problem.candidates = setup.candidates;
+    const ForwardProblem problem =
+        forward_problem(setup, setup.level.target_active.data(), nullptr, nullptr);
     evaluate_field(problem, nnf, hash_keys(setup.key, 0xA), setup.threads);
     run_patchmatch(problem, nnf, search_iterations(setup), hash_keys(setup.key, 0xB),
                    setup.threads);
@@ -445,8 +454,8 @@ SearchStats search_occurrence(const SearchSetup& setup, Nnf& nnf) {
                     setup.options.occurrence_strength * std::max(0.0, h / wsum - threshold));
             }
         }
-        ForwardProblem problem{L, L.target_active.data(), nullptr, penalty.data()};
-        problem.candidates = setup.candidates;
+        const ForwardProblem problem =
+            forward_problem(setup, L.target_active.data(), nullptr, penalty.data());
         const std::uint64_t key = hash_keys(setup.key, 0xC, static_cast<std::uint64_t>(iter));
         evaluate_field(problem, nnf, key, setup.threads);
         run_patchmatch(problem, nnf, 1, hash_keys(key, 1), setup.threads);
