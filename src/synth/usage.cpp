@@ -308,10 +308,14 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     // Reversed retrieval rounds.
     while (rr.free_count() > 0 && stats.rounds < kUniformMaxReverseRounds) {
         std::vector<std::uint8_t>& query = rr.query_mask();
-        for (std::size_t s = 0; s < query.size(); ++s) {
-            query[s] = L.source_valid[s] && has_capacity(s) &&
-                       !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
-        }
+        // Counts and R are only read here: the rows are independent.
+        parallel_for(0, L.sh, setup.threads, [&](int y) {
+            for (int x = 0; x < L.sw; ++x) {
+                const std::size_t s = L.source_index(x, y);
+                query[s] = L.source_valid[s] && has_capacity(s) &&
+                           !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
+            }
+        });
         const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
         ++stats.rounds;
         std::size_t assigned = 0;
