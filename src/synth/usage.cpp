@@ -109,8 +109,20 @@ public:
     const Nnf& nnf() const { return nnf_; }
     std::size_t active_count() const { return active_count_; }
     std::vector<std::uint8_t>& query_mask() { return query_; }
+    // Sets the query mask to the valid sources whose label group still has free targets and
+    // for which `wanted(s)` holds. Rows in parallel: `wanted` may only read shared state.
+    template <class Wanted>
+    void select_queries(Wanted wanted) {
+        parallel_for(0, L_.sh, s_.threads, [&](int y) {
+            for (int x = 0; x < L_.sw; ++x) {
+                const std::size_t s = L_.source_index(x, y);
+                query_[s] = L_.source_valid[s] &&
+                            !free_by_group_[static_cast<std::size_t>(L_.source_group(s))].empty() &&
+                            wanted(s);
+            }
+        });
+    }
     const std::vector<std::uint8_t>& free_mask() const { return free_; }
-    const std::vector<std::vector<int>>& free_by_group() const { return free_by_group_; }
 
     // One reversed retrieval over the sources in query_mask(); returns collision-free
     // candidates (one per target, the smallest error), sorted by error.
@@ -307,15 +319,7 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     SearchStats stats;
     // Reversed retrieval rounds.
     while (rr.free_count() > 0 && stats.rounds < kUniformMaxReverseRounds) {
-        std::vector<std::uint8_t>& query = rr.query_mask();
-        // Counts and R are only read here: the rows are independent.
-        parallel_for(0, L.sh, setup.threads, [&](int y) {
-            for (int x = 0; x < L.sw; ++x) {
-                const std::size_t s = L.source_index(x, y);
-                query[s] = L.source_valid[s] && has_capacity(s) &&
-                           !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
-            }
-        });
+        rr.select_queries(has_capacity);  // counts and R are only read here
         const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
         ++stats.rounds;
         std::size_t assigned = 0;
@@ -386,17 +390,10 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
     while (rr.free_count() > 0 && stats.rounds < setup.options.budget_max_rounds) {
         const double covered = 1.0 - static_cast<double>(rr.free_count()) / target_total;
         if (covered >= setup.options.budget_coverage) break;
-        std::vector<std::uint8_t>& query = rr.query_mask();
-        parallel_for(0, L.sh, setup.threads, [&](int y) {
-            for (int x = 0; x < L.sw; ++x) {
-                const std::size_t s = L.source_index(x, y);
-                query[s] = L.source_valid[s] &&
-                           !rr.free_by_group()[static_cast<std::size_t>(L.source_group(s))].empty();
-            }
-        });
+        rr.select_queries([](std::size_t) { return true; });
         if (stats.rounds > 0 &&
             static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
-            focus_query(L, rr.free_mask(), rr.nnf(), used, query);
+            focus_query(L, rr.free_mask(), rr.nnf(), used, rr.query_mask());
         }
         const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
         ++stats.rounds;
