@@ -33,17 +33,20 @@ ApplyNnfCommand::ApplyNnfCommand(CLI::App& parent) {
     app_ = parent.add_subcommand(
         "apply-nnf", "Re-apply an NNF saved by `stylize --save-nnf` to another source image");
     app_->footer(
-        "Example: exemplar apply-nnf --nnf out_nnf.exr --source style_16bit.png --patch-size 3 "
-        "-o out16.png");
+        "Example: exemplar apply-nnf --nnf out_nnf.exr --source style_16bit.png --patch-size 5 "
+        "--vote-size 3 -o out16.png");
     app_->add_option("--nnf", nnf_, "NNF written by `stylize --save-nnf`")->required();
     app_->add_option("--source", source_,
                      "Image on the style's grid to copy from (e.g. a 16-bit or extra-channel "
                      "version of the style)")
         ->required();
     app_->add_option("--patch-size", patch_size_,
-                     "Patch size the NNF was made with (stylize --save-nnf prints it: 3 after its "
-                     "default 3x3 final pass, else its --patch-size)")
+                     "Patch size the NNF was made with (stylize --save-nnf prints it: its "
+                     "--patch-size, or 3 after a final 3x3 pass)")
         ->required();
+    app_->add_option("--vote-size", vote_size_,
+                     "Central part of each patch that votes, as the stylize run's "
+                     "--final-vote-size (default 3; 0 = whole patches)");
     app_->add_option("--output,-o", output_,
                      "Output image; PNG/TIFF keep the source's bit depth (16-bit in, 16-bit out)")
         ->required();
@@ -58,6 +61,11 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     if (!vote.ok()) return vote.status();
     SynthesisOptions options;
     EXEMPLAR_RETURN_IF_ERROR(set_option(options, *find_option("patch-size"), patch_size_));
+    if (const Status s = set_option(options, *find_option("final-vote-size"), vote_size_);
+        !s.is_ok()) {
+        return invalid_argument("--vote-size: " + std::to_string(vote_size_) +
+                                " is invalid (must be 0 or odd, 0..31)");
+    }
     if (threads_ < 0) {
         return invalid_argument("--threads: " + std::to_string(threads_) +
                                 " is invalid (must be >= 0; 0 = all cores)");
@@ -86,7 +94,7 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     const SaveOptions save = output_options(*source, source_, output_);
     EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, *source, save));
 
-    auto result = apply_nnf(*nnf, *source, patch_size_, *vote, threads_);
+    auto result = apply_nnf(*nnf, *source, patch_size_, *vote, threads_, vote_size_);
     if (!result.ok()) {
         return Status(result.status().code(), "--nnf " + nnf_ + " with --source " + source_ + ": " +
                                                   result.status().message());

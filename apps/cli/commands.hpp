@@ -74,6 +74,7 @@ private:
     CLI::App* app_ = nullptr;
     std::string nnf_, source_, output_, vote_ = "weighted";
     int patch_size_ = 0;
+    int vote_size_ = 3;  // as stylize's --final-vote-size default
     int threads_ = 0;
     bool quiet_ = false;
 };

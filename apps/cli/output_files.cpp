@@ -195,9 +195,11 @@ Status save_nnf_and_error(const SynthesisResult& result, const SynthesisOutputs&
 
 std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outputs) {
     if (outputs.save_nnf.empty()) return "";
-    return "exemplar: note: " + outputs.save_nnf + " was made with patch size " +
-           std::to_string(result.nnf_patch_size) + " (apply-nnf --patch-size " +
-           std::to_string(result.nnf_patch_size) + ")\n";
+    const std::string p = std::to_string(result.nnf_patch_size);
+    const std::string v = std::to_string(result.vote_size);
+    return "exemplar: note: " + outputs.save_nnf + " was made with patch size " + p +
+           " and voted with the central " + v + "x" + v +
+           " of each patch (apply-nnf --patch-size " + p + " --vote-size " + v + ")\n";
 }
 
 std::string guide_compression_note(const SynthesisResult& result, float guide_pca) {

@@ -48,10 +48,14 @@ Result<Nnf> nnf_from_image(const Image& image) {
 }
 
 Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, VoteMode mode,
-                        int threads) {
+                        int threads, int vote_size) {
     if (patch_size < 1 || patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(patch_size) +
                                 " is invalid (must be odd and positive)");
+    }
+    if (vote_size < 0 || (vote_size > 0 && vote_size % 2 == 0)) {
+        return invalid_argument("vote-size: " + std::to_string(vote_size) +
+                                " is invalid (must be 0 or odd)");
     }
     if (nnf.empty() || source.empty()) return invalid_argument("apply_nnf: empty input");
     for (const Match& m : nnf.matches()) {
@@ -66,6 +70,7 @@ Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, Vot
     out.set_channel_names(source.channel_names());
     synth::VoteParams params;
     params.patch_size = patch_size;
+    params.footprint = vote_size;
     params.clamp_source = true;
     std::vector<float> weights;
     if (mode == VoteMode::Weighted) {

@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 17> kSpecs{{
+const std::array<OptionSpec, 18> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -70,8 +70,12 @@ const std::array<OptionSpec, 17> kSpecs{{
      "keeps less of the exemplar's fine texture).",
      "iterations", 1, 100, &O::warm_search_iterations},
     {"final-pass-iterations",
-     "EM iterations with 3x3 patches after the finest level; restores fine grain. 0 = off.",
+     "EM iterations with 3x3 patches after the finest level (ebsynth's extra pass); 0 = off.",
      "iterations", 0, 100, &O::final_pass_iterations},
+    {"final-vote-size",
+     "The last vote averages only the central NxN pixels of each patch, which keeps the "
+     "exemplar's fine grain; odd, 0 = the whole patch.",
+     "px", 0, 31, &O::final_vote_size},
     {"style-weight", "Weight of the style term (B' vs A') relative to the guides.", "", 0, 1e6,
      &O::style_weight},
     {"falloff-sigma", "Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal.",
@@ -131,14 +135,15 @@ double get_option(const SynthesisOptions& options, const OptionSpec& spec) {
 
 Status set_option(SynthesisOptions& options, const OptionSpec& spec, double value) {
     const bool integral = !std::holds_alternative<float SynthesisOptions::*>(spec.field);
-    const bool odd_rule = spec.name == "patch-size";
+    // Widths of patches and vote footprints are odd (0 = "off" where the range allows it).
+    const bool odd_rule = spec.name == "patch-size" || spec.name == "final-vote-size";
     const bool bad = !std::isfinite(value) || value < spec.min || value > spec.max ||
                      (integral && value != std::floor(value)) ||
-                     (odd_rule && static_cast<long long>(value) % 2 == 0);
+                     (odd_rule && value != 0.0 && static_cast<long long>(value) % 2 == 0);
     if (bad) {
         std::string message(spec.name);
         message.append(": ").append(format_number(value)).append(" is invalid (must be ");
-        if (odd_rule) message.append("odd, ");
+        if (odd_rule) message.append(spec.min > 0.0 ? "odd, " : "0 or odd, ");
         if (integral && !odd_rule) message.append("an integer, ");
         message.append(format_number(spec.min)).append("..").append(format_number(spec.max));
         message.append(")");

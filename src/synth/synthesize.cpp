@@ -208,13 +208,20 @@ struct ProgressTracker {
     }
 };
 
+// Footprint of the run's last vote on a level with this patch size (see final_vote_size).
+int last_vote_size(const SynthesisOptions& options, int patch_size) {
+    return options.final_vote_size > 0 ? std::min(options.final_vote_size, patch_size) : patch_size;
+}
+
 // EM iterations on one level: search with the usage strategy, then vote. `reverse_field` is the
 // reversed-retrieval state; with `warm_start` the first search already counts as warm (the NNF
 // and reverse_field come from a previous pass over the same level). Every search also tries
-// `candidates` (the level's candidate fields; empty = none).
+// `candidates` (the level's candidate fields; empty = none). The last iteration votes with a
+// footprint of `final_vote` pixels (0 = the whole patch).
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
-            int threads, bool warm_start, const std::vector<Nnf>& candidates, Nnf& nnf,
-            Nnf& reverse_field, Image& current, ProgressTracker& tracker, const DebugSink& debug) {
+            int threads, bool warm_start, const std::vector<Nnf>& candidates, int final_vote,
+            Nnf& nnf, Nnf& reverse_field, Image& current, ProgressTracker& tracker,
+            const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
@@ -233,8 +240,9 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        it > 0 || warm_start,
                                        candidates.empty() ? nullptr : &candidates};
         synth::search(setup, nnf);
-        synth::vote(nnf, L.source_style, vote_params(L, options.vote, nnf, &weights), current,
-                    threads);
+        synth::VoteParams vp = vote_params(L, options.vote, nnf, &weights);
+        if (it + 1 == iterations) vp.footprint = final_vote;
+        synth::vote(nnf, L.source_style, vp, current, threads);
         set_target_style(L, current);
         tracker.step(L.index, it, iterations, work);
         if (debug) {
@@ -480,28 +488,34 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
             vote_initial();
         }
 
-        run_em(L, options, em_iterations_of_level(options, l == levels - 1), level_key, threads,
-               /*warm_start=*/false, candidates, nnf, reverse_field, current, tracker, debug);
+        // The run's last vote (finest level, or the final pass after it) keeps the fine grain.
+        const bool finest = l == levels - 1;
+        const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
+        run_em(L, options, em_iterations_of_level(options, finest), level_key, threads,
+               /*warm_start=*/false, candidates,
+               finest && !final_pass ? last_vote_size(options, L.patch_size) : 0, nnf,
+               reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
         prev_tw = L.tw;
         prev_th = L.th;
 
-        if (l == levels - 1) {
+        if (finest) {
             // Optional final iterations with 3x3 patches restore the finest grain.
-            if (options.final_pass_iterations > 0 && options.patch_size > 3) {
+            if (final_pass) {
                 synth::Level fine = builder.build(l, 3);
                 set_target_style(fine, current);
                 // Same grid as the last pass: both fields carry over (every 5x5 match is a
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
-                       threads, /*warm_start=*/true, candidates, nnf, reverse_field, current,
-                       tracker, debug);
+                       threads, /*warm_start=*/true, candidates, last_vote_size(options, 3), nnf,
+                       reverse_field, current, tracker, debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }
             result.nnf_patch_size = L.patch_size;
+            result.vote_size = last_vote_size(options, L.patch_size);
             result.error = final_errors(L, nnf, threads);
         }
     }

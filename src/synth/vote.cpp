@@ -40,12 +40,12 @@ void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& 
     const int w = nnf.width();
     const int h = nnf.height();
     const int C = source.channels();
-    const int r = params.patch_size / 2;
+    const int patch_r = params.patch_size / 2;
+    const int vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
     parallel_for(0, h, threads, [&](int y) {
         std::vector<double> acc(static_cast<std::size_t>(C));
-        for (int x = 0; x < w; ++x) {
-            const std::size_t qi = static_cast<std::size_t>(y) * w + x;
-            if (params.fixed != nullptr && params.fixed[qi]) continue;
+        // Sum of the votes of the patches centred within r of (x, y); returns their weight.
+        auto gather = [&](int x, int r) {
             std::fill(acc.begin(), acc.end(), 0.0);
             double total = 0.0;
             // The patch centred at (x - dx, y - dy) covers this pixel at its offset (dx, dy).
@@ -79,6 +79,13 @@ void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& 
                     total += weight;
                 }
             }
+            return total;
+        };
+        for (int x = 0; x < w; ++x) {
+            const std::size_t qi = static_cast<std::size_t>(y) * w + x;
+            if (params.fixed != nullptr && params.fixed[qi]) continue;
+            double total = gather(x, vote_r);
+            if (total <= 0.0 && vote_r < patch_r) total = gather(x, patch_r);
             if (total <= 0.0) continue;
             float* o = out.pixel(x, y);
             for (int c = 0; c < C; ++c) {

@@ -14,6 +14,10 @@ namespace exemplar::synth {
 
 struct VoteParams {
     int patch_size = 5;
+    /// Only the central footprint x footprint pixels of each patch vote (odd; 0 = the whole
+    /// patch). A pixel that no patch centre within footprint / 2 covers (near the border, where
+    /// pixels are not patch centres) takes the whole patches that overlap it.
+    int footprint = 0;
     const std::uint8_t* active = nullptr;  ///< Patches that vote (nullptr = all).
     const std::uint8_t* fixed = nullptr;   ///< Pixels left untouched (nullptr = none).
     /// Optional weight of each target patch's vote (the weighted-vote hook; empty = 1).

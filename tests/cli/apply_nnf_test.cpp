@@ -35,6 +35,24 @@ TEST_F(ApplyNnf, ReproducesTheStylizeOutput) {
     EXPECT_EQ(png_bit_depth(path("again.png")), 8);
 }
 
+TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
+    // Without the 3x3 pass the 5x5 NNF votes with its central 3x3 (--final-vote-size 3).
+    auto args = with(stylize_args(), {"-o", path("styled5.png"), "--save-nnf", path("nnf5.exr")});
+    args[args.size() - 5] = "0";  // --final-pass-iterations 0
+    const CliRun r = run(args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_NE(r.err.find("(apply-nnf --patch-size 5 --vote-size 3)"), std::string::npos) << r.err;
+    const std::vector<std::string> apply = {
+        "apply-nnf", "--nnf", path("nnf5.exr"), "--source", path("style.png"), "--patch-size", "5"};
+    ASSERT_EQ(run(with(apply, {"-q", "-o", path("again5.png")})).code, 0);
+    EXPECT_LE(max_abs_diff(read("again5.png"), read("styled5.png")), 1.0f / 255.0f);
+    // Whole 5x5 patches average more: a different image.
+    ASSERT_EQ(run(with(apply, {"-q", "--vote-size", "0", "-o", path("whole5.png")})).code, 0);
+    EXPECT_GT(max_abs_diff(read("whole5.png"), read("styled5.png")), 2.0f / 255.0f);
+    expect_failure(with(apply, {"--vote-size", "2"}), 1,
+                   "--vote-size: 2 is invalid (must be 0 or odd, 0..31)");
+}
+
 TEST_F(ApplyNnf, SixteenBitSourceGivesSixteenBitOutput) {
     // The style with 16-bit precision: the re-applied result keeps it.
     Image fine = texture(32, 28, 3, 1);

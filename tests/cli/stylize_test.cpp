@@ -15,7 +15,8 @@ TEST_F(Cli, StylizeWritesTheOutputAndPrintsItsPath) {
                               "--save-error", path("error.exr"), "-j", "2"}));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out, path("out.png") + "\n");
-    // The NNF's patch size (3 after the final 3x3 pass) is told for apply-nnf.
+    // The NNF's patch size (3 after the final 3x3 pass, which stylize_args() asks for) is told
+    // for apply-nnf.
     EXPECT_NE(r.err.find("--patch-size 3"), std::string::npos) << r.err;
     const Image out = read("out.png");
     EXPECT_EQ(out.width(), 36);
@@ -283,6 +284,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "pyramid-ratio: 2 is invalid (must be 0.3..0.95)");
     expect_failure(with(stylize_args(), {"--finest-em-iterations", "-1"}), 1,
                    "finest-em-iterations: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--final-vote-size", "4"}), 1,
+                   "final-vote-size: 4 is invalid (must be 0 or odd, 0..31)");
     expect_failure(with(stylize_args(), {"--budget-focus", "1.5"}), 1,
                    "budget-focus: 1.5 is invalid (must be 0..1)");
     expect_failure(with(stylize_args(), {"--guide-pca", "-0.1"}), 1,

@@ -116,10 +116,11 @@ protected:
         StylitOptions options;
         options.synthesis.usage = usage;
         options.synthesis.seed = seed;
-        // The paper's setting: plain averaging vote, no extra 3x3 pass (both of which the
-        // engine adds by default and which hide part of the wash-out).
+        // The paper's setting: plain averaging of whole patches (the engine's weighted vote
+        // and narrow final vote hide part of the wash-out).
         options.synthesis.vote = VoteMode::Average;
         options.synthesis.final_pass_iterations = 0;
+        options.synthesis.final_vote_size = 0;
         auto result = stylize_render(*exemplar_, *source_, *target_, options);
         EXPECT_TRUE(result.ok()) << result.status().message();
         if (!result.ok()) return {};

@@ -215,18 +215,80 @@ TEST(Synthesize, NnfReappliesToTheStyle) {
     in.guides[1].target = testing::ramp(44, 30);
     in.guides[0].target = testing::texture(44, 30, 3, 5);
     SynthesisOptions opt;
+    for (const int final_pass : {0, 2}) {
+        opt.final_pass_iterations = final_pass;
+        auto result = synthesize(in, opt, RunContext{2});
+        ASSERT_TRUE(result.ok());
+        // By default the 5x5 NNF votes with its central 3x3; a final pass makes a 3x3 NNF.
+        EXPECT_EQ(result->nnf_patch_size, final_pass > 0 ? 3 : 5);
+        EXPECT_EQ(result->vote_size, 3);
+        auto again = apply_nnf(result->nnf, in.style, result->nnf_patch_size, VoteMode::Weighted, 2,
+                               result->vote_size);
+        ASSERT_TRUE(again.ok());
+        EXPECT_TRUE(
+            std::equal(again->data().begin(), again->data().end(), result->image.data().begin()))
+            << "final pass " << final_pass;
+    }
+    opt.final_pass_iterations = 0;
     auto result = synthesize(in, opt, RunContext{2});
     ASSERT_TRUE(result.ok());
-    EXPECT_EQ(result->nnf_patch_size, 3);  // the final 3x3 pass is on by default
-    auto again = apply_nnf(result->nnf, in.style, result->nnf_patch_size, VoteMode::Weighted, 2);
-    ASSERT_TRUE(again.ok());
-    EXPECT_TRUE(
-        std::equal(again->data().begin(), again->data().end(), result->image.data().begin()));
     // NNF image round trip.
     auto back = nnf_from_image(nnf_to_image(result->nnf));
     ASSERT_TRUE(back.ok());
     EXPECT_EQ(back->at(7, 9).x, result->nnf.at(7, 9).x);
     EXPECT_EQ(back->at(7, 9).error, result->nnf.at(7, 9).error);
+}
+
+// The vote footprint: only the central vote_size x vote_size pixels of each patch vote; pixels
+// no centre within vote_size / 2 covers (the border band of a 5x5 NNF) take whole patches.
+TEST(ApplyNnf, VoteSizeAveragesOnlyTheCentralPixelsOfEachPatch) {
+    const Image source = testing::texture(20, 20, 3, 7);
+    Nnf nnf(16, 16);
+    std::uint64_t state = 12345;
+    auto next = [&](int n) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<int>((state >> 33) % static_cast<std::uint64_t>(n));
+    };
+    for (int y = 0; y < 16; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            const bool centre = x >= 2 && y >= 2 && x < 14 && y < 14;
+            nnf.at(x, y) =
+                centre ? Match{2 + next(16), 2 + next(16), 0.0f, 1.0f} : Match{-1, -1, 0.0f, 0.0f};
+        }
+    }
+    auto one = apply_nnf(nnf, source, 5, VoteMode::Average, 1, 1);
+    auto three = apply_nnf(nnf, source, 5, VoteMode::Average, 1, 3);
+    auto whole = apply_nnf(nnf, source, 5, VoteMode::Average, 1, 0);
+    ASSERT_TRUE(one.ok() && three.ok() && whole.ok());
+    for (int y = 0; y < 16; ++y) {
+        for (int x = 0; x < 16; ++x) {
+            const Match& m = nnf.at(x, y);
+            for (int c = 0; c < 3; ++c) {
+                if (m.x >= 0) {
+                    // Footprint 1: a patch centre copies its own match.
+                    EXPECT_EQ(one->at(x, y, c), source.at(m.x, m.y, c)) << x << "," << y;
+                } else if (x == 0 || y == 0 || x == 15 || y == 15) {
+                    // No centre within 1 px either: both fall back to whole patches.
+                    EXPECT_EQ(one->at(x, y, c), whole->at(x, y, c)) << x << "," << y;
+                    EXPECT_EQ(three->at(x, y, c), whole->at(x, y, c)) << x << "," << y;
+                }
+            }
+        }
+    }
+    // Footprint 3 at (6, 7): the mean over the 9 patches centred within 1 px.
+    for (int c = 0; c < 3; ++c) {
+        double sum = 0.0;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const Match& m = nnf.at(6 - dx, 7 - dy);
+                sum += source.at(m.x + dx, m.y + dy, c);
+            }
+        }
+        EXPECT_NEAR(three->at(6, 7, c), sum / 9.0, 1e-6);
+    }
+    auto bad = apply_nnf(nnf, source, 5, VoteMode::Average, 1, 2);
+    ASSERT_FALSE(bad.ok());
+    EXPECT_EQ(bad.status().message(), "vote-size: 2 is invalid (must be 0 or odd)");
 }
 
 TEST(Synthesize, InitialNnfIsUsedAsStart) {
@@ -279,9 +341,17 @@ TEST(Synthesize, DebugSinkReceivesUsageMaps) {
         EXPECT_EQ(f.nnf->width(), f.current->width());
     };
     ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
-    // One frame per EM iteration: the coarse level's, the finest level's, the final 3x3 pass.
+    // One frame per EM iteration: the coarse level's and the finest level's (no 3x3 pass by
+    // default); the last one counts the 5x5 patch centres, at least 2 px from the border.
+    EXPECT_EQ(opt.final_pass_iterations, 0);
+    EXPECT_EQ(frames, opt.em_iterations + opt.finest_em_iterations);
+    EXPECT_EQ(last_usage_sum, 28.0f * 28.0f);
+
+    // With the final 3x3 pass, its iterations come last: centres at least 1 px from the border.
+    opt.final_pass_iterations = 2;
+    frames = 0;
+    ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
     EXPECT_EQ(frames, opt.em_iterations + opt.finest_em_iterations + opt.final_pass_iterations);
-    // The last frame is the final 3x3 pass: patch centres at least 1 px from the border.
     EXPECT_EQ(last_usage_sum, 30.0f * 30.0f);
 
     // finest-em-iterations 0: every level runs em-iterations.

@@ -59,11 +59,12 @@ Result<Nnf> nnf_from_image(const Image& image);
 
 /// Re-applies an NNF to another source image (e.g. a 16-bit or extra-channel version of the
 /// style): every target pixel becomes the (weighted) average of the overlapping `patch_size`
-/// patches, each read from `source` at its match (rotated, nearest sample), exactly as the
-/// synthesis voted (use SynthesisResult::nnf_patch_size and the run's vote mode; the weights
-/// come from the stored errors). Source reads beyond its border are clamped; every match must
-/// lie inside `source`.
+/// patches, or of their central `vote_size` pixels (0 = whole patches), each read from `source`
+/// at its match (rotated, nearest sample), exactly as the synthesis voted (use
+/// SynthesisResult::nnf_patch_size, SynthesisResult::vote_size and the run's vote mode; the
+/// weights come from the stored errors). Source reads beyond its border are clamped; every match
+/// must lie inside `source`.
 Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size,
-                        VoteMode vote = VoteMode::Weighted, int threads = 0);
+                        VoteMode vote = VoteMode::Weighted, int threads = 0, int vote_size = 0);
 
 }  // namespace exemplar

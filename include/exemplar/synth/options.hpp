@@ -69,9 +69,14 @@ struct SynthesisOptions {
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
     VoteMode vote = VoteMode::Weighted;
-    /// Extra EM iterations with 3x3 patches after the finest level; they restore fine grain that
-    /// averaging 5x5 patches blurs (ebsynth's "extrapass3x3"). 0 = off.
-    int final_pass_iterations = 2;
+    /// Extra EM iterations with 3x3 patches after the finest level (ebsynth's "extrapass3x3").
+    /// 0 = off (default): final_vote_size keeps the fine grain at a fraction of the cost.
+    int final_pass_iterations = 0;
+    /// The run's last vote averages only the central final_vote_size x final_vote_size pixels
+    /// of each patch: 9 overlapping patches per pixel instead of 25 for 5x5 patches, so the
+    /// exemplar's fine grain is not averaged away. 0 (or the patch size) = the whole patch.
+    /// Replaces the slower 3x3 pass as the default (measurements in docs/PERFORMANCE.md).
+    int final_vote_size = 3;
     /// Error budget: stop reversed retrieval once this fraction of target patches is covered;
     /// the rest use forward nearest neighbours (StyLit: ~95%).
     float budget_coverage = 0.95f;

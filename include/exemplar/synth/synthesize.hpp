@@ -71,9 +71,11 @@ using DebugSink = std::function<void(const DebugFrame&)>;
 struct SynthesisResult {
     Image image;  ///< B', same channels as the style, target size.
     Nnf nnf;      ///< Final NNF (target grid).
-    /// Patch size the final NNF was computed with (3 after a final 3x3 pass); use it with
-    /// apply_nnf.
+    /// Patch size the final NNF was computed with (3 after a final 3x3 pass).
     int nnf_patch_size = 0;
+    /// Footprint of the vote that made `image` (SynthesisOptions::final_vote_size, at most
+    /// nnf_patch_size): apply_nnf with nnf_patch_size and vote_size reproduces the image.
+    int vote_size = 0;
     /// Per-pixel patch distance of the final NNF against the final image (1 channel; 0 where
     /// the pixel is not a patch centre).
     Image error;
