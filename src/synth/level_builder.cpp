@@ -25,6 +25,92 @@ std::vector<Image> pyramid_or_empty(const Image& image, int levels, float ratio,
     return gaussian_pyramid(image, levels, ratio, filter, threads);
 }
 
+bool same_channel(const Image& a, int ca, const Image& b, int cb) {
+    if (!a.same_size(b)) return false;
+    const auto na = static_cast<std::size_t>(a.channels());
+    const auto nb = static_cast<std::size_t>(b.channels());
+    for (std::size_t i = 0; i < a.pixel_count(); ++i) {
+        if (a.data()[i * na + static_cast<std::size_t>(ca)] !=
+            b.data()[i * nb + static_cast<std::size_t>(cb)]) {
+            return false;
+        }
+    }
+    return true;
+}
+
+bool constant_channel(const Image& image, int c, float value) {
+    const auto n = static_cast<std::size_t>(image.channels());
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        if (image.data()[i * n + static_cast<std::size_t>(c)] != value) return false;
+    }
+    return true;
+}
+
+// The guides with the channels that cannot change any distance taken out, exactly: a channel
+// that holds one constant on both sides (or has weight 0) adds 0 to every distance and is
+// dropped; a channel equal to an earlier one on both sides adds the same squared differences
+// and is merged into it (the weights add). Guides with a weight map keep all their channels.
+// Fewer bytes per pixel make every patch distance cheaper (docs/PERFORMANCE.md).
+struct ReducedGuide {
+    Image source, target, weight_map;
+    std::vector<float> weights;  // per channel
+};
+std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& guides) {
+    struct Kept {
+        std::size_t guide;
+        int channel;
+        float weight;
+    };
+    std::vector<Kept> kept;
+    for (std::size_t g = 0; g < guides.size(); ++g) {
+        const GuidePair& p = guides[g];
+        for (int c = 0; c < p.source.channels(); ++c) {
+            if (p.target_weight_map.empty() && !p.source.empty()) {
+                const float v = p.source.data()[static_cast<std::size_t>(c)];
+                if (p.weight == 0.0f ||
+                    (constant_channel(p.source, c, v) && constant_channel(p.target, c, v))) {
+                    continue;
+                }
+                auto twin = std::find_if(kept.begin(), kept.end(), [&](const Kept& k) {
+                    const GuidePair& q = guides[k.guide];
+                    return q.target_weight_map.empty() &&
+                           same_channel(q.source, k.channel, p.source, c) &&
+                           same_channel(q.target, k.channel, p.target, c);
+                });
+                if (twin != kept.end()) {
+                    twin->weight += p.weight;
+                    continue;
+                }
+            }
+            kept.push_back(Kept{g, c, p.weight});
+        }
+    }
+    // Keep one channel if nothing is left (the target size comes from the guides).
+    if (kept.empty() && !guides.empty()) kept.push_back(Kept{0, 0, guides[0].weight});
+    std::vector<ReducedGuide> out;
+    for (std::size_t g = 0; g < guides.size(); ++g) {
+        std::vector<Image> sources, targets;
+        ReducedGuide r;
+        for (const Kept& k : kept) {
+            if (k.guide != g) continue;
+            sources.push_back(extract_channels(guides[g].source, k.channel, 1));
+            targets.push_back(extract_channels(guides[g].target, k.channel, 1));
+            r.weights.push_back(k.weight);
+        }
+        if (r.weights.empty()) continue;
+        auto stack = [](const std::vector<Image>& images) {
+            std::vector<const Image*> pointers;
+            for (const Image& image : images) pointers.push_back(&image);
+            return concat_channels(pointers);
+        };
+        r.source = stack(sources);
+        r.target = stack(targets);
+        r.weight_map = guides[g].target_weight_map;
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
 std::vector<float> channel0(const Image& image) {
     std::vector<float> out(image.pixel_count());
     for (std::size_t i = 0; i < out.size(); ++i) {
@@ -110,16 +196,17 @@ LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& opt
         target_guides_.push_back(
             gaussian_pyramid(compressed->target, levels, ratio, F::Gaussian, threads));
         weight_maps_.push_back(pyramid_or_empty(Image(), levels, ratio, F::Gaussian, threads));
-        guide_weights_.push_back(1.0f);
+        guide_weights_.push_back(
+            std::vector<float>(static_cast<std::size_t>(compressed->kept), 1.0f));
     } else {
-        for (const GuidePair& g : in.guides) {
+        for (const ReducedGuide& g : reduce_guide_channels(in.guides)) {
             source_guides_.push_back(
                 gaussian_pyramid(g.source, levels, ratio, F::Gaussian, threads));
             target_guides_.push_back(
                 gaussian_pyramid(g.target, levels, ratio, F::Gaussian, threads));
             weight_maps_.push_back(
-                pyramid_or_empty(g.target_weight_map, levels, ratio, F::Gaussian, threads));
-            guide_weights_.push_back(g.weight);
+                pyramid_or_empty(g.weight_map, levels, ratio, F::Gaussian, threads));
+            guide_weights_.push_back(g.weights);
         }
     }
     source_mask_ = pyramid_or_empty(in.source_mask, levels, ratio, F::Box, threads);
@@ -209,7 +296,7 @@ Level LevelBuilder::build(int index, int patch_size) const {
         const int C = sg.channels();
         for (int c = 0; c < C; ++c) {
             const int fc = offset + c;
-            set_channel(fc, guide_weights_[g], sg, c, tg, c);
+            set_channel(fc, guide_weights_[g][static_cast<std::size_t>(c)], sg, c, tg, c);
             const ChannelQuantizer& q = L.quantizers[static_cast<std::size_t>(fc)];
             encode(sg, c, q, L.source_features, fc);
             encode(tg, c, q, L.target_features, fc);

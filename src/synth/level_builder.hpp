@@ -51,9 +51,10 @@ private:
     int tw_, th_;
     // Pyramids, finest first (index = depth).
     std::vector<Image> style_;
-    // The guides the levels use (the input's, or their principal components) and their weights.
+    // The guides the levels use (the input's without channels that cannot change a distance,
+    // or their principal components) and their weights per channel.
     std::vector<std::vector<Image>> source_guides_, target_guides_, weight_maps_;
-    std::vector<float> guide_weights_;
+    std::vector<std::vector<float>> guide_weights_;
     SynthesisResult::GuideCompression compression_;
     std::vector<Image> source_mask_, target_mask_, source_labels_, target_labels_;
     std::vector<Image> source_angle_, target_angle_, initial_;

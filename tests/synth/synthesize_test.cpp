@@ -34,6 +34,45 @@ TEST(Synthesize, IdentityReproducesTheStyle) {
     }
 }
 
+// Guide channels that cannot change a distance are taken out exactly: a duplicate channel is
+// merged into its twin (weights add), one constant shared by both sides is dropped. A constant
+// that differs between the sides adds to every distance, so it stays.
+TEST(Synthesize, RedundantGuideChannelsAreTakenOutExactly) {
+    SynthesisInput base;
+    base.style = testing::texture(40, 36, 3, 11);
+    const Image target = testing::texture(44, 30, 3, 12);
+    const Image ramp_s = testing::ramp(40, 36), ramp_t = testing::ramp(44, 30);
+    base.guides.push_back(GuidePair{"texture", base.style, target, 2.0f, {}});
+    base.guides.push_back(GuidePair{"ramp", ramp_s, ramp_t, 3.0f, {}});
+    SynthesisOptions opt;
+    auto expected = synthesize(base, opt, RunContext{2});
+    ASSERT_TRUE(expected.ok());
+
+    // The texture guide as twice weight 1, the ramp as 1 + 2, and a constant 0.25 guide.
+    SynthesisInput split = base;
+    split.guides = {GuidePair{"texture a", base.style, target, 1.0f, {}},
+                    GuidePair{"ramp a", ramp_s, ramp_t, 1.0f, {}},
+                    GuidePair{"flat", Image(40, 36, 2, 0.25f), Image(44, 30, 2, 0.25f), 5.0f, {}},
+                    GuidePair{"texture b", base.style, target, 1.0f, {}},
+                    GuidePair{"ramp b", ramp_s, ramp_t, 2.0f, {}}};
+    auto same = synthesize(split, opt, RunContext{2});
+    ASSERT_TRUE(same.ok());
+    EXPECT_TRUE(std::equal(same->image.data().begin(), same->image.data().end(),
+                           expected->image.data().begin()));
+    EXPECT_TRUE(std::equal(same->error.data().begin(), same->error.data().end(),
+                           expected->error.data().begin()));
+
+    // Different constants on the two sides: every patch distance grows by 25 * 5 * 0.3^2.
+    split.guides[2].target = Image(44, 30, 2, 0.55f);
+    auto offset = synthesize(split, opt, RunContext{2});
+    ASSERT_TRUE(offset.ok());
+    double before = 0.0, after = 0.0;
+    for (float e : expected->error.data()) before += e;
+    for (float e : offset->error.data()) after += e;
+    const double centres = 40.0 * 26.0;  // 5x5 patch centres of the 44x30 target
+    EXPECT_GT((after - before) / centres, 0.9 * 2 * 25 * 5 * 0.09);
+}
+
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
 // the style, and the result does not depend on the thread count.
 TEST(Synthesize, CompressedGuidesKeepIdentityAndDeterminism) {
