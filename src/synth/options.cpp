@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 18> kSpecs{{
+const std::array<OptionSpec, 19> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -69,6 +69,10 @@ const std::array<OptionSpec, 18> kSpecs{{
      "iteration's, or the previous reversed-retrieval round's (StyLit: 6; fewer is faster but "
      "keeps less of the exemplar's fine texture).",
      "iterations", 1, 100, &O::warm_search_iterations},
+    {"finest-first-round-iterations",
+     "Usage strategies: PatchMatch iterations of the first reversed-retrieval round on the "
+     "finest level, which starts from a close field; 0 = warm-search-iterations.",
+     "iterations", 0, 100, &O::finest_first_round_iterations},
     {"final-pass-iterations",
      "EM iterations with 3x3 patches after the finest level (ebsynth's extra pass); 0 = off.",
      "iterations", 0, 100, &O::final_pass_iterations},

@@ -216,11 +216,12 @@ int last_vote_size(const SynthesisOptions& options, int patch_size) {
 // EM iterations on one level: search with the usage strategy, then vote. `reverse_field` is the
 // reversed-retrieval state; with `warm_start` the first search already counts as warm (the NNF
 // and reverse_field come from a previous pass over the same level). Every search also tries
-// `candidates` (the level's candidate fields; empty = none). The last iteration votes with a
+// `candidates` (the level's candidate fields; empty = none). On the `finest` level the first
+// reversed round runs options.finest_first_round_iterations, and the last iteration votes with a
 // footprint of `final_vote` pixels (0 = the whole patch).
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
-            int threads, bool warm_start, const std::vector<Nnf>& candidates, int final_vote,
-            Nnf& nnf, Nnf& reverse_field, Image& current, ProgressTracker& tracker,
+            int threads, bool warm_start, const std::vector<Nnf>& candidates, bool finest,
+            int final_vote, Nnf& nnf, Nnf& reverse_field, Image& current, ProgressTracker& tracker,
             const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
@@ -238,7 +239,8 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        threads,
                                        &reverse_field,
                                        it > 0 || warm_start,
-                                       candidates.empty() ? nullptr : &candidates};
+                                       candidates.empty() ? nullptr : &candidates,
+                                       finest ? options.finest_first_round_iterations : 0};
         synth::search(setup, nnf);
         synth::VoteParams vp = vote_params(L, options.vote, nnf, &weights);
         if (it + 1 == iterations) vp.footprint = final_vote;
@@ -492,7 +494,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         const bool finest = l == levels - 1;
         const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
         run_em(L, options, em_iterations_of_level(options, finest), level_key, threads,
-               /*warm_start=*/false, candidates,
+               /*warm_start=*/false, candidates, finest,
                finest && !final_pass ? last_vote_size(options, L.patch_size) : 0, nnf,
                reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
@@ -509,8 +511,8 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                 // Same grid as the last pass: both fields carry over (every 5x5 match is a
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
-                       threads, /*warm_start=*/true, candidates, last_vote_size(options, 3), nnf,
-                       reverse_field, current, tracker, debug);
+                       threads, /*warm_start=*/true, candidates, /*finest=*/true,
+                       last_vote_size(options, 3), nnf, reverse_field, current, tracker, debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }

@@ -139,9 +139,11 @@ public:
         // The first round starts from the previous EM iteration's first-round field (warm), an
         // upsampled coarser level's field or random matches; later rounds from this search's.
         const bool warm = round > 0 || warm_;
-        run_patchmatch(problem, reverse_,
-                       warm ? s_.options.warm_search_iterations : s_.options.search_iterations,
-                       hash_keys(key, 1), s_.threads);
+        int iterations = warm ? s_.options.warm_search_iterations : s_.options.search_iterations;
+        if (round == 0 && warm_ && s_.first_round_iterations > 0) {
+            iterations = s_.first_round_iterations;
+        }
+        run_patchmatch(problem, reverse_, iterations, hash_keys(key, 1), s_.threads);
         // Later rounds pull the field toward the few targets still free; the next EM
         // iteration (all targets free again) starts better from this round's field.
         if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;

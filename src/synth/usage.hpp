@@ -50,6 +50,10 @@ struct SearchSetup {
     /// downscaled): every forward PatchMatch iteration also tries their entries per pixel. The
     /// reversed retrieval (source → target) does not; its forward passes do.
     const std::vector<Nnf>* candidates = nullptr;
+    /// PatchMatch iterations of the first reversed-retrieval round when it starts warm; 0 = as
+    /// the later rounds (options.warm_search_iterations). The engine sets it on the finest level
+    /// (options.finest_first_round_iterations).
+    int first_round_iterations = 0;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`

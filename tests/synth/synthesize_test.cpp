@@ -73,6 +73,40 @@ TEST(Synthesize, RedundantGuideChannelsAreTakenOutExactly) {
     EXPECT_GT((after - before) / centres, 0.9 * 2 * 25 * 5 * 0.09);
 }
 
+// finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
+// finest level's first reversed round only (coarser levels are unaffected).
+TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
+    SynthesisInput in = identity_input(48, 40);
+    in.guides[0].target = testing::texture(52, 44, 3, 9);
+    in.guides[1].target = testing::ramp(52, 44);
+    SynthesisOptions opt;
+    opt.levels = 2;
+    auto run = [&](int first_round, std::vector<Image>* coarse) {
+        opt.finest_first_round_iterations = first_round;
+        DebugSink sink;
+        if (coarse != nullptr) {
+            sink = [&](const DebugFrame& f) {
+                if (f.level == 0) coarse->push_back(*f.current);
+            };
+        }
+        auto result = synthesize(in, opt, RunContext{2}, sink);
+        EXPECT_TRUE(result.ok());
+        return result.ok() ? result->image : Image();
+    };
+    const Image as_warm = run(opt.warm_search_iterations, nullptr);
+    const Image zero = run(0, nullptr);
+    EXPECT_TRUE(std::equal(zero.data().begin(), zero.data().end(), as_warm.data().begin()));
+    std::vector<Image> coarse_one, coarse_zero;
+    const Image one = run(1, &coarse_one);
+    run(0, &coarse_zero);
+    EXPECT_FALSE(std::equal(one.data().begin(), one.data().end(), zero.data().begin()));
+    ASSERT_EQ(coarse_one.size(), coarse_zero.size());
+    for (std::size_t i = 0; i < coarse_one.size(); ++i) {
+        EXPECT_TRUE(std::equal(coarse_one[i].data().begin(), coarse_one[i].data().end(),
+                               coarse_zero[i].data().begin()));
+    }
+}
+
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
 // the style, and the result does not depend on the thread count.
 TEST(Synthesize, CompressedGuidesKeepIdentityAndDeterminism) {

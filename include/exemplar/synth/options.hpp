@@ -65,6 +65,11 @@ struct SynthesisOptions {
     /// round's (reversed-retrieval rounds). StyLit uses 6 throughout; with the warm starts of
     /// the reversed field 2 keep the texture (measurements in docs/PERFORMANCE.md).
     int warm_search_iterations = 2;
+    /// PatchMatch iterations of the first reversed-retrieval round of each EM iteration on the
+    /// finest level, which starts from a close field (the previous iteration's, or the coarser
+    /// level's upsampled); 0 = warm_search_iterations. One is enough there (on coarser levels
+    /// it loses texture); measurements in docs/PERFORMANCE.md.
+    int finest_first_round_iterations = 1;
     float style_weight = 1.0f;      ///< Weight of the style (A'/B') term relative to guides.
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
