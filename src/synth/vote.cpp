@@ -1,7 +1,9 @@
 #include "vote.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "exemplar/core/check.hpp"
@@ -33,17 +35,23 @@ std::vector<float> error_weights(const Nnf& nnf, const std::uint8_t* active) {
     return weights;
 }
 
-void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads) {
-    EXEMPLAR_CHECK_EQ(out.width(), nnf.width());
-    EXEMPLAR_CHECK_EQ(out.height(), nnf.height());
-    EXEMPLAR_CHECK_EQ(out.channels(), source.channels());
+namespace {
+
+// The vote with kChannels channels known at compile time (0 = any count, from the source), so
+// that the per-pixel sums of the common 1-4 channel cases stay in registers.
+template <int kChannels>
+void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
+                   int threads) {
     const int w = nnf.width();
     const int h = nnf.height();
-    const int C = source.channels();
+    const int C = kChannels > 0 ? kChannels : source.channels();
     const int patch_r = params.patch_size / 2;
     const int vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
     parallel_for(0, h, threads, [&](int y) {
-        std::vector<double> acc(static_cast<std::size_t>(C));
+        using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
+                                        std::vector<double>>;
+        Sums acc{};
+        if constexpr (kChannels == 0) acc.resize(static_cast<std::size_t>(C));
         // Sum of the votes of the patches centred within r of (x, y); returns their weight.
         auto gather = [&](int x, int r) {
             std::fill(acc.begin(), acc.end(), 0.0);
@@ -93,6 +101,20 @@ void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& 
             }
         }
     });
+}
+
+}  // namespace
+
+void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads) {
+    EXEMPLAR_CHECK_EQ(out.width(), nnf.width());
+    EXEMPLAR_CHECK_EQ(out.height(), nnf.height());
+    EXEMPLAR_CHECK_EQ(out.channels(), source.channels());
+    switch (source.channels()) {
+        case 1: vote_channels<1>(nnf, source, params, out, threads); break;
+        case 3: vote_channels<3>(nnf, source, params, out, threads); break;
+        case 4: vote_channels<4>(nnf, source, params, out, threads); break;
+        default: vote_channels<0>(nnf, source, params, out, threads); break;
+    }
 }
 
 }  // namespace exemplar::synth
