@@ -157,7 +157,7 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
             std::printf("  fidelity %.4f\n",
                         patch_fidelity(in.style, result->image, settings.threads));
         }
-        std::printf("  time at the end of each level (last: final 3x3 pass):");
+        std::printf("  time at the end of each level (and of the final 3x3 pass, if on):");
         for (double t : level_end) std::printf(" %.2f", t);
         std::printf("\n");
         std::fflush(stdout);

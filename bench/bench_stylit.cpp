@@ -86,7 +86,7 @@ Image run(bool preview, const Data& data, const Settings& settings, const Image&
                     data.exemplar.height(), result->synthesis.image.width(),
                     result->synthesis.image.height(), settings.threads, result->guide_channels,
                     secs, cpu);
-        std::printf("  time at the end of each level (last: final 3x3 pass):");
+        std::printf("  time at the end of each level (and of the final 3x3 pass, if on):");
         for (double t : level_end) std::printf(" %.2f", t);
         std::printf("\n");
         last = std::move(result->synthesis.image);
