@@ -217,11 +217,11 @@ int last_vote_size(const SynthesisOptions& options, int patch_size) {
 // reversed-retrieval state; with `warm_start` the first search already counts as warm (the NNF
 // and reverse_field come from a previous pass over the same level). Every search also tries
 // `candidates` (the level's candidate fields; empty = none). On the `finest` level the first
-// reversed round runs options.finest_first_round_iterations, and the last iteration votes with a
-// footprint of `final_vote` pixels (0 = the whole patch).
+// reversed round runs options.finest_first_round_iterations; when these iterations `end_run`,
+// the last one votes with the footprint of last_vote_size.
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
             int threads, bool warm_start, const std::vector<Nnf>& candidates, bool finest,
-            int final_vote, Nnf& nnf, Nnf& reverse_field, Image& current, ProgressTracker& tracker,
+            bool end_run, Nnf& nnf, Nnf& reverse_field, Image& current, ProgressTracker& tracker,
             const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
@@ -243,7 +243,7 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        finest ? options.finest_first_round_iterations : 0};
         synth::search(setup, nnf);
         synth::VoteParams vp = vote_params(L, options.vote, nnf, &weights);
-        if (it + 1 == iterations) vp.footprint = final_vote;
+        if (end_run && it + 1 == iterations) vp.footprint = last_vote_size(options, L.patch_size);
         synth::vote(nnf, L.source_style, vp, current, threads);
         set_target_style(L, current);
         tracker.step(L.index, it, iterations, work);
@@ -494,8 +494,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         const bool finest = l == levels - 1;
         const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
         run_em(L, options, em_iterations_of_level(options, finest), level_key, threads,
-               /*warm_start=*/false, candidates, finest,
-               finest && !final_pass ? last_vote_size(options, L.patch_size) : 0, nnf,
+               /*warm_start=*/false, candidates, finest, /*end_run=*/finest && !final_pass, nnf,
                reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
@@ -512,7 +511,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
                        threads, /*warm_start=*/true, candidates, /*finest=*/true,
-                       last_vote_size(options, 3), nnf, reverse_field, current, tracker, debug);
+                       /*end_run=*/true, nnf, reverse_field, current, tracker, debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }
