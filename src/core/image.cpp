@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "exemplar/core/check.hpp"
 
@@ -47,10 +46,15 @@ Image extract_channels(const Image& image, int first, int count) {
     const int in_c = image.channels();
     const float* src = image.data().data();
     float* dst = out.data().data();
-    for (std::size_t i = 0; i < n; ++i) {
-        std::memcpy(dst + i * static_cast<std::size_t>(count),
-                    src + i * static_cast<std::size_t>(in_c) + first,
-                    sizeof(float) * static_cast<std::size_t>(count));
+    // Plain loops: a memcpy call per pixel of a few bytes costs more than the copy.
+    if (count == in_c) {
+        std::copy(image.data().begin(), image.data().end(), out.data().begin());
+    } else {
+        for (std::size_t i = 0; i < n; ++i) {
+            const float* s = src + i * static_cast<std::size_t>(in_c) + first;
+            float* d = dst + i * static_cast<std::size_t>(count);
+            for (int c = 0; c < count; ++c) d[c] = s[c];
+        }
     }
     const auto& names = image.channel_names();
     out.set_channel_names({names.begin() + first, names.begin() + first + count});
@@ -73,8 +77,9 @@ Image concat_channels(const std::vector<const Image*>& images) {
         const float* src = im->data().data();
         float* dst = out.data().data();
         for (std::size_t i = 0; i < n; ++i) {
-            std::memcpy(dst + i * static_cast<std::size_t>(total) + offset,
-                        src + i * static_cast<std::size_t>(c), sizeof(float) * c);
+            const float* s = src + i * static_cast<std::size_t>(c);
+            float* d = dst + i * static_cast<std::size_t>(total) + offset;
+            for (int k = 0; k < c; ++k) d[k] = s[k];
         }
         names.insert(names.end(), im->channel_names().begin(), im->channel_names().end());
         offset += c;

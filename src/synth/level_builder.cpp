@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "exemplar/core/check.hpp"
+#include "exemplar/core/parallel.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "guide_pca.hpp"
 
@@ -44,6 +45,30 @@ bool constant_channel(const Image& image, int c, float value) {
         if (image.data()[i * n + static_cast<std::size_t>(c)] != value) return false;
     }
     return true;
+}
+
+// The listed channels of `image`, in that order (the image itself when that is all of them).
+Image select_channels(const Image& image, const std::vector<int>& channels) {
+    const int in_c = image.channels();
+    bool all = static_cast<int>(channels.size()) == in_c;
+    for (std::size_t k = 0; all && k < channels.size(); ++k)
+        all = channels[k] == static_cast<int>(k);
+    if (all || image.empty()) return image;
+    const auto count = static_cast<int>(channels.size());
+    Image out(image.width(), image.height(), count);
+    std::vector<std::string> names;
+    for (int c : channels) names.push_back(image.channel_names()[static_cast<std::size_t>(c)]);
+    out.set_channel_names(std::move(names));
+    const float* src = image.data().data();
+    float* dst = out.data().data();
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        for (int k = 0; k < count; ++k) {
+            dst[i * static_cast<std::size_t>(count) + static_cast<std::size_t>(k)] =
+                src[i * static_cast<std::size_t>(in_c) +
+                    static_cast<std::size_t>(channels[static_cast<std::size_t>(k)])];
+        }
+    }
+    return out;
 }
 
 // The guides with the channels that cannot change any distance taken out, exactly: a channel
@@ -89,22 +114,16 @@ std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& gu
     if (kept.empty() && !guides.empty()) kept.push_back(Kept{0, 0, guides[0].weight});
     std::vector<ReducedGuide> out;
     for (std::size_t g = 0; g < guides.size(); ++g) {
-        std::vector<Image> sources, targets;
+        std::vector<int> channels;
         ReducedGuide r;
         for (const Kept& k : kept) {
             if (k.guide != g) continue;
-            sources.push_back(extract_channels(guides[g].source, k.channel, 1));
-            targets.push_back(extract_channels(guides[g].target, k.channel, 1));
+            channels.push_back(k.channel);
             r.weights.push_back(k.weight);
         }
-        if (r.weights.empty()) continue;
-        auto stack = [](const std::vector<Image>& images) {
-            std::vector<const Image*> pointers;
-            for (const Image& image : images) pointers.push_back(&image);
-            return concat_channels(pointers);
-        };
-        r.source = stack(sources);
-        r.target = stack(targets);
+        if (channels.empty()) continue;
+        r.source = select_channels(guides[g].source, channels);
+        r.target = select_channels(guides[g].target, channels);
         r.weight_map = guides[g].target_weight_map;
         out.push_back(std::move(r));
     }
@@ -270,13 +289,16 @@ Level LevelBuilder::build(int index, int patch_size) const {
         L.quantizers[static_cast<std::size_t>(c)] = q;
         L.channel_weight[static_cast<std::size_t>(c)] = weight * q.step * q.step;
     };
-    auto encode = [](const Image& image, int channel, const ChannelQuantizer& q, FeatureImage& out,
-                     int c) {
+    auto encode = [this](const Image& image, int channel, const ChannelQuantizer& q,
+                         FeatureImage& out, int c) {
         const int C = image.channels();
-        for (std::size_t i = 0; i < image.pixel_count(); ++i) {
-            out.pixel(i)[c] = q.code(
-                image.data()[i * static_cast<std::size_t>(C) + static_cast<std::size_t>(channel)]);
-        }
+        parallel_for(0, image.height(), threads_, [&](int y) {
+            const std::size_t row = static_cast<std::size_t>(y) * image.width();
+            for (std::size_t i = row; i < row + static_cast<std::size_t>(image.width()); ++i) {
+                out.pixel(i)[c] = q.code(image.data()[i * static_cast<std::size_t>(C) +
+                                                      static_cast<std::size_t>(channel)]);
+            }
+        });
     };
     for (int c = 0; c < S; ++c) {
         const float w = input_.style_channel_weights.empty()
