@@ -9,7 +9,10 @@
 // iterations: its candidates are the ones that miss the caches, they rarely win, and propagation
 // hands a far find to the neighbours (measurements in docs/PERFORMANCE.md). The forward search
 // draws for every query: there the draw is what finds rare allowed patches (thin strokes,
-// small label regions), and it is a small share of the candidates.
+// small label regions), and it is a small share of the candidates. The reversed retrieval draws
+// only in the first round of a search: later rounds look for the few targets still free,
+// scattered between taken ones, where a uniformly drawn target almost never wins (about 1 in
+// 10,000 draws) and when it does, it is an incoherent match far from the query's neighbours.
 //
 // The same code serves the forward search (query = target pixel, database = source patch) and
 // the reversed retrieval of the usage strategies (query = source patch, database = target pixel).
@@ -178,7 +181,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                     }
                     // One candidate drawn from everything this query may use.
                     int rx = 0, ry = 0;
-                    if ((far || !P.sparse_draw()) && P.random_db(qi, rng, rx, ry)) {
+                    if (P.draws(far) && P.random_db(qi, rng, rx, ry)) {
                         try_candidate(rx, ry);
                     }
 
@@ -220,7 +223,7 @@ struct ForwardProblem {
         return (*candidates)[static_cast<std::size_t>(k)][qi];
     }
     /// Every query draws a uniform candidate in every iteration (see the file comment).
-    bool sparse_draw() const { return false; }
+    bool draws(bool /*far*/) const { return true; }
     /// Replacement for an invalid entry: a random valid source centre.
     bool repair(std::size_t qi, const Match&, KeyedRng& rng, int& sx, int& sy) const {
         return random_db(qi, rng, sx, sy);
@@ -266,8 +269,10 @@ struct ReverseProblem {
     }
     int candidate_count() const { return 0; }  // candidate fields are target → source
     Match candidate(int, std::size_t) const { return Match{-1, -1, 0.0f, 0.0f}; }
+    /// Whether the uniform draw is on (the first round of a search; see the file comment).
+    bool uniform_draw = true;
     /// The uniform draw is part of the far exploration (see the file comment).
-    bool sparse_draw() const { return true; }
+    bool draws(bool far) const { return uniform_draw && far; }
     /// Replacement for an entry whose target was taken: the free target nearest to it (similar
     /// content, so the search resumes close to its optimum), else a random free target.
     bool repair(std::size_t si, const Match& old, KeyedRng& rng, int& tx, int& ty) const {

@@ -132,6 +132,7 @@ public:
         const std::vector<std::uint64_t> free_bits = pack_mask(free_);
         ReverseProblem problem{L_, query_.data(), free_bits.data(), free_by_group_,
                                round > 0 ? nearest_free_.data() : nullptr};
+        problem.uniform_draw = round == 0;
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
         // Target features do not change between the rounds of one search, so after the first
         // round only entries whose target was taken need a new target.
