@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 19> kSpecs{{
+const std::array<OptionSpec, 20> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -62,6 +62,10 @@ const std::array<OptionSpec, 19> kSpecs{{
      "Search+vote iterations on the finest level; 0 = em-iterations. It starts from the "
      "upsampled coarser solution and converges fast (StyLit: 6).",
      "iterations", 0, 100, &O::finest_em_iterations},
+    {"second-finest-em-iterations",
+     "Search+vote iterations on the level before the finest (not when it is the coarsest); "
+     "0 = em-iterations. It starts from an upsampled solution too (StyLit: 6).",
+     "iterations", 0, 100, &O::second_finest_em_iterations},
     {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
      "iterations", 1, 100, &O::search_iterations},
     {"warm-search-iterations",

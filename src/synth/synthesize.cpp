@@ -431,7 +431,7 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         const int depth = levels - 1 - l;
         total_work += static_cast<double>(pyramid_level_size(tw, options.pyramid_ratio, depth)) *
                       pyramid_level_size(th, options.pyramid_ratio, depth) *
-                      em_iterations_of_level(options, depth == 0);
+                      em_iterations_of_level(options, depth, levels);
     }
     if (options.final_pass_iterations > 0 && options.patch_size > 3) {
         total_work += static_cast<double>(tw) * th * options.final_pass_iterations * 9.0 /
@@ -493,9 +493,9 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         // The run's last vote (finest level, or the final pass after it) keeps the fine grain.
         const bool finest = l == levels - 1;
         const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
-        run_em(L, options, em_iterations_of_level(options, finest), level_key, threads,
-               /*warm_start=*/false, candidates, finest, /*end_run=*/finest && !final_pass, nnf,
-               reverse_field, current, tracker, debug);
+        const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
+        run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,
+               /*end_run=*/finest && !final_pass, nnf, reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;

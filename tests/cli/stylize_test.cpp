@@ -284,6 +284,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "pyramid-ratio: 2 is invalid (must be 0.3..0.95)");
     expect_failure(with(stylize_args(), {"--finest-em-iterations", "-1"}), 1,
                    "finest-em-iterations: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--second-finest-em-iterations", "101"}), 1,
+                   "second-finest-em-iterations: 101 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--finest-first-round-iterations", "1.5"}), 1,
                    "finest-first-round-iterations: 1.5 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--final-vote-size", "4"}), 1,

@@ -434,6 +434,28 @@ TEST(Synthesize, DebugSinkReceivesUsageMaps) {
     EXPECT_EQ(frames, 2 * opt.em_iterations + opt.final_pass_iterations);
 }
 
+// The EM iterations per level: em-iterations on the coarse levels, second-finest-em-iterations
+// on the level before the finest (not when that is the coarsest), finest-em-iterations last.
+TEST(Synthesize, EmIterationsPerLevel) {
+    const SynthesisInput in = identity_input(64, 64);
+    SynthesisOptions opt;
+    opt.em_iterations = 3;
+    opt.second_finest_em_iterations = 2;
+    opt.finest_em_iterations = 1;
+    auto frames_per_level = [&](int levels) {
+        opt.levels = levels;
+        std::vector<int> frames(static_cast<std::size_t>(levels), 0);
+        auto sink = [&](const DebugFrame& f) { ++frames[static_cast<std::size_t>(f.level)]; };
+        EXPECT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
+        return frames;
+    };
+    EXPECT_EQ(frames_per_level(3), (std::vector<int>{3, 2, 1}));
+    EXPECT_EQ(frames_per_level(2), (std::vector<int>{3, 1}));  // the coarsest starts from scratch
+    EXPECT_EQ(frames_per_level(1), (std::vector<int>{1}));
+    opt.second_finest_em_iterations = 0;
+    EXPECT_EQ(frames_per_level(3), (std::vector<int>{3, 3, 1}));
+}
+
 struct BadCase {
     const char* what;
     std::function<void(SynthesisInput&, SynthesisOptions&)> mutate;
