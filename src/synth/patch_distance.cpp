@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "ssd.hpp"
-
 namespace exemplar::synth {
 
 namespace {
@@ -48,26 +46,9 @@ float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, f
     return general_distance<false>(L, tx, ty, sx, sy, angle, 0.0f);
 }
 
-float patch_distance(const Level& L, int tx, int ty, int sx, int sy, float angle, float bound) {
-    const int r = L.radius;
-    const bool interior = tx >= r && ty >= r && tx < L.tw - r && ty < L.th - r;
-    if (!interior || angle != 0.0f || !L.pixel_weight.empty()) {
-        return general_distance<true>(L, tx, ty, sx, sy, angle, bound);
-    }
-    // Fast path: each patch row is one contiguous run of P pixels in both feature images (and
-    // in the per-pixel weights when guides have weight maps).
-    const FeatureImage& t = L.target_features;
-    const FeatureImage& s = L.source_features;
-    const int F = t.stride();
-    SsdWeights weights{L.row_weight.data(), 0};
-    if (!L.target_pixel_weight.empty()) {
-        const std::size_t row = static_cast<std::size_t>(L.tw) * static_cast<std::size_t>(F);
-        weights = SsdWeights{L.target_pixel_weight.data() + static_cast<std::size_t>(ty - r) * row +
-                                 static_cast<std::size_t>(tx - r) * static_cast<std::size_t>(F),
-                             row};
-    }
-    return ssd_rows(t.pixel(tx - r, ty - r), t.row_bytes(), s.pixel(sx - r, sy - r), s.row_bytes(),
-                    L.patch_size, L.patch_size * F, weights, bound);
+float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, float angle,
+                             float bound) {
+    return general_distance<true>(L, tx, ty, sx, sy, angle, bound);
 }
 
 }  // namespace exemplar::synth

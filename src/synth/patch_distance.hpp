@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "level.hpp"
+#include "ssd.hpp"
 
 namespace exemplar::synth {
 
@@ -26,9 +27,34 @@ inline RotatedOffset rotate_offset(int dx, int dy, float c, float s) {
 /// The simple reference: every pixel and channel, no early termination. Test oracle.
 float patch_distance_reference(const Level& level, int tx, int ty, int sx, int sy, float angle_rad);
 
+/// Every case of patch_distance (clamped borders, rotation, weight maps, fall-off).
+float patch_distance_general(const Level& level, int tx, int ty, int sx, int sy, float angle_rad,
+                             float bound);
+
 /// The production kernel: same value as the reference (up to float summation order), but stops
-/// as soon as the partial sum exceeds `bound` (then returns some value > bound).
-float patch_distance(const Level& level, int tx, int ty, int sx, int sy, float angle_rad,
-                     float bound = std::numeric_limits<float>::infinity());
+/// as soon as the partial sum exceeds `bound` (then returns some value > bound). Inline: the
+/// search calls it tens of millions of times, mostly on the fast path below.
+inline float patch_distance(const Level& L, int tx, int ty, int sx, int sy, float angle_rad,
+                            float bound = std::numeric_limits<float>::infinity()) {
+    const int r = L.radius;
+    const bool interior = tx >= r && ty >= r && tx < L.tw - r && ty < L.th - r;
+    if (!interior || angle_rad != 0.0f || !L.pixel_weight.empty()) {
+        return patch_distance_general(L, tx, ty, sx, sy, angle_rad, bound);
+    }
+    // Fast path: each patch row is one contiguous run of P pixels in both feature images (and
+    // in the per-pixel weights when guides have weight maps).
+    const FeatureImage& t = L.target_features;
+    const FeatureImage& s = L.source_features;
+    const int F = t.stride();
+    SsdWeights weights{L.row_weight.data(), 0};
+    if (!L.target_pixel_weight.empty()) {
+        const std::size_t row = static_cast<std::size_t>(L.tw) * static_cast<std::size_t>(F);
+        weights = SsdWeights{L.target_pixel_weight.data() + static_cast<std::size_t>(ty - r) * row +
+                                 static_cast<std::size_t>(tx - r) * static_cast<std::size_t>(F),
+                             row};
+    }
+    return ssd_rows(t.pixel(tx - r, ty - r), t.row_bytes(), s.pixel(sx - r, sy - r), s.row_bytes(),
+                    L.patch_size, L.patch_size * F, weights, bound);
+}
 
 }  // namespace exemplar::synth

@@ -3,6 +3,7 @@
 // of the patch distance. A Highway kernel with runtime dispatch (SSE4/AVX2/AVX-512, picked for
 // the running CPU) sits beside the always-compiled scalar reference; tests compare the two.
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 
@@ -21,12 +22,30 @@ struct SsdWeights {
     std::size_t row_step = 0;
 };
 
+/// The signature of the kernels below.
+using SsdRowsFn = float (*)(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                            std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
+                            float bound);
+
+namespace detail {
+/// The kernel ssd_rows calls: resolved once (the SIMD target for this CPU, or the scalar
+/// reference while SIMD is disabled) instead of dispatching on every call, which the search
+/// makes tens of millions of times.
+extern std::atomic<SsdRowsFn> g_ssd_kernel;
+SsdRowsFn resolve_ssd_kernel();
+}  // namespace detail
+
 /// Sum over `rows` rows of sum over i < row_bytes of w_r[i] * (a_r[i] - b_r[i])^2, where row r
 /// starts at a + r * a_stride and b + r * b_stride and w_r is row r's weights (see SsdWeights).
 /// Returns as soon as the running sum exceeds `bound` (after a row). May read up to kSsdSlack
 /// bytes/floats past the end of each row.
-float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound);
+inline float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                      std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
+                      float bound) {
+    SsdRowsFn kernel = detail::g_ssd_kernel.load(std::memory_order_relaxed);
+    if (kernel == nullptr) kernel = detail::resolve_ssd_kernel();
+    return kernel(a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
+}
 
 /// The scalar reference of ssd_rows (same contract; reads nothing past a row).
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,

@@ -76,6 +76,24 @@ namespace {
 std::atomic<bool> g_simd{true};
 }
 
+namespace detail {
+
+std::atomic<SsdRowsFn> g_ssd_kernel{nullptr};
+
+SsdRowsFn resolve_ssd_kernel() {
+    SsdRowsFn kernel = &ssd_rows_scalar;
+    if (g_simd.load(std::memory_order_relaxed)) {
+        // The entry HWY_DYNAMIC_DISPATCH would call, once the target has been chosen.
+        hwy::ChosenTarget& chosen = hwy::GetChosenTarget();
+        if (!chosen.IsInitialized()) chosen.Update(hwy::SupportedTargets());
+        kernel = HWY_DISPATCH_TABLE(SsdRows)[chosen.GetIndex()];
+    }
+    g_ssd_kernel.store(kernel, std::memory_order_relaxed);
+    return kernel;
+}
+
+}  // namespace detail
+
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
                       std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
                       float bound) {
@@ -93,16 +111,9 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
     return sum;
 }
 
-float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
-    if (!g_simd.load(std::memory_order_relaxed)) {
-        return ssd_rows_scalar(a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
-    }
-    return HWY_DYNAMIC_DISPATCH(SsdRows)(a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
-}
-
 void set_simd_enabled(bool enabled) {
     g_simd.store(enabled, std::memory_order_relaxed);
+    detail::resolve_ssd_kernel();
 }
 bool simd_enabled() {
     return g_simd.load(std::memory_order_relaxed);
