@@ -61,10 +61,10 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     if (!vote.ok()) return vote.status();
     SynthesisOptions options;
     EXEMPLAR_RETURN_IF_ERROR(set_option(options, *find_option("patch-size"), patch_size_));
-    if (const Status s = set_option(options, *find_option("final-vote-size"), vote_size_);
-        !s.is_ok()) {
-        return invalid_argument("--vote-size: " + std::to_string(vote_size_) +
-                                " is invalid (must be 0 or odd, 0..31)");
+    // --vote-size is stylize's final-vote-size: the same rule, under this command's flag name.
+    const OptionSpec& vote_size = *find_option("final-vote-size");
+    if (const Status s = set_option(options, vote_size, vote_size_); !s.is_ok()) {
+        return invalid_argument("--vote-size" + s.message().substr(vote_size.name.size()));
     }
     if (threads_ < 0) {
         return invalid_argument("--threads: " + std::to_string(threads_) +
