@@ -61,6 +61,31 @@ Image extract_channels(const Image& image, int first, int count) {
     return out;
 }
 
+Image select_channels(const Image& image, std::span<const int> channels) {
+    const int in_c = image.channels();
+    bool all = static_cast<int>(channels.size()) == in_c;
+    for (std::size_t k = 0; all && k < channels.size(); ++k) {
+        all = channels[k] == static_cast<int>(k);
+    }
+    if (all || image.empty()) return image;
+    const auto count = static_cast<int>(channels.size());
+    Image out(image.width(), image.height(), count);
+    std::vector<std::string> names;
+    for (int c : channels) {
+        EXEMPLAR_CHECK(c >= 0 && c < in_c);
+        names.push_back(image.channel_names()[static_cast<std::size_t>(c)]);
+    }
+    out.set_channel_names(std::move(names));
+    const float* src = image.data().data();
+    float* dst = out.data().data();
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        const float* s = src + i * static_cast<std::size_t>(in_c);
+        float* d = dst + i * static_cast<std::size_t>(count);
+        for (int k = 0; k < count; ++k) d[k] = s[channels[static_cast<std::size_t>(k)]];
+    }
+    return out;
+}
+
 Image concat_channels(const std::vector<const Image*>& images) {
     if (images.empty()) return {};
     int total = 0;

@@ -177,12 +177,9 @@ Result<Image> read_channels(OIIO::ImageInput& in, const std::string& path,
     if (static_cast<int>(channels.size()) == count) return block;
 
     // Keep only the requested channels of the contiguous block.
-    std::vector<const Image*> parts;
-    std::vector<Image> singles;
-    singles.reserve(channels.size());
-    for (int c : channels) singles.push_back(extract_channels(block, c - first, 1));
-    for (const Image& single : singles) parts.push_back(&single);
-    return concat_channels(parts);
+    std::vector<int> in_block;
+    for (int c : channels) in_block.push_back(c - first);
+    return select_channels(block, in_block);
 }
 
 // Layer of a channel name: the part before the last '.', or "" if there is no dot.

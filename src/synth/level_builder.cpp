@@ -47,30 +47,6 @@ bool constant_channel(const Image& image, int c, float value) {
     return true;
 }
 
-// The listed channels of `image`, in that order (the image itself when that is all of them).
-Image select_channels(const Image& image, const std::vector<int>& channels) {
-    const int in_c = image.channels();
-    bool all = static_cast<int>(channels.size()) == in_c;
-    for (std::size_t k = 0; all && k < channels.size(); ++k)
-        all = channels[k] == static_cast<int>(k);
-    if (all || image.empty()) return image;
-    const auto count = static_cast<int>(channels.size());
-    Image out(image.width(), image.height(), count);
-    std::vector<std::string> names;
-    for (int c : channels) names.push_back(image.channel_names()[static_cast<std::size_t>(c)]);
-    out.set_channel_names(std::move(names));
-    const float* src = image.data().data();
-    float* dst = out.data().data();
-    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
-        for (int k = 0; k < count; ++k) {
-            dst[i * static_cast<std::size_t>(count) + static_cast<std::size_t>(k)] =
-                src[i * static_cast<std::size_t>(in_c) +
-                    static_cast<std::size_t>(channels[static_cast<std::size_t>(k)])];
-        }
-    }
-    return out;
-}
-
 // The guides with the channels that cannot change any distance taken out, exactly: a channel
 // that holds one constant on both sides (or has weight 0) adds 0 to every distance and is
 // dropped; a channel equal to an earlier one on both sides adds the same squared differences

@@ -38,6 +38,26 @@ TEST(Image, ExtractAndConcatRoundTrip) {
     EXPECT_TRUE(std::equal(b.data().begin(), b.data().end(), b2.data().begin()));
 }
 
+TEST(Image, SelectChannelsKeepsTheListedOnesInOrder) {
+    Image im(3, 2, 4);
+    for (std::size_t i = 0; i < im.data().size(); ++i) im.data()[i] = static_cast<float>(i);
+    im.set_channel_names({"R", "G", "B", "A"});
+    const std::vector<int> picked{3, 1};
+    const Image s = select_channels(im, picked);
+    ASSERT_EQ(s.channels(), 2);
+    EXPECT_EQ(s.channel_names(), (std::vector<std::string>{"A", "G"}));
+    for (int y = 0; y < 2; ++y) {
+        for (int x = 0; x < 3; ++x) {
+            EXPECT_EQ(s.at(x, y, 0), im.at(x, y, 3));
+            EXPECT_EQ(s.at(x, y, 1), im.at(x, y, 1));
+        }
+    }
+    const std::vector<int> all{0, 1, 2, 3};
+    const Image same = select_channels(im, all);
+    EXPECT_TRUE(std::equal(im.data().begin(), im.data().end(), same.data().begin()));
+    EXPECT_EQ(same.channel_names(), im.channel_names());
+}
+
 TEST(Image, AllFinite) {
     Image im(2, 2, 1, 0.5f);
     EXPECT_TRUE(all_finite(im));

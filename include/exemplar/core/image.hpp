@@ -92,6 +92,10 @@ std::vector<std::string> default_channel_names(int channels);
 /// Copies channels [first, first + count) into a new image (names kept).
 Image extract_channels(const Image& image, int first, int count);
 
+/// Copies the listed channels, in that order, into a new image (names kept); the image itself
+/// when the list is all of its channels in order.
+Image select_channels(const Image& image, std::span<const int> channels);
+
 /// Stacks the channels of same-sized images into one image (names concatenated).
 /// All images must have the same width and height (checked).
 Image concat_channels(const std::vector<const Image*>& images);
