@@ -51,6 +51,9 @@ ApplyNnfCommand::ApplyNnfCommand(CLI::App& parent) {
                      "Output image; PNG/TIFF keep the source's bit depth (16-bit in, 16-bit out)")
         ->required();
     app_->add_option("--vote", vote_, "average or weighted (default), as the stylize run");
+    app_->add_option("--vote-coherence", vote_coherence_,
+                     "Coherence weighting of the weighted vote, as the stylize run's "
+                     "--vote-coherence (default 0 = off)");
     app_->add_option("--threads,-j", threads_, "Threads; 0 = all cores (default)");
     app_->add_flag("--quiet,-q", quiet_, "Do not print the output path");
 }
@@ -66,6 +69,7 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     if (const Status s = set_option(options, vote_size, vote_size_); !s.is_ok()) {
         return invalid_argument("--vote-size" + s.message().substr(vote_size.name.size()));
     }
+    EXEMPLAR_RETURN_IF_ERROR(set_option(options, *find_option("vote-coherence"), vote_coherence_));
     if (threads_ < 0) {
         return invalid_argument("--threads: " + std::to_string(threads_) +
                                 " is invalid (must be >= 0; 0 = all cores)");
@@ -94,7 +98,8 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     const SaveOptions save = output_options(*source, source_, output_);
     EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, *source, save));
 
-    auto result = apply_nnf(*nnf, *source, patch_size_, *vote, threads_, vote_size_);
+    auto result =
+        apply_nnf(*nnf, *source, patch_size_, *vote, threads_, vote_size_, vote_coherence_);
     if (!result.ok()) {
         return Status(result.status().code(), "--nnf " + nnf_ + " with --source " + source_ + ": " +
                                                   result.status().message());

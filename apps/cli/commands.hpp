@@ -14,6 +14,7 @@
 
 #include "exemplar/core/status.hpp"
 #include "exemplar/render/render.hpp"
+#include "exemplar/synth/options.hpp"
 #include "stylize_job.hpp"
 
 namespace exemplar::cli {
@@ -75,6 +76,7 @@ private:
     std::string nnf_, source_, output_, vote_ = "weighted";
     int patch_size_ = 0;
     int vote_size_ = 3;  // as stylize's --final-vote-size default
+    float vote_coherence_ = SynthesisOptions{}.vote_coherence;  // as stylize's default
     int threads_ = 0;
     bool quiet_ = false;
 };

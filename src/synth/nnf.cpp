@@ -48,7 +48,7 @@ Result<Nnf> nnf_from_image(const Image& image) {
 }
 
 Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, VoteMode mode,
-                        int threads, int vote_size) {
+                        int threads, int vote_size, float vote_coherence) {
     if (patch_size < 1 || patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(patch_size) +
                                 " is invalid (must be odd and positive)");
@@ -56,6 +56,10 @@ Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, Vot
     if (vote_size < 0 || (vote_size > 0 && vote_size % 2 == 0)) {
         return invalid_argument("vote-size: " + std::to_string(vote_size) +
                                 " is invalid (must be 0 or odd)");
+    }
+    if (!(vote_coherence >= 0.0f) || !std::isfinite(vote_coherence)) {
+        return invalid_argument("vote-coherence: " + std::to_string(vote_coherence) +
+                                " is invalid (must be >= 0)");
     }
     if (nnf.empty() || source.empty()) return invalid_argument("apply_nnf: empty input");
     for (const Match& m : nnf.matches()) {
@@ -74,7 +78,7 @@ Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, Vot
     params.clamp_source = true;
     std::vector<float> weights;
     if (mode == VoteMode::Weighted) {
-        weights = synth::error_weights(nnf, nullptr);
+        weights = synth::vote_weights(nnf, nullptr, patch_size, vote_coherence, threads);
         params.patch_weights = weights;
     }
     synth::vote(nnf, source, params, out, threads);

@@ -49,7 +49,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 20> kSpecs{{
+const std::array<OptionSpec, 22> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -84,6 +84,11 @@ const std::array<OptionSpec, 20> kSpecs{{
      "The last vote averages only the central NxN pixels of each patch, which keeps the "
      "exemplar's fine grain; odd, 0 = the whole patch.",
      "px", 0, 31, &O::final_vote_size},
+    {"vote-coherence",
+     "Weighted vote: each patch also weighs by how many patches around it map consistently "
+     "(a Gaussian of their discrepancy with this variance; Brushables: 2); coherent pieces of "
+     "the exemplar outvote stray patches, but also thin strokes made of small pieces. 0 = off.",
+     "px^2", 0, 100, &O::vote_coherence},
     {"style-weight", "Weight of the style term (B' vs A') relative to the guides.", "", 0, 1e6,
      &O::style_weight},
     {"falloff-sigma", "Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal.",
@@ -97,6 +102,11 @@ const std::array<OptionSpec, 20> kSpecs{{
      "Error budget: fraction of target patches covered by reversed retrieval before the rest "
      "falls back to forward nearest neighbours (StyLit: 0.95).",
      "", 0, 1, &O::budget_coverage},
+    {"coherence-sweeps",
+     "Error budget: sweeps after the patch assignment in which every stray match (continuing "
+     "fewer than two of its neighbours' source regions) takes a neighbour's shifted match where "
+     "that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as published).",
+     "iterations", 0, 100, &O::coherence_sweeps},
     {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
      "rounds", 1, 1000, &O::budget_max_rounds},
     {"budget-focus",

@@ -100,9 +100,20 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
     });
 }
 
+/// What a PatchMatch iteration tries per query.
+enum class Exploration {
+    /// Propagation, the problem's candidates, random search and the uniform draw.
+    Full,
+    /// Propagation only: a query takes its scan-order neighbour's shifted match where that is
+    /// closer. Grows coherent regions (every accepted step makes two neighbours continue one
+    /// source region) and finds nothing new.
+    PropagationOnly,
+};
+
 /// Runs `iterations` PatchMatch iterations on `field` (whose active entries must be evaluated).
 template <class Problem>
-void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t key, int threads) {
+void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t key, int threads,
+                    Exploration exploration = Exploration::Full) {
     const int w = field.width();
     const int h = field.height();
     const int bands = (h + kBandRows - 1) / kBandRows;
@@ -142,7 +153,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                     const int ny = y - step;
                     if (nx >= 0 && nx < w) {
                         const std::size_t ni = static_cast<std::size_t>(y) * w + nx;
-                        if (P.query_active(ni)) {
+                        if (P.has_match(ni)) {
                             const Match& m = field[ni];
                             const RotatedOffset o = rotated_step(m.angle_rad, step, 0);
                             try_candidate(m.x + o.dx, m.y + o.dy);
@@ -150,7 +161,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                     }
                     if (ny >= 0 && ny < h) {
                         const std::size_t ni = static_cast<std::size_t>(ny) * w + x;
-                        if (P.query_active(ni)) {
+                        if (P.has_match(ni)) {
                             const bool same_band = ny >= y0 && ny < y1;
                             const Match& m = same_band
                                                  ? field[ni]
@@ -158,6 +169,11 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                             const RotatedOffset o = rotated_step(m.angle_rad, 0, step);
                             try_candidate(m.x + o.dx, m.y + o.dy);
                         }
+                    }
+
+                    if (exploration == Exploration::PropagationOnly) {
+                        field[qi] = best;
+                        continue;
                     }
 
                     // Extra candidates at this position (ribbons), before the random search
@@ -205,9 +221,16 @@ struct ForwardProblem {
     /// more candidate (x = -1: none); see SynthesisInput::candidate_nnfs.
     const std::vector<Nnf>* candidates = nullptr;
 
+    /// Optional (tw*th): target pixels whose matches propagate to their neighbours (default:
+    /// `process`); set when only some of the matched pixels are optimized.
+    const std::uint8_t* matched = nullptr;
+
     int db_width() const { return L.sw; }
     int db_height() const { return L.sh; }
     bool query_active(std::size_t qi) const { return process[qi] != 0; }
+    bool has_match(std::size_t qi) const {
+        return (matched != nullptr ? matched : process)[qi] != 0;
+    }
     bool db_ok(std::size_t qi, int sx, int sy) const {
         return L.compatible(qi, sx, sy) && (allowed == nullptr || allowed[L.source_index(sx, sy)]);
     }
@@ -256,6 +279,7 @@ struct ReverseProblem {
     int db_width() const { return L.tw; }
     int db_height() const { return L.th; }
     bool query_active(std::size_t si) const { return query_ok[si] != 0; }
+    bool has_match(std::size_t si) const { return query_active(si); }
     bool db_ok(std::size_t si, int tx, int ty) const {
         const std::size_t ti = L.target_index(tx, ty);
         return mask_bit(target_free, ti) && L.target_group(ti) == L.source_group(si);

@@ -179,15 +179,16 @@ Image final_errors(const synth::Level& L, Nnf& nnf, int threads) {
     return error;
 }
 
-// Vote parameters of a level; `weights` receives the weighted vote's weights if needed.
-synth::VoteParams vote_params(const synth::Level& L, VoteMode mode, const Nnf& nnf,
-                              std::vector<float>* weights) {
+// Vote parameters of a level; `weights` receives the weighted vote's weights if needed
+// (`coherence`: SynthesisOptions::vote_coherence).
+synth::VoteParams vote_params(const synth::Level& L, VoteMode mode, float coherence, const Nnf& nnf,
+                              std::vector<float>* weights, int threads) {
     synth::VoteParams vp;
     vp.patch_size = L.patch_size;
     vp.active = L.target_active.data();
     vp.fixed = L.target_fixed.empty() ? nullptr : L.target_fixed.data();
     if (mode == VoteMode::Weighted && weights != nullptr) {
-        *weights = synth::error_weights(nnf, vp.active);
+        *weights = synth::vote_weights(nnf, vp.active, L.patch_size, coherence, threads);
         vp.patch_weights = *weights;
     }
     return vp;
@@ -242,7 +243,8 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        candidates.empty() ? nullptr : &candidates,
                                        finest ? options.finest_first_round_iterations : 0};
         synth::search(setup, nnf);
-        synth::VoteParams vp = vote_params(L, options.vote, nnf, &weights);
+        synth::VoteParams vp =
+            vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
         if (end_run && it + 1 == iterations) vp.footprint = last_vote_size(options, L.patch_size);
         synth::vote(nnf, L.source_style, vp, current, threads);
         set_target_style(L, current);
@@ -473,7 +475,8 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
         auto vote_initial = [&] {
             if (keep_initial) return;
-            synth::vote(nnf, L.source_style, vote_params(L, VoteMode::Average, nnf, {}), current,
+            synth::vote(nnf, L.source_style,
+                        vote_params(L, VoteMode::Average, 0.0f, nnf, {}, threads), current,
                         threads);
             set_target_style(L, current);
         };

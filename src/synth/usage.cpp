@@ -381,6 +381,49 @@ void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nn
     for (std::size_t s = 0; s < query.size(); ++s) query[s] = query[s] && (near[s] || !used[s]);
 }
 
+// A target pixel whose match continues the source region of fewer than this many of its four
+// neighbours' matches is a stray (an isolated pick or a seam pixel) that merge_stray_matches may
+// replace. 2 keeps region borders (a border pixel continues its own region's neighbours): with 1
+// or 0 a region may grow over another one, e.g. a source shadow over the object beside it
+// (measurements in docs/PERFORMANCE.md).
+constexpr int kStrayBelowAgreeing = 2;
+
+// Whether the match at target (x, y) is a stray (see kStrayBelowAgreeing).
+bool stray_match(const Level& L, const Nnf& nnf, int x, int y) {
+    constexpr std::array<std::array<int, 2>, 4> kSteps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+    const Match& m = nnf[L.target_index(x, y)];
+    int agreeing = 0;
+    for (const auto& [dx, dy] : kSteps) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) continue;
+        const std::size_t n = L.target_index(nx, ny);
+        if (!L.target_active[n]) continue;
+        const RotatedOffset o = rotated_step(m.angle_rad, dx, dy);
+        if (nnf[n].x == m.x + o.dx && nnf[n].y == m.y + o.dy) ++agreeing;
+    }
+    return agreeing < kStrayBelowAgreeing;
+}
+
+// The error budget assigns targets one by one, so neighbours often take unrelated sources and
+// the result is a mosaic of small pieces whose seams no exemplar patch contains. Propagation-only
+// sweeps let each stray match take a neighbour's shifted match where that is closer, merging the
+// strays into the regions around them (options.coherence_sweeps iterations; the strays are chosen
+// once, before the sweeps). Matches inside coherent regions stay, so usage stays controlled.
+void merge_stray_matches(const SearchSetup& setup, Nnf& nnf) {
+    const Level& L = setup.level;
+    std::vector<std::uint8_t> stray(L.target_active.size(), 0);
+    parallel_for(0, L.th, setup.threads, [&](int y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const std::size_t t = L.target_index(x, y);
+            stray[t] = L.target_active[t] && stray_match(L, nnf, x, y);
+        }
+    });
+    ForwardProblem problem = forward_problem(setup, stray.data(), nullptr, nullptr);
+    problem.matched = L.target_active.data();
+    run_patchmatch(problem, nnf, setup.options.coherence_sweeps, hash_keys(setup.key, 0xC0),
+                   setup.threads, Exploration::PropagationOnly);
+}
+
 // StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
 // whose summed error stays within the budget T estimated at the knee of the sorted errors; once
 // `budget_coverage` of the targets are covered the rest take forward nearest neighbours.
@@ -424,6 +467,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         stats.forward_assigned = rr.free_count();
         rr.forward_candidates(nullptr, 0);
     }
+    if (setup.options.coherence_sweeps > 0) merge_stray_matches(setup, nnf);
     return stats;
 }
 

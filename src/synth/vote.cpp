@@ -17,21 +17,48 @@ namespace exemplar::synth {
 // the stroke texture of the stylit and texbynum examples (docs/algorithms.md).
 constexpr double kWeightedVoteEpsilon = 0.01;
 
-std::vector<float> error_weights(const Nnf& nnf, const std::uint8_t* active) {
+std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
+                                float coherence, int threads) {
+    auto votes = [&](std::size_t i) { return (active == nullptr || active[i]) && nnf[i].x >= 0; };
     double sum = 0.0;
     std::size_t n = 0;
     for (std::size_t i = 0; i < nnf.pixel_count(); ++i) {
-        if ((active != nullptr && !active[i]) || nnf[i].x < 0) continue;
+        if (!votes(i)) continue;
         sum += nnf[i].error;
         ++n;
     }
     const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
     std::vector<float> weights(nnf.pixel_count(), 1.0f);
-    if (mean > 0.0) {
-        for (std::size_t i = 0; i < weights.size(); ++i) {
-            weights[i] = static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[i].error / mean));
+    const int w = nnf.width(), h = nnf.height(), r = patch_size / 2;
+    parallel_for(0, h, threads, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            float& weight = weights[i];
+            if (mean > 0.0) {
+                weight = static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[i].error / mean));
+            }
+            if (!(coherence > 0.0f) || !votes(i)) continue;
+            // Coherence: where this match puts each neighbour q, against q's own match.
+            const Match& p = nnf[i];
+            const double c = std::cos(p.angle_rad), s = std::sin(p.angle_rad);
+            double agree = 0.0;
+            for (int dy = -r; dy <= r; ++dy) {
+                const int qy = y + dy;
+                if (qy < 0 || qy >= h) continue;
+                for (int dx = -r; dx <= r; ++dx) {
+                    const int qx = x + dx;
+                    if (qx < 0 || qx >= w) continue;
+                    const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
+                    if (!votes(qi)) continue;
+                    const Match& q = nnf[qi];
+                    const double ex = p.x + c * dx - s * dy - q.x;
+                    const double ey = p.y + s * dx + c * dy - q.y;
+                    agree += std::exp(-(ex * ex + ey * ey) / (2.0 * coherence));
+                }
+            }
+            weight = static_cast<float>(weight * agree);
         }
-    }
+    });
     return weights;
 }
 

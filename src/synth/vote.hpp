@@ -27,8 +27,13 @@ struct VoteParams {
 };
 
 /// Weights of VoteMode::Weighted: 1 / (0.01 + e / ē) per NNF entry, e its error and ē the mean
-/// error over the entries that vote (`active`, nullptr = all entries with a match).
-std::vector<float> error_weights(const Nnf& nnf, const std::uint8_t* active);
+/// error over the entries that vote (`active`, nullptr = all entries with a match), times the
+/// entry's coherence when `coherence` (σ², px²) is positive: the sum over the entries q of its
+/// patch_size x patch_size neighbourhood that vote of exp(-|R_p(q) - R_q(q)|² / 2σ²), R_q(q)
+/// the source position q maps to and R_p(q) where p's match (shifted and rotated) puts it
+/// (Lukáč et al. 2015, eq. 6.8).
+std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
+                                float coherence, int threads);
 
 /// Writes the vote into `out`, which must already have the NNF's size and the source's channel
 /// count. Pixels that receive no vote (or are fixed) keep their value.

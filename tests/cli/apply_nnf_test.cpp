@@ -51,6 +51,8 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     EXPECT_GT(max_abs_diff(read("whole5.png"), read("styled5.png")), 2.0f / 255.0f);
     expect_failure(with(apply, {"--vote-size", "2"}), 1,
                    "--vote-size: 2 is invalid (must be 0 or odd, 0..31)");
+    expect_failure(with(apply, {"--vote-coherence", "-2"}), 1,
+                   "vote-coherence: -2 is invalid (must be 0..100)");
 }
 
 TEST_F(ApplyNnf, SixteenBitSourceGivesSixteenBitOutput) {

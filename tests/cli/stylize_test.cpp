@@ -290,6 +290,10 @@ TEST_F(Cli, OutOfRangeValues) {
                    "finest-first-round-iterations: 1.5 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--final-vote-size", "4"}), 1,
                    "final-vote-size: 4 is invalid (must be 0 or odd, 0..31)");
+    expect_failure(with(stylize_args(), {"--coherence-sweeps", "-1"}), 1,
+                   "coherence-sweeps: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--vote-coherence", "101"}), 1,
+                   "vote-coherence: 101 is invalid (must be 0..100)");
     expect_failure(with(stylize_args(), {"--budget-focus", "1.5"}), 1,
                    "budget-focus: 1.5 is invalid (must be 0..1)");
     expect_failure(with(stylize_args(), {"--guide-pca", "-0.1"}), 1,

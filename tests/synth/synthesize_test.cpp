@@ -303,6 +303,24 @@ TEST(Synthesize, NnfReappliesToTheStyle) {
             << "final pass " << final_pass;
     }
     opt.final_pass_iterations = 0;
+    // With the coherence-weighted vote, apply_nnf reproduces it given the same variance.
+    opt.vote_coherence = 2.0f;
+    {
+        auto coherent = synthesize(in, opt, RunContext{2});
+        ASSERT_TRUE(coherent.ok());
+        auto again = apply_nnf(coherent->nnf, in.style, coherent->nnf_patch_size,
+                               VoteMode::Weighted, 2, coherent->vote_size, 2.0f);
+        ASSERT_TRUE(again.ok());
+        EXPECT_TRUE(
+            std::equal(again->data().begin(), again->data().end(), coherent->image.data().begin()));
+        auto plain = apply_nnf(coherent->nnf, in.style, coherent->nnf_patch_size,
+                               VoteMode::Weighted, 2, coherent->vote_size, 0.0f);
+        ASSERT_TRUE(plain.ok());
+        EXPECT_FALSE(
+            std::equal(plain->data().begin(), plain->data().end(), coherent->image.data().begin()));
+        EXPECT_FALSE(apply_nnf(coherent->nnf, in.style, 5, VoteMode::Weighted, 2, 3, -1.0f).ok());
+    }
+    opt.vote_coherence = 0.0f;
     auto result = synthesize(in, opt, RunContext{2});
     ASSERT_TRUE(result.ok());
     // NNF image round trip.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "level_builder.hpp"
 #include "patchmatch.hpp"
@@ -190,6 +191,64 @@ TEST(ErrorBudget, CoversEveryTargetAndPrefersLowErrors) {
     const double covered =
         static_cast<double>(stats.reverse_assigned) / static_cast<double>(active);
     EXPECT_TRUE(covered >= 0.95 || stats.rounds == f.opt.budget_max_rounds) << covered;
+}
+
+// Stray matches: those continuing the source region of fewer than 2 of their 4 neighbours
+// (angle 0 here).
+std::vector<std::uint8_t> strays(const Level& L, const Nnf& nnf) {
+    std::vector<std::uint8_t> out(nnf.pixel_count(), 0);
+    for (int y = 0; y < L.th; ++y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const std::size_t t = L.target_index(x, y);
+            if (!L.target_active[t]) continue;
+            int agreeing = 0;
+            for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) continue;
+                const std::size_t n = L.target_index(nx, ny);
+                if (!L.target_active[n]) continue;
+                agreeing += nnf[n].x == nnf[t].x + dx && nnf[n].y == nnf[t].y + dy ? 1 : 0;
+            }
+            out[t] = agreeing < 2 ? 1 : 0;
+        }
+    }
+    return out;
+}
+
+// The coherence sweeps after the error budget's assignment: only stray matches change, each to a
+// closer one (with its exact distance), and fewer strays remain; the same for any thread count.
+TEST(ErrorBudget, CoherenceSweepsMergeOnlyStrayMatches) {
+    UsageFixture plain = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, true);
+    plain.opt.coherence_sweeps = 0;
+    search(SearchSetup{plain.L, plain.opt, 3, 2}, plain.nnf);
+    const std::vector<std::uint8_t> before = strays(plain.L, plain.nnf);
+    std::size_t changed = 0;
+    for (const int threads : {1, 2}) {
+        UsageFixture swept = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, true);
+        swept.opt.coherence_sweeps = 2;
+        search(SearchSetup{swept.L, swept.opt, 3, threads}, swept.nnf);
+        changed = 0;
+        for (std::size_t t = 0; t < swept.nnf.pixel_count(); ++t) {
+            if (!swept.L.target_active[t]) continue;
+            const Match& a = plain.nnf[t];
+            const Match& b = swept.nnf[t];
+            if (a.x == b.x && a.y == b.y) continue;
+            ++changed;
+            ASSERT_TRUE(before[t]) << "a coherent match changed at " << t;
+            ASSERT_LT(b.error, a.error) << t;
+            ASSERT_TRUE(swept.L.compatible(t, b.x, b.y)) << t;  // labels kept
+            ASSERT_NEAR(b.error,
+                        patch_distance_reference(swept.L, static_cast<int>(t % swept.L.tw),
+                                                 static_cast<int>(t / swept.L.tw), b.x, b.y, 0.0f),
+                        1e-4f);
+        }
+        const std::vector<std::uint8_t> after = strays(swept.L, swept.nnf);
+        const auto count = [](const std::vector<std::uint8_t>& v) {
+            return std::count(v.begin(), v.end(), 1);
+        };
+        EXPECT_GT(changed, 0u);
+        EXPECT_LT(count(after), count(before)) << "threads " << threads;
+    }
 }
 
 TEST(OccurrencePenalty, ReducesMaximalUsage) {

@@ -62,9 +62,11 @@ Result<Nnf> nnf_from_image(const Image& image);
 /// patches, or of their central `vote_size` pixels (0 = whole patches), each read from `source`
 /// at its match (rotated, nearest sample), exactly as the synthesis voted (use
 /// SynthesisResult::nnf_patch_size, SynthesisResult::vote_size and the run's vote mode; the
-/// weights come from the stored errors). Source reads beyond its border are clamped; every match
+/// weights come from the stored errors and, with `vote_coherence` > 0, the matches' coherence as
+/// SynthesisOptions::vote_coherence). Source reads beyond its border are clamped; every match
 /// must lie inside `source`.
 Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size,
-                        VoteMode vote = VoteMode::Weighted, int threads = 0, int vote_size = 0);
+                        VoteMode vote = VoteMode::Weighted, int threads = 0, int vote_size = 0,
+                        float vote_coherence = SynthesisOptions{}.vote_coherence);
 
 }  // namespace exemplar

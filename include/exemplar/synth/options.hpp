@@ -80,6 +80,13 @@ struct SynthesisOptions {
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
     UsageStrategy usage = UsageStrategy::ErrorBudget;
     VoteMode vote = VoteMode::Weighted;
+    /// Weighted vote: each patch's weight is also multiplied by its coherence, the number of
+    /// patches around it that map their pixels where it does (Lukáč et al. 2015, Brushables
+    /// eq. 6.8: a Gaussian of the mapping discrepancy with this variance, in px²; the paper
+    /// uses 2). Coherent pieces of the exemplar then outvote the stray patches between them.
+    /// 0 = off (default: it also outvotes thin structures made of many small pieces, such as
+    /// the strokes of the animation's line term; measurements in docs/PERFORMANCE.md).
+    float vote_coherence = 0.0f;
     /// Extra EM iterations with 3x3 patches after the finest level (ebsynth's "extrapass3x3").
     /// 0 = off (default): final_vote_size keeps the fine grain at a fraction of the cost.
     int final_pass_iterations = 0;
@@ -97,6 +104,14 @@ struct SynthesisOptions {
     /// components are coded in 8 bits over their range, which loses the exact coding of 8-bit
     /// guides; see docs/algorithms.md). Not applied when a guide has a per-pixel weight map.
     float guide_pca = 0.0f;
+    /// Error budget: propagation-only PatchMatch sweeps after the assignment. The budget
+    /// assigns targets one by one, so neighbours often take unrelated sources: a mosaic of
+    /// small pieces whose seams no exemplar patch contains. In the sweeps every stray match
+    /// (one continuing the source region of fewer than two of its four neighbours) takes a
+    /// neighbour's shifted match where that is closer; matches inside coherent regions stay.
+    /// Closer to the exemplar and more of its grain kept; 0 = off (StyLit as published).
+    /// Measurements in docs/PERFORMANCE.md.
+    int coherence_sweeps = 2;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
     /// Error budget: once fewer than this fraction of the target patches are still free, a
