@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "exemplar/io/folders.hpp"
+
 namespace exemplar::cli {
 
 namespace {
@@ -65,12 +67,13 @@ Status check_output_path(std::string_view flag, const std::string& path) {
     if (path.empty()) return invalid_argument(std::string(flag) + ": is empty");
     std::error_code ec;
     if (fs::is_directory(path, ec)) return invalid_argument(named(flag, path) + ": is a folder");
+    // Missing folders are created by the write; whether they can be is checked now.
+    if (const Status can = check_parent_folders(path); !can.is_ok()) {
+        return Status(can.code(), std::string(flag) + " " + can.message());
+    }
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
-    if (!fs::is_directory(folder, ec)) {
-        return io_error(named(flag, path) + ": folder " + folder.string() + " does not exist");
-    }
-    if (::access(folder.c_str(), W_OK) != 0) {
+    if (fs::is_directory(folder, ec) && ::access(folder.c_str(), W_OK) != 0) {
         return io_error(named(flag, path) + ": folder " + folder.string() + " is not writable");
     }
     return Status::ok();

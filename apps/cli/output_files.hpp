@@ -12,8 +12,9 @@
 
 namespace exemplar::cli {
 
-/// Checks that `path` can be created: its folder exists and is writable, and it is not a folder.
-/// `flag` names the parameter in messages (`--output out/x.png: folder out does not exist`).
+/// Checks that `path` can be created: it is not a folder, and its folder is writable or can be
+/// created (writers create missing folders). `flag` names the parameter in messages (`--output
+/// out/x/a.png: cannot create folder "out/x": out is a file, not a folder`).
 Status check_output_path(std::string_view flag, const std::string& path);
 
 /// Checks that the format chosen by `path`'s extension can store an image with the channels of

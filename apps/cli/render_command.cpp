@@ -7,6 +7,7 @@
 #include <map>
 
 #include "commands.hpp"
+#include "exemplar/io/folders.hpp"
 #include "exemplar/render/animation.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/render/scene.hpp"
@@ -68,10 +69,8 @@ Status check_output(const std::string& output, bool one_exr) {
         return invalid_argument("--output " + output +
                                 ": is a file (give a folder, or a name ending in .exr)");
     }
-    fs::path parent = fs::path(output).parent_path();
-    if (parent.empty()) parent = ".";
-    if (!fs::is_directory(parent, ec)) {
-        return io_error("--output " + output + ": folder " + parent.string() + " does not exist");
+    if (const Status can = check_folders(output); !can.is_ok()) {
+        return Status(can.code(), "--output " + can.message());
     }
     return Status::ok();
 }
@@ -80,9 +79,9 @@ Status check_output(const std::string& output, bool one_exr) {
 Status write_buffers(const render::RenderBuffers& buffers, const std::string& output, bool one_exr,
                      const std::string& format) {
     if (one_exr) return render::save_buffers_to_exr(buffers, output);
-    std::error_code ec;
-    fs::create_directory(output, ec);
-    if (ec) return io_error("--output " + output + ": cannot create folder (" + ec.message() + ")");
+    if (const Status made = create_folders(output); !made.is_ok()) {
+        return Status(made.code(), "--output " + made.message());
+    }
     return render::save_buffers_to_folder(
         buffers, output,
         format == "png" ? render::BufferFileFormat::Png : render::BufferFileFormat::Exr);

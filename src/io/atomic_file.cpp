@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "exemplar/core/rng.hpp"
+#include "exemplar/io/folders.hpp"
 
 namespace exemplar::io_detail {
 
@@ -39,12 +40,8 @@ std::string random_suffix() {
 TempFile::TempFile(std::string destination) : destination_(std::move(destination)) {
     const fs::path dest(destination_);
     const fs::path folder = dest.parent_path();
-    std::error_code ec;
-    if (!folder.empty() && !fs::is_directory(folder, ec)) {
-        status_ = io_error(fmt::format("{}: cannot write: folder \"{}\" does not exist",
-                                       destination_, folder.string()));
-        return;
-    }
+    status_ = create_parent_folders(destination_);
+    if (!status_.is_ok()) return;
     int last_errno = 0;
     for (int attempt = 0; attempt < 100; ++attempt) {
         std::string name(1, '.');

@@ -16,6 +16,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "exemplar/io/folders.hpp"
 #include "exemplar/stylit/sheet.hpp"
 #include "marks.hpp"
 
@@ -44,6 +45,7 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
 // Writes `bytes` to `path` through a temporary file in the same folder and a rename.
 Status write_atomically(const std::string& bytes, const std::string& path) {
     static std::atomic<unsigned> counter{0};
+    EXEMPLAR_RETURN_IF_ERROR(create_parent_folders(path));
     const fs::path target(path);
     fs::path folder = target.parent_path();
     if (folder.empty()) folder = ".";

@@ -64,8 +64,8 @@ TEST_F(StylitOutputs, OutputFilesAreCheckedBeforeTheRun) {
                    "--save-nnf " + path("nnf.png") + ": must be an .exr file");
     expect_failure(with(args(), {"--save-error", path("out.png")}), kExitFailure,
                    "--save-error " + path("out.png") + ": is also the --output file");
-    expect_failure(with(args(), {"--save-error", path("no/such/error.png")}), kExitFailure,
-                   "--save-error " + path("no/such/error.png") + ": folder");
+    expect_failure(with(args(), {"--save-error", path("style.png/error.png")}), kExitFailure,
+                   "--save-error " + path("style.png/error.png") + ": cannot create folder");
     expect_failure(with(args(), {"--save-error", path("error.xyz")}), kExitFailure,
                    "--save-error " + path("error.xyz"));
 }

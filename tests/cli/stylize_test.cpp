@@ -9,10 +9,10 @@ namespace exemplar::cli::testing {
 namespace {
 
 TEST_F(Cli, StylizeWritesTheOutputAndPrintsItsPath) {
-    const CliRun r = run(
-        with(stylize_args(), {"--weight", "2", "--guide", path("ramp_a.exr"), path("ramp_b.exr"),
-                              "--weight", "5", "-o", path("out.png"), "--save-nnf", path("nnf.exr"),
-                              "--save-error", path("error.exr"), "-j", "2"}));
+    const CliRun r = run(with(
+        stylize_args(), {"--weight", "2", "--guide", path("ramp_a.exr"), path("ramp_b.exr"),
+                         "--weight", "5", "-o", path("out.png"), "--save-nnf", path("maps/nnf.exr"),
+                         "--save-error", path("maps/new/error.exr"), "-j", "2"}));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out, path("out.png") + "\n");
     // The NNF's patch size (3 after the final 3x3 pass, which stylize_args() asks for) is told
@@ -23,10 +23,11 @@ TEST_F(Cli, StylizeWritesTheOutputAndPrintsItsPath) {
     EXPECT_EQ(out.height(), 30);
     EXPECT_EQ(out.channels(), 3);
     EXPECT_EQ(png_bit_depth(path("out.png")), 8);  // the style is 8-bit
-    const Image nnf = read("nnf.exr");
+    // The maps' folders did not exist: they were created.
+    const Image nnf = read("maps/nnf.exr");
     EXPECT_EQ(nnf.channels(), 4);
     EXPECT_EQ(nnf.width(), 36);
-    const Image error = read("error.exr");
+    const Image error = read("maps/new/error.exr");
     EXPECT_EQ(error.channels(), 1);
     EXPECT_EQ(error.height(), 30);
 }
@@ -327,8 +328,8 @@ TEST_F(Cli, CommandLineGrammarErrorsExitWith2) {
 // --- Output files -----------------------------------------------------------------------------
 
 TEST_F(Cli, OutputsAreCheckedBeforeTheRun) {
-    expect_failure_as_is(with(stylize_args(), {"-o", path("missing/out.png")}), 1,
-                         "--output " + path("missing/out.png") + ": folder");
+    expect_failure_as_is(with(stylize_args(), {"-o", path("style.png/out.png")}), 1,
+                         "--output " + path("style.png/out.png") + ": cannot create folder");
     expect_failure_as_is(with(stylize_args(), {"-o", path("out.xyz")}), 1,
                          "--output " + path("out.xyz") + ": unknown image file extension");
     write("five.exr", texture(32, 28, 5, 7));

@@ -509,13 +509,29 @@ TEST_F(ImageIo, SampleFormatsAFormatCannotHoldAreRejected) {
     EXPECT_TRUE(files_in_dir().empty());
 }
 
-TEST_F(ImageIo, EmptyImageAndMissingFolderAreErrors) {
+TEST_F(ImageIo, EmptyImageAndFileInTheWayAreErrors) {
     EXPECT_EQ(save_image(Image(), path("empty.png")).code(), ErrorCode::InvalidArgument);
-    const std::string file = path("no/such/folder/out.png");
+    EXPECT_TRUE(files_in_dir().empty());
+    // A file where a folder of the destination would go: one line naming both.
+    ASSERT_TRUE(save_image(Image(2, 2, 3), path("blocker.png")).is_ok());
+    const std::string file = path("blocker.png/sub/out.png");
     const Status status = save_image(Image(2, 2, 3), file);
     EXPECT_EQ(status.code(), ErrorCode::IoError);
     expect_error_names_file(status, file);
-    EXPECT_TRUE(files_in_dir().empty());
+    EXPECT_NE(status.message().find("blocker.png is a file, not a folder"), std::string::npos)
+        << status.message();
+    EXPECT_EQ(files_in_dir(), std::set<std::string>{"blocker.png"});
+}
+
+// Missing folders of a destination are created (as Blender does), and the write stays atomic.
+TEST_F(ImageIo, MissingFoldersAreCreated) {
+    const Image im = gradient_image(4, 3, 3);
+    ASSERT_TRUE(save_image(im, path("new/deeper/out.png")).is_ok());
+    auto back = load_image(path("new/deeper/out.png"));
+    ASSERT_TRUE(back.ok()) << back.status().message();
+    EXPECT_EQ(back->width(), 4);
+    EXPECT_EQ(std::distance(fs::directory_iterator(path("new/deeper")), fs::directory_iterator()),
+              1);
 }
 
 TEST_F(ImageIo, AtomicWritesLeaveNoTemporaryFiles) {

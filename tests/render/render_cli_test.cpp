@@ -128,7 +128,14 @@ TEST_F(RenderCli, BadParametersAreNamed) {
     expect_failure(with({"--max-bounces", "99"}), 1, "--max-bounces: 99 is invalid");
     expect_failure(with({"--threads", "-1"}), 1, "--threads: -1");
     expect_failure(tiny({"--format", "tga", "-o", path("out")}), 1, "--format: \"tga\"");
-    expect_failure(tiny({"-o", path("no/such/out.exr")}), 1, "does not exist");
+    {
+        // A file where the output's folder would go (missing folders are created otherwise).
+        std::ofstream(path("blocker")) << "x";
+        const CliResult r = run(tiny({"-o", path("blocker/out.exr")}));
+        EXPECT_EQ(r.code, 1) << r.err;
+        EXPECT_NE(r.err.find("blocker is a file, not a folder"), std::string::npos) << r.err;
+        fs::remove(path("blocker"));
+    }
     expect_failure({"render", "-o", path("out.exr")}, 2, "--scene is required");
     expect_failure(with({"--spp", "many"}), 2, "--spp");
 }
@@ -167,18 +174,19 @@ protected:
 };
 
 TEST_F(AnimationCli, FramesGoToAPatternWithFlowLayersThatLoadFlowReads) {
-    const CliResult r = run(anim({"--frames", "1-2", "-o", path("f_%03d.exr")}));
+    // The pattern's folders do not exist yet: they are created.
+    const CliResult r = run(anim({"--frames", "1-2", "-o", path("shots/a/f_%03d.exr")}));
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_EQ(r.out, path("f_001.exr") + "\n" + path("f_002.exr") + "\n");
-    EXPECT_FALSE(fs::exists(path("f_000.exr")));
-    auto layers = read_layer_names(path("f_002.exr"));
+    EXPECT_EQ(r.out, path("shots/a/f_001.exr") + "\n" + path("shots/a/f_002.exr") + "\n");
+    EXPECT_FALSE(fs::exists(path("shots/a/f_000.exr")));
+    auto layers = read_layer_names(path("shots/a/f_002.exr"));
     ASSERT_TRUE(layers.ok()) << layers.status().message();
     for (const char* name : {"fullgi", "orientation", "lines", "forward_flow", "backward_flow",
                              "occlusion", "disocclusion"}) {
         EXPECT_NE(std::find(layers->begin(), layers->end(), name), layers->end()) << name;
     }
-    auto forward = load_flow(path("f_001.exr"), "forward_flow");
-    auto backward = load_flow(path("f_001.exr"), "backward_flow");
+    auto forward = load_flow(path("shots/a/f_001.exr"), "forward_flow");
+    auto backward = load_flow(path("shots/a/f_001.exr"), "backward_flow");
     ASSERT_TRUE(forward.ok()) << forward.status().message();
     ASSERT_TRUE(backward.ok()) << backward.status().message();
     ASSERT_EQ(forward->width(), 32);
@@ -190,12 +198,12 @@ TEST_F(AnimationCli, FramesGoToAPatternWithFlowLayersThatLoadFlowReads) {
 }
 
 TEST_F(AnimationCli, OneFrameToAFolderWritesFlowsAsExrAndMasksAsPng) {
-    ASSERT_EQ(run(anim({"--frame", "2", "-o", path("frame"), "-q"})).code, 0);
+    ASSERT_EQ(run(anim({"--frame", "2", "-o", path("new/frame"), "-q"})).code, 0);
     for (const char* name : {"forward_flow.exr", "backward_flow.exr", "orientation.exr",
                              "occlusion.png", "disocclusion.png", "lines.png", "fullgi.png"}) {
-        EXPECT_TRUE(fs::exists(path("frame") + "/" + name)) << name;
+        EXPECT_TRUE(fs::exists(path("new/frame") + "/" + name)) << name;
     }
-    EXPECT_TRUE(load_flow(path("frame") + "/forward_flow.exr").ok());
+    EXPECT_TRUE(load_flow(path("new/frame") + "/forward_flow.exr").ok());
     // The scene's own range (0-3) when no --frames is given.
     ASSERT_EQ(run(anim({"-o", path("all_%d"), "-q"})).code, 0);
     for (int f = 0; f <= 3; ++f) EXPECT_TRUE(fs::is_directory(path("all_" + std::to_string(f))));

@@ -119,7 +119,8 @@ TEST_F(Beautify, BadInputsGiveOneLineErrors) {
     fails({"beautify", path("one.svg"), "--suggestions", path("s.txt")}, 1,
           "must be a .json or .svg file");
     fails({"beautify", path("one.svg"), "--preview", path("p.jpg")}, 1, "must be a .png file");
-    fails({"beautify", path("one.svg"), "--report", path("no/such/r.json")}, 1, "does not exist");
+    fails({"beautify", path("one.svg"), "--report", path("one.svg/r.json")}, 1,
+          "one.svg is a file, not a folder");
     fails({"beautify"}, 2, "drawing is required");
 }
 
