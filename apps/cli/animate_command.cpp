@@ -136,6 +136,9 @@ AnimateCommand::AnimateCommand(CLI::App& parent) {
                      "Frames per solve (0 = the whole range; bounds memory and lost work)");
     app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
     seed_flag_ = app_->add_option("--seed", seed_, "Random seed (same seed, same output)");
+    app_->add_option("--quality", quality_,
+                     "Search effort: fast (previews), default, best; overrides the job's "
+                     "\"quality\" (its explicit engine options still apply)");
     app_->add_flag("--resume,!--no-resume", resume_,
                    "Skip frames whose output exists (default on)");
     app_->add_flag("--quiet,-q", quiet_, "No progress bar, no output paths");
@@ -148,6 +151,10 @@ Status AnimateCommand::run(const Streams& streams) const {
     if (!output_.empty()) job.output = output_;
     if (!mp4_.empty()) job.mp4 = mp4_;
     if (chunk_ >= 0) job.chunk = chunk_;
+    if (!quality_.empty()) {
+        job.quality = quality_;
+        EXEMPLAR_RETURN_IF_ERROR(build_synthesis_options(job, "--quality"));
+    }
     if (seed_flag_->count() > 0) job.options.synthesis.seed = seed_;
     if (job.output.empty()) return invalid_argument(job_path_ + ": key 'output' is missing");
     if (job.chunk == 1) return invalid_argument("--chunk: must be 0 (whole range) or >= 2");

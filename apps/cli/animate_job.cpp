@@ -231,15 +231,12 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
             if (!preset.ok()) return invalid_argument(path + ": " + preset.status().message());
             o.flow.preset = *preset;
         } else if (key == "usage") {
-            std::string name;
-            EXEMPLAR_RETURN_IF_ERROR(string_of(value, raw_key, name));
-            auto usage = parse_usage_strategy(name);
-            if (!usage.ok()) return invalid_argument(path + ": " + usage.status().message());
-            o.synthesis.usage = *usage;
+            EXEMPLAR_RETURN_IF_ERROR(string_of(value, raw_key, job.usage));
+        } else if (key == "quality") {
+            EXEMPLAR_RETURN_IF_ERROR(string_of(value, raw_key, job.quality));
         } else if (const OptionSpec* spec = find_option(key)) {
             if (!value.is_number()) return type_error(path, raw_key, "a number");
-            const Status st = set_option(o.synthesis, *spec, value.get<double>());
-            if (!st.is_ok()) return invalid_argument(path + ": " + st.message());
+            job.numeric[std::string(spec->name)] = value.get<double>();
         } else {
             return invalid_argument(path + ": unknown key '" + raw_key + "'");
         }
@@ -289,7 +286,29 @@ Result<AnimateJob> load_animate_job(const std::string& path) {
     if (job.chunk < 0 || job.chunk == 1) {
         return invalid_argument(path + ": key 'chunk' must be 0 (whole range) or >= 2");
     }
+    EXEMPLAR_RETURN_IF_ERROR(build_synthesis_options(job, path));
     return job;
+}
+
+Status build_synthesis_options(AnimateJob& job, const std::string& where) {
+    Quality quality = Quality::Default;
+    if (!job.quality.empty()) {
+        auto parsed = parse_quality(job.quality);
+        if (!parsed.ok()) return invalid_argument(where + ": " + parsed.status().message());
+        quality = *parsed;
+    }
+    SynthesisOptions& s = job.options.synthesis;
+    s = animate::animate_synthesis_options(quality);
+    if (!job.usage.empty()) {
+        auto usage = parse_usage_strategy(job.usage);
+        if (!usage.ok()) return invalid_argument(where + ": " + usage.status().message());
+        s.usage = *usage;
+    }
+    for (const auto& [name, value] : job.numeric) {
+        const Status st = set_option(s, *find_option(name), value);
+        if (!st.is_ok()) return invalid_argument(where + ": " + st.message());
+    }
+    return Status::ok();
 }
 
 }  // namespace exemplar::cli

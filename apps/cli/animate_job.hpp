@@ -1,6 +1,7 @@
 #pragma once
 // The job file of `exemplar animate` (JSON, paths relative to the file); see docs/video.md.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,16 @@ struct AnimateJob {
     double fps = 24.0;
     int chunk = 24;  ///< Frames per solve (0 = the whole range at once).
     animate::AnimateOptions options;
+    /// The engine settings of the job file, kept apart so that a --quality given later can be
+    /// applied under them (build_synthesis_options).
+    std::string quality;                    ///< Empty = default.
+    std::string usage;                      ///< Empty = the preset's.
+    std::map<std::string, double> numeric;  ///< synthesis_option_specs() name -> value.
 };
+
+/// Sets job.options.synthesis: the quality preset (animate_synthesis_options), then the job's
+/// usage and numeric options over it. Errors name `where` (the job file, or the flag).
+Status build_synthesis_options(AnimateJob& job, const std::string& where);
 
 /// Reads and checks a job file. One-line errors name the file and the key
 /// (`job.json: unknown key 'framez'`).

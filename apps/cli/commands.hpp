@@ -52,6 +52,7 @@ private:
     std::map<std::string, CLI::Option*> numeric_flags_;
     int threads_ = 0;
     bool quiet_ = false;
+    bool help_all_ = false;  // --help-all: the help lists the expert options too
     CLI::Option* guide_flag_ = nullptr;
     CLI::Option* weight_flag_ = nullptr;
     CLI::Option* weight_map_flag_ = nullptr;
@@ -123,7 +124,7 @@ private:
     CLI::App* app_ = nullptr;
     CLI::App* sheet_ = nullptr;
     CLI::App* align_ = nullptr;
-    std::string exemplar_, output_, preset_ = "exemplar", layers_, usage_;
+    std::string exemplar_, output_, preset_ = "exemplar", layers_, usage_, quality_;
     std::string save_nnf_, save_error_, config_;
     std::vector<std::string> source_, target_;
     float guidance_weight_ = 2.0f;
@@ -191,7 +192,7 @@ public:
 private:
     CLI::App* app_ = nullptr;
     CLI::Option* seed_flag_ = nullptr;
-    std::string job_path_, frames_, output_, mp4_;
+    std::string job_path_, frames_, output_, mp4_, quality_;
     int chunk_ = -1;
     int threads_ = 0;
     std::uint64_t seed_ = 1;

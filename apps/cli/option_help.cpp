@@ -37,4 +37,19 @@ std::string describe(const OptionSpec& spec) {
     return text;
 }
 
+bool is_expert_option(const OptionSpec& spec) {
+    return spec.name != "patch-size" && spec.name != "style-weight" && spec.name != "seed";
+}
+
+std::string expert_options_help() {
+    std::string text =
+        "\nSearch tuning (experts; --quality sets these together, explicit flags override it):\n";
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        if (!is_expert_option(spec)) continue;
+        text.append("  --").append(spec.name).append(is_integer_option(spec) ? " INT" : " FLOAT");
+        text.append("\n      ").append(describe(spec)).append("\n");
+    }
+    return text;
+}
+
 }  // namespace exemplar::cli

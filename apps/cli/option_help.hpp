@@ -30,4 +30,12 @@ bool is_integer_option(const OptionSpec& spec);
 /// Full flag help: "<doc> [<range>, default <default>]".
 std::string describe(const OptionSpec& spec);
 
+/// Search-tuning knobs for experts: every numeric option but patch-size, style-weight and seed.
+/// `--help` lists them only under `--help-all` (--quality sets them together).
+bool is_expert_option(const OptionSpec& spec);
+
+/// The expert options as a help section ("Search tuning (experts) ..." with one
+/// "  --name TYPE  description" entry each), for `--help-all`.
+std::string expert_options_help();
+
 }  // namespace exemplar::cli

@@ -44,6 +44,12 @@ std::vector<float> parse_floats(const std::string& text, const char* flag) {
 }
 
 Status build_options(const StylizeJob& job, SynthesisOptions& options) {
+    // The quality preset first, so that explicit options override it.
+    if (!job.quality.empty()) {
+        auto quality = parse_quality(job.quality);
+        if (!quality.ok()) return quality.status();
+        options = SynthesisOptions::preset(*quality);
+    }
     for (const auto& [name, value] : job.numeric) {
         const OptionSpec* spec = find_option(name);
         if (spec == nullptr) return invalid_argument("unknown option '" + name + "'");
@@ -78,7 +84,16 @@ StylizeCommand::StylizeCommand(CLI::App& parent) {
         "stylize",
         "Transfer the style of an exemplar onto a target through guide pairs (image analogies "
         "A : A' :: B : B')");
-    app_->footer(kFooter);
+    // --help-all adds the search-tuning knobs, which --help leaves out.
+    app_->footer([this] { return help_all_ ? expert_options_help() + "\n" + kFooter : kFooter; });
+    app_->add_flag_callback(
+            "--help-all",
+            [this] {
+                help_all_ = true;
+                throw CLI::CallForHelp();
+            },
+            "Print this help with the search-tuning options for experts and exit")
+        ->trigger_on_parse();
     // Unexpected arguments are reported after the guide checks (job_from_flags), which explain
     // `--guide a.png -w 1` better than "1 was not expected".
     app_->allow_extras();
@@ -155,11 +170,16 @@ StylizeCommand::StylizeCommand(CLI::App& parent) {
         ->group(kSynthesis);
     app.add_option("--vote", flag_job_.vote, "Voting: average or weighted (default)")
         ->group(kSynthesis);
+    app.add_option("--quality", flag_job_.quality,
+                   "Search effort: fast (previews, ~2.5x faster), default, best (closer to the "
+                   "exemplar, ~2.3x the time); explicit tuning flags override it")
+        ->group(kSynthesis);
     for (const OptionSpec& spec : synthesis_option_specs()) {
         const std::string name(spec.name);
+        // The tuning knobs are hidden from --help (group ""); --help-all lists them.
         numeric_flags_[name] = app.add_option("--" + name, numeric_values_[name], describe(spec))
                                    ->type_name(is_integer_option(spec) ? "INT" : "FLOAT")
-                                   ->group(kSynthesis);
+                                   ->group(is_expert_option(spec) ? "" : kSynthesis);
     }
 
     threads_flag_ = app.add_option("--threads,-j", threads_,

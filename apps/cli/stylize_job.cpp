@@ -101,7 +101,8 @@ Result<StylizeJob> load_job_file(const std::string& path) {
         {"save-nnf", &job.save_nnf},
         {"save-error", &job.save_error},
     };
-    fields.words = {{"usage", &job.usage}, {"vote", &job.vote}, {"size", &job.size}};
+    fields.words = {
+        {"usage", &job.usage}, {"vote", &job.vote}, {"quality", &job.quality}, {"size", &job.size}};
 
     const Status status = visit_job_file(
         path,
@@ -173,6 +174,7 @@ StylizeJob merge_jobs(const StylizeJob& base, const StylizeJob& over) {
     take(out.output, over.output);
     take(out.usage, over.usage);
     take(out.vote, over.vote);
+    take(out.quality, over.quality);
     take(out.target_mask, over.target_mask);
     take(out.source_mask, over.source_mask);
     take(out.source_labels, over.source_labels);

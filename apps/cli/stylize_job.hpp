@@ -25,6 +25,7 @@ struct StylizeJob {
     std::map<std::string, double> numeric;  ///< synthesis_option_specs() name -> value.
     std::string usage;                      ///< Empty = default.
     std::string vote;                       ///< Empty = default.
+    std::string quality;                    ///< Empty = default; fast, default, best.
     std::vector<float> style_weights;
     std::string target_mask, source_mask, source_labels, target_labels;
     std::string source_orientation, target_orientation, init, init_nnf;

@@ -729,6 +729,25 @@ SynthesisOptions animate_default_synthesis_options() {
     return o;
 }
 
+SynthesisOptions animate_synthesis_options(Quality quality) {
+    SynthesisOptions o = animate_default_synthesis_options();
+    switch (quality) {
+        case Quality::Fast:
+            o.em_iterations = 2;
+            o.search_iterations = 2;
+            o.warm_search_iterations = 1;
+            o.final_pass_iterations = 0;
+            break;
+        case Quality::Default: break;
+        case Quality::Best:
+            o.em_iterations = 4;
+            o.search_iterations = 4;
+            o.warm_search_iterations = 3;
+            break;
+    }
+    return o;
+}
+
 Status validate(const AnimationInput& in, const AnimateOptions& options) {
     if (in.style_input.empty()) return invalid_argument("style input: is empty");
     if (in.style_output.empty()) return invalid_argument("style output: is empty");

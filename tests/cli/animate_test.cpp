@@ -95,6 +95,29 @@ TEST_F(AnimateCli, RangesHandOverAndResumeSkipsFinishedFrames) {
     EXPECT_EQ(file_bytes(out(3)), frame3);
 }
 
+// The quality dial: --quality fast equals "quality": "fast" in the job, and changes the frames;
+// an explicit engine option in the job stays over the flag's preset.
+TEST_F(AnimateCli, QualityFlagAndJobKeyAgree) {
+    ASSERT_EQ(run({"animate", job(), "--frames", "0-1", "-q", "-o", path("d/%02d.png")}).code, 0);
+    ASSERT_EQ(run({"animate", job(), "--frames", "0-1", "-q", "--quality", "fast", "-o",
+                   path("f/%02d.png")})
+                  .code,
+              0);
+    ASSERT_EQ(run({"animate", job(R"("quality": "fast")"), "--frames", "0-1", "-q", "-o",
+                   path("k/%02d.png")})
+                  .code,
+              0);
+    EXPECT_EQ(file_bytes(path("f/01.png")), file_bytes(path("k/01.png")));
+    EXPECT_NE(file_bytes(path("f/01.png")), file_bytes(path("d/01.png")));
+    // The job's em-iterations 3 (the default's) over the flag's fast preset: only the other
+    // fast knobs apply, so the frames differ from both.
+    ASSERT_EQ(run({"animate", job(R"("em-iterations": 3)"), "--frames", "0-1", "-q", "--quality",
+                   "fast", "-o", path("e/%02d.png")})
+                  .code,
+              0);
+    EXPECT_NE(file_bytes(path("e/01.png")), file_bytes(path("f/01.png")));
+}
+
 TEST_F(AnimateCli, NoResumeIgnoresStaleOutputsAndChunksAreDeterministic) {
     const std::string j = job();
     ASSERT_EQ(run({"animate", j, "--chunk", "4", "-q"}).code, 0);
@@ -285,6 +308,11 @@ TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
                          path("job.json") + ": key 'lines' needs both \"style\" and \"frames\"");
     expect_failure_as_is({"animate", job(R"("weights": {"line": 2})")}, 1,
                          path("job.json") + ": unknown key 'weights.line'");
+    expect_failure_as_is(
+        {"animate", job(R"("quality": "superb")")}, 1,
+        path("job.json") + ": quality: 'superb' is invalid (must be one of fast, default, best)");
+    expect_failure_as_is({"animate", job(), "--quality", "fine"}, 1,
+                         "--quality: quality: 'fine' is invalid");
     expect_failure_as_is({"animate", job(R"("ribbons": 1)")}, 1,
                          path("job.json") + ": key 'ribbons' must be true or false");
     expect_failure_as_is({"animate", job(R"("weights": {"input-derivative": -1})")}, 1,

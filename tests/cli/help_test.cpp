@@ -6,16 +6,42 @@
 namespace exemplar::cli::testing {
 namespace {
 
+// --help lists the everyday options and the quality dial; the search-tuning knobs only appear
+// under --help-all, each with its range and default from the option table.
 TEST(CliHelp, StylizeHelpIsGeneratedFromTheOptionTable) {
     const CliRun h = run({"stylize", "--help"});
     EXPECT_EQ(h.code, 0);
     EXPECT_TRUE(h.err.empty());
+    const CliRun all = run({"stylize", "--help-all"});
+    EXPECT_EQ(all.code, 0);
+    EXPECT_TRUE(all.err.empty());
+    int experts = 0;
     for (const OptionSpec& spec : synthesis_option_specs()) {
-        const std::string flag = std::string("--").append(spec.name);
-        EXPECT_NE(h.out.find(flag), std::string::npos) << flag;
+        const std::string flag = std::string("--").append(spec.name).append(" ");
         const std::string range = std::string("[").append(format_range(spec)).append(", default ");
-        EXPECT_NE(h.out.find(range + format_default(spec) + "]"), std::string::npos) << flag;
+        const std::string described = range + format_default(spec) + "]";
+        EXPECT_NE(all.out.find(flag), std::string::npos) << flag;
+        EXPECT_NE(all.out.find(described), std::string::npos) << flag;
+        if (is_expert_option(spec)) {
+            ++experts;
+            EXPECT_EQ(h.out.find(flag), std::string::npos) << flag << " is for --help-all";
+        } else {
+            EXPECT_NE(h.out.find(described), std::string::npos) << flag;
+        }
     }
+    EXPECT_GE(experts, 15);
+    EXPECT_NE(h.out.find("--help-all"), std::string::npos);
+    EXPECT_NE(h.out.find("--quality"), std::string::npos);
+    const auto flags = [](const std::string& text) {
+        int count = 0;
+        for (std::size_t at = text.find("\n  -"); at != std::string::npos;
+             at = text.find("\n  -", at + 1)) {
+            ++count;
+        }
+        return count;
+    };
+    EXPECT_LE(flags(h.out), 30) << h.out;  // 43 numeric and other flags before the dial
+    EXPECT_GE(flags(all.out), flags(h.out) + experts);
     for (const char* flag : {"--style",
                              "--guide",
                              "--weight",

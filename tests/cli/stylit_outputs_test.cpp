@@ -66,6 +66,8 @@ TEST_F(StylitOutputs, OutputFilesAreCheckedBeforeTheRun) {
                    "--save-error " + path("out.png") + ": is also the --output file");
     expect_failure(with(args(), {"--save-error", path("style.png/error.png")}), kExitFailure,
                    "--save-error " + path("style.png/error.png") + ": cannot create folder");
+    expect_failure(with(args(), {"--quality", "superb"}), kExitFailure,
+                   "quality: 'superb' is invalid (must be one of fast, default, best)");
     expect_failure(with(args(), {"--save-error", path("error.xyz")}), kExitFailure,
                    "--save-error " + path("error.xyz"));
 }

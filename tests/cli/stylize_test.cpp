@@ -58,6 +58,37 @@ TEST_F(Cli, SameBytesForAnyThreadCount) {
     EXPECT_EQ(file_bytes(path("one.png")), file_bytes(path("two.png")));
 }
 
+// --quality applies its preset under the explicit flags: fast with one knob given equals the
+// preset's knobs given one by one with that value; "quality" in a job file equals the flag;
+// default equals no preset.
+TEST_F(Cli, QualityPresetLiesUnderExplicitFlags) {
+    const std::vector<std::string> base = {
+        "stylize", "--style", path("style.png"), "--guide", path("a.png"), path("b.png"), "-q"};
+    const auto bytes_of = [&](std::vector<std::string> more, const std::string& out) {
+        more.push_back("-o");
+        more.push_back(path(out));
+        const CliRun r = run(with(base, more));
+        EXPECT_EQ(r.code, 0) << r.err;
+        return file_bytes(path(out));
+    };
+    const auto plain = bytes_of({}, "plain.png");
+    EXPECT_EQ(bytes_of({"--quality", "default"}, "default.png"), plain);
+    const auto fast = bytes_of({"--quality", "fast"}, "fast.png");
+    EXPECT_NE(fast, plain);
+    EXPECT_NE(bytes_of({"--quality", "best"}, "best.png"), plain);
+    const auto overridden =
+        bytes_of({"--warm-search-iterations", "2", "--quality", "fast"}, "fast_warm2.png");
+    const auto by_hand = bytes_of({"--em-iterations", "3", "--finest-em-iterations", "1",
+                                   "--second-finest-em-iterations", "2", "--search-iterations", "3",
+                                   "--warm-search-iterations", "2", "--budget-max-rounds", "8"},
+                                  "by_hand.png");
+    EXPECT_EQ(overridden, by_hand);
+    std::ofstream(path("fast.json")) << R"({"style": "style.png", "quality": "fast",
+        "guides": [{"source": "a.png", "target": "b.png"}], "quiet": true})";
+    ASSERT_EQ(run({"stylize", "--config", path("fast.json"), "-o", path("job.png")}).code, 0);
+    EXPECT_EQ(file_bytes(path("job.png")), fast);
+}
+
 TEST_F(Cli, SixteenBitStyleGivesSixteenBitPng) {
     write("style16.png", texture(32, 28, 3, 1), SaveOptions{PixelFormat::UInt16});
     auto args = stylize_args();
@@ -291,6 +322,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "finest-first-round-iterations: 1.5 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--final-vote-size", "4"}), 1,
                    "final-vote-size: 4 is invalid (must be 0 or odd, 0..31)");
+    expect_failure(with(stylize_args(), {"--quality", "superb"}), 1,
+                   "quality: 'superb' is invalid (must be one of fast, default, best)");
     expect_failure(with(stylize_args(), {"--coherence-sweeps", "-1"}), 1,
                    "coherence-sweeps: -1 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--vote-coherence", "101"}), 1,

@@ -283,6 +283,38 @@ TEST(Synthesize, OrientationDifferenceRotatesStripes) {
     }
 }
 
+// The quality dial: Default is the default-constructed options; Fast searches less and Best
+// more on every level; all are valid; names parse and bad names are rejected.
+TEST(SynthesisOptions, QualityPresets) {
+    const SynthesisOptions defaults;
+    const SynthesisOptions preset = SynthesisOptions::preset(Quality::Default);
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        EXPECT_EQ(get_option(preset, spec), get_option(defaults, spec)) << spec.name;
+    }
+    EXPECT_EQ(preset.usage, defaults.usage);
+    EXPECT_EQ(preset.vote, defaults.vote);
+    const SynthesisOptions fast = SynthesisOptions::preset(Quality::Fast);
+    const SynthesisOptions best = SynthesisOptions::preset(Quality::Best);
+    EXPECT_TRUE(validate(fast).is_ok());
+    EXPECT_TRUE(validate(best).is_ok());
+    for (int depth = 0; depth < 5; ++depth) {
+        const int d = em_iterations_of_level(defaults, depth, 5);
+        EXPECT_LE(em_iterations_of_level(fast, depth, 5), d) << depth;
+        EXPECT_GE(em_iterations_of_level(best, depth, 5), d) << depth;
+    }
+    EXPECT_LT(em_iterations_of_level(fast, 0, 5), em_iterations_of_level(defaults, 0, 5));
+    EXPECT_GT(em_iterations_of_level(best, 0, 5), em_iterations_of_level(defaults, 0, 5));
+    EXPECT_LT(fast.warm_search_iterations, defaults.warm_search_iterations);
+    EXPECT_GT(best.warm_search_iterations, defaults.warm_search_iterations);
+    for (Quality q : {Quality::Fast, Quality::Default, Quality::Best}) {
+        auto parsed = parse_quality(to_string(q));
+        ASSERT_TRUE(parsed.ok());
+        EXPECT_EQ(*parsed, q);
+    }
+    EXPECT_EQ(parse_quality("superb").status().message(),
+              "quality: 'superb' is invalid (must be one of fast, default, best)");
+}
+
 TEST(Synthesize, NnfReappliesToTheStyle) {
     SynthesisInput in = identity_input(40, 36);
     in.guides[1].target = testing::ramp(44, 30);

@@ -119,6 +119,12 @@ struct AnimateOptions {
 /// (the frames start from advected offsets), one final 3x3 iteration.
 SynthesisOptions animate_default_synthesis_options();
 
+/// The engine options of a quality preset for animation: Default is
+/// animate_default_synthesis_options(); Fast (previews) runs 2 EM and 2/1 PatchMatch iterations
+/// and no final 3x3 pass; Best 4 EM and 4/3 PatchMatch iterations. Explicit options are applied
+/// after it by callers.
+SynthesisOptions animate_synthesis_options(Quality quality);
+
 /// Wall time of each stage, seconds.
 struct StageTimes {
     double flow = 0.0;       ///< Loading or estimating motion.

@@ -42,6 +42,25 @@ std::string_view to_string(VoteMode mode);
 /// Parses the names of to_string; error names the accepted values.
 Result<VoteMode> parse_vote_mode(std::string_view name);
 
+/// The quality dial: presets of the search effort (iterations per level, reversed-retrieval
+/// rounds, coherence sweeps) for users who do not want to tune the search. Measurements of each
+/// in docs/PERFORMANCE.md.
+enum class Quality {
+    /// Previews: about 2.5x faster than Default, with fewer iterations on every level; a little
+    /// less texture and more seams.
+    Fast,
+    /// The defaults of SynthesisOptions.
+    Default,
+    /// More iterations on the two finest levels and wider searches: closer to the exemplar,
+    /// about 2.3x the time of Default.
+    Best,
+};
+
+/// "fast", "default", "best".
+std::string_view to_string(Quality quality);
+/// Parses the names of to_string; error names the accepted values.
+Result<Quality> parse_quality(std::string_view name);
+
 /// "none", "uniform", "error-budget", "occurrence".
 std::string_view to_string(UsageStrategy strategy);
 /// Parses the names of to_string; error names the accepted values.
@@ -124,6 +143,11 @@ struct SynthesisOptions {
     /// Occurrence penalty threshold h_τ in uses; 0 = automatic (2 × target/source area ratio).
     float occurrence_threshold = 0.0f;
     std::uint64_t seed = 1;  ///< Random seed; same seed → same output for any thread count.
+
+    /// The options of a quality preset: the defaults above with the search effort changed
+    /// (preset(Quality::Default) is a default-constructed SynthesisOptions). Callers that also
+    /// set options explicitly apply them after the preset, so explicit values win.
+    static SynthesisOptions preset(Quality quality);
 };
 
 /// EM iterations of the level `depth` steps above the finest (0 = finest) of a pyramid with
