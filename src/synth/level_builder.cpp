@@ -20,11 +20,23 @@ int footprint_radius(int patch_size, bool rotated) {
     return rotated ? static_cast<int>(std::ceil(static_cast<float>(r) * std::sqrt(2.0f))) : r;
 }
 
-std::vector<Image> pyramid_or_empty(const Image& image, int levels, float ratio,
-                                    ResampleFilter filter, int threads) {
-    if (image.empty()) return std::vector<Image>(static_cast<std::size_t>(levels));
-    return gaussian_pyramid(image, levels, ratio, filter, threads);
-}
+// An input at one pyramid depth: the input itself at depth 0 (no copy), else resampled from it
+// as gaussian_pyramid does (every level from full resolution). Built when a level starts and
+// dropped when it ends, so no run holds the pyramids of all its inputs.
+class AtDepth {
+public:
+    AtDepth(const Image& full, int depth, float ratio, ResampleFilter filter, int threads)
+        : full_(&full) {
+        if (depth == 0 || full.empty()) return;
+        resized_ = resize(full, pyramid_level_size(full.width(), ratio, depth),
+                          pyramid_level_size(full.height(), ratio, depth), filter, threads);
+    }
+    const Image& get() const { return resized_.empty() ? *full_ : resized_; }
+
+private:
+    const Image* full_;
+    Image resized_;
+};
 
 bool same_channel(const Image& a, int ca, const Image& b, int cb) {
     if (!a.same_size(b)) return false;
@@ -52,10 +64,7 @@ bool constant_channel(const Image& image, int c, float value) {
 // dropped; a channel equal to an earlier one on both sides adds the same squared differences
 // and is merged into it (the weights add). Guides with a weight map keep all their channels.
 // Fewer bytes per pixel make every patch distance cheaper (docs/PERFORMANCE.md).
-struct ReducedGuide {
-    Image source, target, weight_map;
-    std::vector<float> weights;  // per channel
-};
+std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& guides);
 std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& guides) {
     struct Kept {
         std::size_t guide;
@@ -98,9 +107,17 @@ std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& gu
             r.weights.push_back(k.weight);
         }
         if (channels.empty()) continue;
-        r.source = select_channels(guides[g].source, channels);
-        r.target = select_channels(guides[g].target, channels);
-        r.weight_map = guides[g].target_weight_map;
+        r.weight_map = &guides[g].target_weight_map;
+        bool all = static_cast<int>(channels.size()) == guides[g].source.channels();
+        for (std::size_t i = 0; all && i < channels.size(); ++i) {
+            all = channels[i] == static_cast<int>(i);
+        }
+        if (all) {
+            r.whole = &guides[g];  // no copy: the input's channels as they are
+        } else {
+            r.own_source = select_channels(guides[g].source, channels);
+            r.own_target = select_channels(guides[g].target, channels);
+        }
         out.push_back(std::move(r));
     }
     return out;
@@ -176,51 +193,48 @@ LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& opt
                            int threads)
     : input_(in), options_(options), levels_(levels), threads_(threads) {
     target_size(in, tw_, th_);
-    const float ratio = options.pyramid_ratio;
-    using F = ResampleFilter;
-    style_ = gaussian_pyramid(in.style, levels, ratio, F::Gaussian, threads);
     // Guides: as given, or compressed to fewer channels (projection and pyramid are both linear,
-    // so compressing the finest level equals compressing every level).
+    // so compressing the finest level equals compressing every level). Levels are resampled
+    // from these full-resolution images when they are built.
     for (const GuidePair& g : in.guides) compression_.channels_before += g.source.channels();
     compression_.channels_after = compression_.channels_before;
-    if (const auto compressed = compress_guides(in.guides, options.guide_pca, threads)) {
+    if (auto compressed = compress_guides(in.guides, options.guide_pca, threads)) {
         compression_.channels_after = compressed->kept;
         compression_.explained_variance = compressed->explained_variance;
-        source_guides_.push_back(
-            gaussian_pyramid(compressed->source, levels, ratio, F::Gaussian, threads));
-        target_guides_.push_back(
-            gaussian_pyramid(compressed->target, levels, ratio, F::Gaussian, threads));
-        weight_maps_.push_back(pyramid_or_empty(Image(), levels, ratio, F::Gaussian, threads));
-        guide_weights_.push_back(
-            std::vector<float>(static_cast<std::size_t>(compressed->kept), 1.0f));
+        ReducedGuide r;
+        r.own_source = std::move(compressed->source);
+        r.own_target = std::move(compressed->target);
+        r.weight_map = &no_map_;
+        r.weights.assign(static_cast<std::size_t>(compressed->kept), 1.0f);
+        guides_.push_back(std::move(r));
     } else {
-        for (const ReducedGuide& g : reduce_guide_channels(in.guides)) {
-            source_guides_.push_back(
-                gaussian_pyramid(g.source, levels, ratio, F::Gaussian, threads));
-            target_guides_.push_back(
-                gaussian_pyramid(g.target, levels, ratio, F::Gaussian, threads));
-            weight_maps_.push_back(
-                pyramid_or_empty(g.weight_map, levels, ratio, F::Gaussian, threads));
-            guide_weights_.push_back(g.weights);
-        }
+        guides_ = reduce_guide_channels(in.guides);
     }
-    source_mask_ = pyramid_or_empty(in.source_mask, levels, ratio, F::Box, threads);
-    target_mask_ = pyramid_or_empty(in.target_mask, levels, ratio, F::Box, threads);
-    source_labels_ = pyramid_or_empty(in.source_labels, levels, ratio, F::Nearest, threads);
-    target_labels_ = pyramid_or_empty(in.target_labels, levels, ratio, F::Nearest, threads);
-    source_angle_ = pyramid_or_empty(in.source_orientation, levels, ratio, F::Nearest, threads);
-    target_angle_ = pyramid_or_empty(in.target_orientation, levels, ratio, F::Nearest, threads);
-    initial_ = pyramid_or_empty(in.initial_target, levels, ratio, F::Gaussian, threads);
     // The finest level of every image is exactly the input (no resampling round-off).
 }
 
 Level LevelBuilder::build(int index, int patch_size) const {
-    const std::size_t d = static_cast<std::size_t>(depth(index));
+    const int d = depth(index);
+    // This level's inputs, resampled from full resolution (the inputs themselves when finest).
+    const float ratio = options_.pyramid_ratio;
+    using RF = ResampleFilter;
+    const auto at = [&](const Image& full, RF filter) {
+        return AtDepth(full, d, ratio, filter, threads_);
+    };
+    const AtDepth style_at = at(input_.style, RF::Gaussian);
+    const AtDepth initial_at = at(input_.initial_target, RF::Gaussian);
+    std::vector<AtDepth> source_guides, target_guides, weight_maps;
+    for (const ReducedGuide& g : guides_) {
+        source_guides.push_back(at(g.source(), RF::Gaussian));
+        target_guides.push_back(at(g.target(), RF::Gaussian));
+        weight_maps.push_back(at(*g.weight_map, RF::Gaussian));
+    }
+    const Image& initial = initial_at.get();
     Level L;
     L.index = index;
     L.patch_size = patch_size > 0 ? patch_size : options_.patch_size;
     L.radius = L.patch_size / 2;
-    const Image& style = style_[d];
+    const Image& style = style_at.get();
     L.sw = style.width();
     L.sh = style.height();
     L.source_style = style;
@@ -228,15 +242,15 @@ Level LevelBuilder::build(int index, int patch_size) const {
     const bool rotated = !input_.source_orientation.empty();
 
     // Target size at this level comes from the pyramids (guides, initial target) or the formula.
-    if (!target_guides_.empty()) {
-        L.tw = target_guides_.front()[d].width();
-        L.th = target_guides_.front()[d].height();
-    } else if (!initial_[d].empty()) {
-        L.tw = initial_[d].width();
-        L.th = initial_[d].height();
+    if (!target_guides.empty()) {
+        L.tw = target_guides.front().get().width();
+        L.th = target_guides.front().get().height();
+    } else if (!initial.empty()) {
+        L.tw = initial.width();
+        L.th = initial.height();
     } else {
-        L.tw = pyramid_level_size(tw_, options_.pyramid_ratio, static_cast<int>(d));
-        L.th = pyramid_level_size(th_, options_.pyramid_ratio, static_cast<int>(d));
+        L.tw = pyramid_level_size(tw_, ratio, d);
+        L.th = pyramid_level_size(th_, ratio, d);
     }
 
     // Feature images: style then guides, as 8-bit codes with per-channel weights. A channel's
@@ -244,7 +258,7 @@ Level LevelBuilder::build(int index, int patch_size) const {
     // votes average A' values; an initial target may widen it).
     const int S = L.style_channels;
     int F = S;
-    for (const auto& pyramid : source_guides_) F += pyramid[d].channels();
+    for (const AtDepth& g : source_guides) F += g.get().channels();
     L.source_features = FeatureImage(L.sw, L.sh, F);
     L.target_features = FeatureImage(L.tw, L.th, F);
     L.quantizers.resize(static_cast<std::size_t>(F));
@@ -280,21 +294,21 @@ Level LevelBuilder::build(int index, int patch_size) const {
         const float w = input_.style_channel_weights.empty()
                             ? 1.0f
                             : input_.style_channel_weights[static_cast<std::size_t>(c)];
-        set_channel(c, options_.style_weight * w, style, c, initial_[d], c);
+        set_channel(c, options_.style_weight * w, style, c, initial, c);
         encode(style, c, L.quantizers[static_cast<std::size_t>(c)], L.source_features, c);
     }
-    const bool any_map = std::any_of(weight_maps_.begin(), weight_maps_.end(),
-                                     [&](const auto& p) { return !p[d].empty(); });
+    const bool any_map = std::any_of(weight_maps.begin(), weight_maps.end(),
+                                     [](const AtDepth& m) { return !m.get().empty(); });
     if (any_map) L.target_weights = Image(L.tw, L.th, F, 1.0f);
     int offset = S;
-    for (std::size_t g = 0; g < source_guides_.size(); ++g) {
-        const Image& sg = source_guides_[g][d];
-        const Image& tg = target_guides_[g][d];
-        const Image& map = weight_maps_[g][d];
+    for (std::size_t g = 0; g < guides_.size(); ++g) {
+        const Image& sg = source_guides[g].get();
+        const Image& tg = target_guides[g].get();
+        const Image& map = weight_maps[g].get();
         const int C = sg.channels();
         for (int c = 0; c < C; ++c) {
             const int fc = offset + c;
-            set_channel(fc, guide_weights_[g][static_cast<std::size_t>(c)], sg, c, tg, c);
+            set_channel(fc, guides_[g].weights[static_cast<std::size_t>(c)], sg, c, tg, c);
             const ChannelQuantizer& q = L.quantizers[static_cast<std::size_t>(fc)];
             encode(sg, c, q, L.source_features, fc);
             encode(tg, c, q, L.target_features, fc);
@@ -332,13 +346,13 @@ Level LevelBuilder::build(int index, int patch_size) const {
 
     // Source validity; a mask that leaves no room at a coarse level is dropped on that level.
     const int fr = footprint_radius(L.patch_size, rotated);
-    L.source_valid = source_validity(L.sw, L.sh, fr, source_mask_[d]);
+    L.source_valid = source_validity(L.sw, L.sh, fr, at(input_.source_mask, RF::Box).get());
     if (std::count(L.source_valid.begin(), L.source_valid.end(), 1) == 0) {
         L.source_valid = source_validity(L.sw, L.sh, fr, Image());
     }
     if (rotated) {
-        L.source_angle = channel0(source_angle_[d]);
-        L.target_angle = channel0(target_angle_[d]);
+        L.source_angle = channel0(at(input_.source_orientation, RF::Nearest).get());
+        L.target_angle = channel0(at(input_.target_orientation, RF::Nearest).get());
     }
 
     // Target: active patch centres are those whose patch lies inside the target (so border
@@ -349,8 +363,9 @@ Level LevelBuilder::build(int index, int patch_size) const {
     for (int y = L.radius; y < L.th - L.radius; ++y) {
         for (int x = L.radius; x < L.tw - L.radius; ++x) L.target_active[L.target_index(x, y)] = 1;
     }
-    if (!target_mask_[d].empty()) {
-        const Image& m = target_mask_[d];
+    const AtDepth target_mask = at(input_.target_mask, RF::Box);
+    if (!target_mask.get().empty()) {
+        const Image& m = target_mask.get();
         L.target_fixed.assign(nt, 1);
         for (std::size_t i = 0; i < nt; ++i) L.target_fixed[i] = m.data()[i] > 0.5f ? 0 : 1;
         if (std::count(L.target_fixed.begin(), L.target_fixed.end(), 0) == 0) {
@@ -371,22 +386,24 @@ Level LevelBuilder::build(int index, int patch_size) const {
             }
         }
     }
-    if (!initial_[d].empty()) L.fixed_style = initial_[d];
+    if (!initial.empty()) L.fixed_style = initial;
 
     // Label groups: one per label value that occurs among the active target pixels. A level on
     // which some group has no valid source patch (coarse levels of small regions) drops labels.
     L.valid_by_group.assign(1, {});
-    if (!source_labels_[d].empty()) {
+    const AtDepth source_labels = at(input_.source_labels, RF::Nearest);
+    const AtDepth target_labels = at(input_.target_labels, RF::Nearest);
+    if (!source_labels.get().empty()) {
         std::map<long, int> group_of;
         std::vector<int> tl(nt), sl(static_cast<std::size_t>(L.sw) * L.sh);
         for (std::size_t i = 0; i < nt; ++i) {
-            const long v = std::lround(target_labels_[d].data()[i]);
+            const long v = std::lround(target_labels.get().data()[i]);
             auto it = group_of.emplace(v, static_cast<int>(group_of.size())).first;
             tl[i] = it->second;
         }
         std::vector<std::vector<int>> groups(group_of.size());
         for (std::size_t i = 0; i < sl.size(); ++i) {
-            auto it = group_of.find(std::lround(source_labels_[d].data()[i]));
+            auto it = group_of.find(std::lround(source_labels.get().data()[i]));
             sl[i] = it == group_of.end() ? -1 : it->second;
             if (sl[i] >= 0 && L.source_valid[i]) {
                 groups[static_cast<std::size_t>(sl[i])].push_back(static_cast<int>(i));

@@ -25,7 +25,19 @@ int automatic_levels(int min_side, int patch_size, float ratio);
 /// a larger footprint).
 int max_levels(int min_side, int patch_size, float ratio, bool rotated);
 
-/// All inputs resampled to every level; level 0 = coarsest.
+/// A guide pair as the levels use it: the input's (no copy) when all its channels are kept, else
+/// the kept channels (copied), or principal components; `weights` per kept channel.
+struct ReducedGuide {
+    const GuidePair* whole = nullptr;
+    Image own_source, own_target;
+    const Image* weight_map = nullptr;  ///< The input's (possibly empty) map.
+    std::vector<float> weights;
+    const Image& source() const { return whole != nullptr ? whole->source : own_source; }
+    const Image& target() const { return whole != nullptr ? whole->target : own_target; }
+};
+
+/// The inputs of every level, level 0 = coarsest: each level is resampled from the full-resolution
+/// inputs when it is built.
 class LevelBuilder {
 public:
     LevelBuilder(const SynthesisInput& input, const SynthesisOptions& options, int levels,
@@ -49,15 +61,11 @@ private:
     int levels_;
     int threads_;
     int tw_, th_;
-    // Pyramids, finest first (index = depth).
-    std::vector<Image> style_;
     // The guides the levels use (the input's without channels that cannot change a distance,
     // or their principal components) and their weights per channel.
-    std::vector<std::vector<Image>> source_guides_, target_guides_, weight_maps_;
-    std::vector<std::vector<float>> guide_weights_;
+    std::vector<ReducedGuide> guides_;
+    Image no_map_;  // the weight map of compressed guides: none
     SynthesisResult::GuideCompression compression_;
-    std::vector<Image> source_mask_, target_mask_, source_labels_, target_labels_;
-    std::vector<Image> source_angle_, target_angle_, initial_;
 };
 
 /// Copies B' (style channels) into the style part of the level's target features.
