@@ -1,7 +1,7 @@
 // End-to-end timing and quality of `synthesize` on the ebsynth examples in ../shared/data (the
 // issue's reference workloads).
 //
-// Usage: bench_examples [stylit|facestyle|all] [threads] [repeats] [options...]
+// Usage: bench_examples [stylit|facestyle|texbynum|all] [threads] [repeats] [options...]
 //   --scale S          resize inputs by S first (0.5 = the bundled half-resolution job)
 //   --usage NAME       patch-usage strategy (none, uniform, error-budget, occurrence)
 //   --set NAME=VALUE   any numeric synthesis option (see `exemplar stylize --help`)
@@ -221,6 +221,10 @@ int main(int argc, char** argv) {
                    {"source_Gseg.png", "target_Gseg.png", 1.5f},
                    {"source_Gpos.png", "target_Gpos.png", 10.0f}},
                   settings);
+    }
+    if (which == "all" || which == "texbynum") {
+        rc |= run("texbynum", "source_photo.png",
+                  {{"source_segment.png", "target_segment.png", 1.0f}}, settings);
     }
     return rc;
 }
