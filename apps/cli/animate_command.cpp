@@ -163,6 +163,7 @@ Status AnimateCommand::run(const Streams& streams) const {
     EXEMPLAR_RETURN_IF_ERROR(check_output_path("output", *probe));
     if (!job.mp4.empty()) {
         EXEMPLAR_RETURN_IF_ERROR(check_output_path("mp4", job.mp4));
+        EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(job.mp4));
         if (!video::mp4_writing_supported()) {
             return unsupported("mp4: this OpenCV build cannot encode MP4");
         }

@@ -1,5 +1,5 @@
-// Frame sequences from image files or video files (OpenCV videoio, FFmpeg backend), and
-// sequence/MP4 writers.
+// Frame sequences from image files or video files, and sequence/MP4 writers. Video files are
+// decoded and encoded by the codec plugin (OpenCV videoio, FFmpeg backend), loaded on first use.
 
 #include "exemplar/video/frame_sequence.hpp"
 
@@ -10,11 +10,12 @@
 #include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
-#include <opencv2/videoio.hpp>
 #include <optional>
 #include <system_error>
 
 #include "atomic_file.hpp"
+#include "video_codec.hpp"
+#include "video_plugin.hpp"
 
 namespace exemplar::video {
 
@@ -57,11 +58,20 @@ Image from_mat(const cv::Mat& mat) {
     return image;
 }
 
+// The codec plugin, or its error naming the video file.
+Result<const codec::Entry*> codecs_for(const std::string& file) {
+    auto codecs = codec::load_plugin();
+    if (!codecs.ok()) {
+        return Status(codecs.status().code(), file + ": " + codecs.status().message());
+    }
+    return codecs;
+}
+
 }  // namespace
 
 // The decoder of a video sequence and the index of the frame the next grab() returns.
 struct FrameSequence::Decoder {
-    cv::VideoCapture capture;
+    std::unique_ptr<codec::VideoReader> capture;
     int next = 0;
 };
 
@@ -155,15 +165,18 @@ Result<FrameSequence> FrameSequence::from_folder(const std::string& folder) {
 Result<FrameSequence> FrameSequence::from_video(const std::string& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return io_error(fmt::format("{}: no such file", path));
+    auto codecs = codecs_for(path);
+    if (!codecs.ok()) return codecs.status();
     auto decoder = std::make_unique<Decoder>();
-    if (!decoder->capture.open(path, cv::CAP_FFMPEG)) {
+    decoder->capture = (*codecs)->new_reader();
+    if (!decoder->capture->open(path)) {
         return io_error(fmt::format("{}: cannot decode as video (unsupported or corrupt)", path));
     }
     // The container's frame count is an estimate for many formats: count by decoding.
     int count = 0;
-    while (decoder->capture.grab()) ++count;
+    while (decoder->capture->grab()) ++count;
     if (count == 0) return io_error(fmt::format("{}: the video has no decodable frame", path));
-    decoder->capture.release();
+    decoder->capture->release();
 
     FrameSequence sequence;
     sequence.video_path_ = path;
@@ -188,20 +201,20 @@ Result<Image> FrameSequence::read(int index) {
 
     // Decode forward from the current position; going back means reopening.
     Decoder& decoder = *decoder_;
-    if (index < decoder.next || !decoder.capture.isOpened()) {
-        decoder.capture.release();
-        if (!decoder.capture.open(video_path_, cv::CAP_FFMPEG)) {
+    if (index < decoder.next || !decoder.capture->is_open()) {
+        decoder.capture->release();
+        if (!decoder.capture->open(video_path_)) {
             return io_error(fmt::format("{}: cannot decode as video", video_path_));
         }
         decoder.next = 0;
     }
     for (; decoder.next <= index; ++decoder.next) {
-        if (!decoder.capture.grab()) {
+        if (!decoder.capture->grab()) {
             return io_error(fmt::format("{}: cannot decode", frame_name(decoder.next)));
         }
     }
     cv::Mat mat;
-    if (!decoder.capture.retrieve(mat) || mat.empty()) {
+    if (!decoder.capture->retrieve(mat) || mat.empty()) {
         return io_error(fmt::format("{}: cannot decode", frame_name(index)));
     }
     if (mat.depth() != CV_8U && mat.depth() != CV_16U) {
@@ -223,7 +236,7 @@ struct Mp4Writer::State {
     explicit State(const std::string& destination) : temp(destination), path(destination) {}
     io_detail::TempFile temp;
     std::string path;
-    cv::VideoWriter writer;
+    std::unique_ptr<codec::VideoWriter> writer;
     int width = 0;
     int height = 0;
     int frames = 0;
@@ -245,15 +258,16 @@ Result<Mp4Writer> Mp4Writer::open(const std::string& path, int width, int height
     if (!(std::isfinite(fps) && fps > 0.0)) {
         return invalid_argument(fmt::format("{}: fps {} is invalid (must be > 0)", path, fps));
     }
+    auto codecs = codecs_for(path);
+    if (!codecs.ok()) return codecs.status();
     Mp4Writer writer;
     writer.state_ = std::make_unique<State>(path);
     State& state = *writer.state_;
     EXEMPLAR_RETURN_IF_ERROR(state.temp.status());
     state.width = width;
     state.height = height;
-    if (!state.writer.open(state.temp.path(), cv::CAP_FFMPEG,
-                           cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps,
-                           cv::Size(width, height), true)) {
+    state.writer = (*codecs)->new_writer();
+    if (!state.writer->open(state.temp.path(), fps, width, height)) {
         return unsupported(fmt::format(
             "{}: cannot open an MP4 encoder (this OpenCV build lacks FFmpeg's mpeg4 codec); "
             "write a PNG or EXR sequence instead",
@@ -283,7 +297,7 @@ Status Mp4Writer::write(const Image& frame) {
             }
         }
     }
-    state.writer.write(bgr);
+    state.writer->write(bgr);
     ++state.frames;
     return Status::ok();
 }
@@ -291,19 +305,24 @@ Status Mp4Writer::write(const Image& frame) {
 Status Mp4Writer::finish() {
     State& state = *state_;
     if (state.frames == 0) return io_error(fmt::format("{}: no frame was written", state.path));
-    state.writer.release();
+    state.writer->release();
     return state.temp.commit();
 }
 
+Status check_video_support(const std::string& file) {
+    auto codecs = codecs_for(file);
+    return codecs.ok() ? Status::ok() : codecs.status();
+}
+
 bool mp4_writing_supported() {
+    auto codecs = codec::load_plugin();
+    if (!codecs.ok()) return false;
     const fs::path probe =
         fs::temp_directory_path() /
         fmt::format("exemplar-mp4-probe-{}.mp4", static_cast<const void*>(&probe));
-    cv::VideoWriter writer;
-    const bool ok =
-        writer.open(probe.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'),
-                    10.0, cv::Size(16, 16), true);
-    writer.release();
+    auto writer = (*codecs)->new_writer();
+    const bool ok = writer->open(probe.string(), 10.0, 16, 16);
+    writer->release();
     std::error_code ec;
     fs::remove(probe, ec);
     return ok;

@@ -4,6 +4,13 @@
 /// range, or a folder) or a video file decoded by OpenCV (FFmpeg backend), and writers for PNG/EXR
 /// sequences and MP4 files.
 ///
+/// Video files are decoded and encoded by a plugin, `libexemplar_video_mp4.so`, loaded on the
+/// first video read or write: it holds OpenCV's videoio and with it FFmpeg and GStreamer, which
+/// would otherwise load into every process. It is looked for next to the executable, then in
+/// `../lib/exemplar/` from it (the install layout), or only in `$EXEMPLAR_PLUGIN_DIR` if that is
+/// set. Without it image sequences work as usual and every video call returns Unsupported
+/// `clip.mp4: video support is not available (libexemplar_video_mp4.so: <reason>)`.
+///
 /// Frames are read on demand, as `Image`s like `load_image` returns them (video frames: 3
 /// channels "R", "G", "B" in [0, 1]). Errors are one line naming the file: a missing frame
 /// `frames/0042.png: no such file` when the sequence is described, not halfway through a run.
@@ -36,7 +43,7 @@ public:
     static Result<FrameSequence> from_folder(const std::string& folder);
     /// A video file (anything OpenCV's FFmpeg backend decodes: MP4, MOV, AVI, ...). The frames
     /// are counted by decoding the file once. IoError if the file is missing, cannot be decoded
-    /// or has no frame.
+    /// or has no frame; Unsupported if the video plugin cannot be loaded.
     static Result<FrameSequence> from_video(const std::string& path);
 
     FrameSequence(FrameSequence&&) noexcept;
@@ -71,7 +78,13 @@ private:
 Status write_frame(const Image& frame, const std::string& pattern, int number,
                    const SaveOptions& options = {});
 
-/// True if this OpenCV build can encode MP4 (codec "mp4v", MPEG-4 Part 2 through FFmpeg).
+/// Ok if video files can be read and written: the video plugin loads (on the first call).
+/// Unsupported `<file>: video support is not available (libexemplar_video_mp4.so: <reason>)`
+/// otherwise, so a command can check before it starts a long run that ends in a video.
+Status check_video_support(const std::string& file);
+
+/// True if the video plugin loads and its OpenCV build can encode MP4 (codec "mp4v", MPEG-4
+/// Part 2 through FFmpeg).
 bool mp4_writing_supported();
 
 /// Writes an MP4 file frame by frame with cv::VideoWriter ("mp4v"). The file is written under a
@@ -81,7 +94,7 @@ class Mp4Writer {
 public:
     /// Opens the writer for `width` x `height` frames (each ≥ 2 and even: the codec needs it)
     /// at `fps` (> 0). InvalidArgument for bad values, IoError/Unsupported if the file cannot
-    /// be created or the codec is missing.
+    /// be created, the video plugin cannot be loaded or the codec is missing.
     static Result<Mp4Writer> open(const std::string& path, int width, int height, double fps);
 
     Mp4Writer(Mp4Writer&&) noexcept;

@@ -1,0 +1,57 @@
+// The video codec plugin, libexemplar_video_mp4.so: OpenCV's videoio (FFmpeg backend) behind the
+// interface of video_codec.hpp. exemplar::video loads it on the first video read or write; it is
+// the only exemplar binary that links libopencv_videoio.
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <opencv2/videoio.hpp>
+#include <string>
+
+#include "video_codec.hpp"
+
+namespace exemplar::video::codec {
+namespace {
+
+class CaptureReader final : public VideoReader {
+public:
+    bool open(const std::string& path) override { return capture_.open(path, cv::CAP_FFMPEG); }
+    bool is_open() const override { return capture_.isOpened(); }
+    bool grab() override { return capture_.grab(); }
+    bool retrieve(cv::Mat& frame) override { return capture_.retrieve(frame); }
+    void release() override { capture_.release(); }
+
+private:
+    cv::VideoCapture capture_;
+};
+
+class Mp4vWriter final : public VideoWriter {
+public:
+    bool open(const std::string& path, double fps, int width, int height) override {
+        return writer_.open(path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc('m', 'p', '4', 'v'), fps,
+                            cv::Size(width, height), true);
+    }
+    void write(const cv::Mat& bgr) override { writer_.write(bgr); }
+    void release() override { writer_.release(); }
+
+private:
+    cv::VideoWriter writer_;
+};
+
+std::unique_ptr<VideoReader> new_reader() {
+    return std::make_unique<CaptureReader>();
+}
+std::unique_ptr<VideoWriter> new_writer() {
+    return std::make_unique<Mp4vWriter>();
+}
+
+constexpr Entry kEntry{kCodecAbiVersion, &new_reader, &new_writer};
+
+}  // namespace
+}  // namespace exemplar::video::codec
+
+// The one exported symbol (the library is built with hidden visibility); its name is
+// codec::kEntrySymbol.
+extern "C" __attribute__((visibility("default"))) const exemplar::video::codec::Entry*
+exemplar_video_codec_entry() {
+    return &exemplar::video::codec::kEntry;
+}

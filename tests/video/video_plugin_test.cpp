@@ -1,0 +1,237 @@
+// The video codec plugin (libexemplar_video_mp4.so, src/video/video_codec.hpp): the only binary
+// that links OpenCV's videoio, loaded on the first video use only; found by the `exemplar`
+// executable beside it in the build tree and in lib/exemplar/ once installed; when it is missing,
+// video files fail with one line naming the file and image sequences work as before.
+//
+// The command-line cases run the real `exemplar` executable in a child process: the plugin is
+// loaded once per process, so a missing plugin can only be seen in a fresh one.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/video/frame_sequence.hpp"
+
+namespace exemplar::video {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kExemplar = EXEMPLAR_BINARY;
+const std::string kPlugin = EXEMPLAR_PLUGIN;
+
+std::string file_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// True if a file whose name contains `library` is mapped into this process.
+bool mapped(const std::string& library) {
+    return file_text("/proc/self/maps").find(library) != std::string::npos;
+}
+
+// `text` as one shell word.
+std::string quoted(const std::string& text) {
+    std::string out(1, '\'');
+    for (char c : text) {
+        if (c == '\'') {
+            out.append("'\\''");
+        } else {
+            out.push_back(c);
+        }
+    }
+    out.push_back('\'');
+    return out;
+}
+
+// Frame n of a small moving ramp (RGB; even sides, as MP4 needs).
+Image frame(int n) {
+    Image image(32, 24, 3);
+    for (int y = 0; y < image.height(); ++y) {
+        for (int x = 0; x < image.width(); ++x) {
+            image.at(x, y, 0) = static_cast<float>((x + 2 * n) % 32) / 32.0f;
+            image.at(x, y, 1) = static_cast<float>(y) / 24.0f;
+            image.at(x, y, 2) = 0.3f + 0.1f * static_cast<float>(n);
+        }
+    }
+    return image;
+}
+
+struct ProcessRun {
+    int code = -1;
+    std::string out;
+    std::string err;
+};
+
+class VideoPlugin : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("exemplar_plugin_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "frames");
+        fs::create_directories(dir_ / "out");
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+    // Runs `executable args...` through the shell with `env` in front ("env -u NAME" or
+    // "env NAME=value"), capturing the exit code and both streams.
+    ProcessRun run(const std::string& env, const std::string& executable,
+                   const std::vector<std::string>& args) const {
+        // append() rather than " " + word: GCC 12 sees a false -Wrestrict in the latter.
+        std::string command = env;
+        command.append(" ").append(quoted(executable));
+        for (const std::string& word : args) command.append(" ").append(quoted(word));
+        command.append(" > ").append(quoted(path("stdout.txt")));
+        command.append(" 2> ").append(quoted(path("stderr.txt")));
+        const int status = std::system(command.c_str());
+        ProcessRun r;
+        r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = file_text(path("stdout.txt"));
+        r.err = file_text(path("stderr.txt"));
+        return r;
+    }
+
+    // An `exemplar animate` job on `frames` (a video or a pattern of 3 frames) styled by an
+    // inverted copy of frame 0, written to out/%02d.png and, if given, to `mp4`.
+    std::string job(const std::string& frames, const std::string& mp4 = "") const {
+        const Image input = frame(0);
+        Image output = input;
+        for (std::size_t i = 0; i < output.size(); ++i) output.data()[i] = 1.0f - input.data()[i];
+        EXPECT_TRUE(save_image(input, path("style_in.png")).is_ok());
+        EXPECT_TRUE(save_image(output, path("style_out.png")).is_ok());
+        std::ofstream f(path("job.json"));
+        const bool pattern = frames.find('%') != std::string::npos;
+        f << R"({"frames": ")" << frames << '"' << (pattern ? R"(, "first": 0, "last": 2)" : "")
+          << R"(, "style": {"input": ")" << path("style_in.png") << R"(", "output": ")"
+          << path("style_out.png") << R"("}, "output": ")" << path("out/%02d.png") << '"'
+          << (mp4.empty() ? "" : R"(, "mp4": ")" + mp4 + '"') << ", \"fps\": 10}";
+        return path("job.json");
+    }
+
+    void write_pngs() const {
+        for (int n = 0; n < 3; ++n) {
+            ASSERT_TRUE(write_frame(frame(n), path("frames/%02d.png"), n).is_ok());
+        }
+    }
+
+    void write_mp4(const std::string& name) const {
+        auto writer = Mp4Writer::open(path(name), 32, 24, 10.0);
+        ASSERT_TRUE(writer.ok()) << writer.status().message();
+        for (int n = 0; n < 3; ++n) ASSERT_TRUE(writer->write(frame(n)).is_ok());
+        ASSERT_TRUE(writer->finish().is_ok());
+    }
+
+    fs::path dir_;
+};
+
+// ctest runs every test in a fresh process; run by hand, this one comes first in the file.
+TEST_F(VideoPlugin, CodecsLoadOnFirstVideoUseOnly) {
+    ASSERT_FALSE(mapped("libexemplar_video_mp4")) << "loaded before any video was touched";
+    write_pngs();
+    auto pngs = FrameSequence::from_pattern(path("frames/%02d.png"), 0, 2);
+    ASSERT_TRUE(pngs.ok()) << pngs.status().message();
+    ASSERT_TRUE(pngs->read(1).ok());
+    EXPECT_FALSE(mapped("libexemplar_video_mp4")) << "image sequences need no codec";
+    // Debian's OpenImageIO links videoio itself; without it nothing but the plugin may.
+    if (!mapped("libOpenImageIO")) {
+        EXPECT_FALSE(mapped("libopencv_videoio"));
+    }
+
+    // The tests find the build tree's plugin through EXEMPLAR_PLUGIN_DIR (tests/plugin_dir.cpp).
+    const Status support = check_video_support(path("clip.mp4"));
+    ASSERT_TRUE(support.is_ok()) << support.message();
+    EXPECT_TRUE(mapped("libexemplar_video_mp4"));
+    EXPECT_TRUE(mapped("libopencv_videoio"));
+    EXPECT_TRUE(mp4_writing_supported()) << "the MP4 round trips would be skipped";
+
+    // Reading and writing go through the plugin.
+    write_mp4("clip.mp4");
+    auto clip = FrameSequence::from_video(path("clip.mp4"));
+    ASSERT_TRUE(clip.ok()) << clip.status().message();
+    EXPECT_EQ(clip->size(), 3);
+    auto last = clip->read(2);
+    ASSERT_TRUE(last.ok()) << last.status().message();
+    EXPECT_EQ(last->width(), 32);
+    EXPECT_EQ(last->channels(), 3);
+}
+
+TEST_F(VideoPlugin, OnlyThePluginLinksVideoio) {
+    const auto needs_videoio = [&](const std::string& binary) {
+        const ProcessRun r = run("env", "readelf", {"-d", binary});
+        EXPECT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.out.find("(NEEDED)"), std::string::npos) << binary;
+        return r.out.find("libopencv_videoio") != std::string::npos;
+    };
+    EXPECT_FALSE(needs_videoio(kExemplar));
+    EXPECT_FALSE(needs_videoio(fs::read_symlink("/proc/self/exe").string()));
+    EXPECT_TRUE(needs_videoio(kPlugin));
+}
+
+TEST_F(VideoPlugin, MissingPluginIsAOneLineErrorNamingTheVideo) {
+    fs::create_directories(path("no_plugins"));
+    const std::string env = "env EXEMPLAR_PLUGIN_DIR=" + quoted(path("no_plugins"));
+    const std::string reason =
+        "video support is not available (libexemplar_video_mp4.so: "
+        "not found in " +
+        path("no_plugins") + " (set by EXEMPLAR_PLUGIN_DIR))";
+
+    // Video frames: the error names the video, whatever its contents.
+    std::ofstream(path("clip.mp4")) << "any bytes: the plugin is needed to look at them";
+    ProcessRun r = run(env, kExemplar, {"animate", job(path("clip.mp4")), "-q"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("clip.mp4") + ": " + reason + "\n");
+
+    // An MP4 output: refused before any frame is solved.
+    write_pngs();
+    r = run(env, kExemplar,
+            {"animate", job(path("frames/%02d.png"), path("out/result.mp4")), "-q"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("out/result.mp4") + ": " + reason + "\n");
+    EXPECT_TRUE(fs::is_empty(path("out")));
+
+    // Image sequences do not need it.
+    r = run(env, kExemplar, {"animate", job(path("frames/%02d.png")), "-q"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("out/02.png")));
+}
+
+TEST_F(VideoPlugin, ExecutableFindsThePluginBesideIt) {
+    write_mp4("clip.mp4");
+    const ProcessRun r = run("env -u EXEMPLAR_PLUGIN_DIR", kExemplar,
+                             {"animate", job(path("clip.mp4"), path("out/result.mp4")), "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto result = FrameSequence::from_video(path("out/result.mp4"));
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    EXPECT_EQ(result->size(), 3);
+}
+
+TEST_F(VideoPlugin, InstalledExecutableFindsThePluginInLibExemplar) {
+    const ProcessRun install =
+        run("env", EXEMPLAR_CMAKE, {"--install", EXEMPLAR_BUILD_DIR, "--prefix", path("prefix")});
+    ASSERT_EQ(install.code, 0) << install.err;
+    const fs::path installed = dir_ / "prefix" / "bin" / "exemplar";
+    ASSERT_TRUE(fs::exists(installed)) << install.out;
+    write_mp4("clip.mp4");
+    const ProcessRun r = run("env -u EXEMPLAR_PLUGIN_DIR", installed.string(),
+                             {"animate", job(path("clip.mp4"), path("out/result.mp4")), "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto result = FrameSequence::from_video(path("out/result.mp4"));
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    EXPECT_EQ(result->size(), 3);
+}
+
+}  // namespace
+}  // namespace exemplar::video
