@@ -1,7 +1,7 @@
 // End-to-end timing and quality of `synthesize` on the ebsynth examples in ../shared/data (the
 // issue's reference workloads).
 //
-// Usage: bench_examples [stylit|facestyle|texbynum|all] [threads] [repeats] [options...]
+// Usage: bench_examples [stylit|facestyle|texbynum|guided2|all] [threads] [repeats] [options...]
 //   --scale S          resize inputs by S first (0.5 = the bundled half-resolution job)
 //   --usage NAME       patch-usage strategy (none, uniform, error-budget, occurrence)
 //   --set NAME=VALUE   any numeric synthesis option (see `exemplar stylize --help`)
@@ -87,9 +87,11 @@ bool load(const std::string& path, double scale, Image& out) {
     return true;
 }
 
+// `folder`: the example's folder under ../shared/data/guided (default: ebsynth/<name>).
 int run(const std::string& name, const char* style, const std::vector<GuideFiles>& guides,
-        const Settings& settings) {
-    const std::string dir = std::string(EXEMPLAR_SHARED_DATA_DIR) + "/guided/ebsynth/" + name + "/";
+        const Settings& settings, const std::string& folder = "") {
+    const std::string dir = std::string(EXEMPLAR_SHARED_DATA_DIR) + "/guided/" +
+                            (folder.empty() ? "ebsynth/" + name : folder) + "/";
     SynthesisInput in;
     if (!load(dir + style, settings.scale, in.style)) return 1;
     for (const GuideFiles& g : guides) {
@@ -221,6 +223,12 @@ int main(int argc, char** argv) {
                    {"source_Gseg.png", "target_Gseg.png", 1.5f},
                    {"source_Gpos.png", "target_Gpos.png", 10.0f}},
                   settings);
+    }
+    // Guided texture synthesis (EmbarkStudios/texture-synthesis, imgs/2.jpg): the example's
+    // mask guides where the target's should go.
+    if (which == "all" || which == "guided2") {
+        rc |= run("guided2", "2.jpg", {{"masks/2_example.jpg", "masks/2_target.jpg", 1.0f}},
+                  settings, "texture-synthesis");
     }
     if (which == "all" || which == "texbynum") {
         rc |= run("texbynum", "source_photo.png",

@@ -48,6 +48,9 @@ style[facestyle]=$data/facestyle/source_painting.png
 guides[facestyle]="Gapp 0.5 Gseg 1.5 Gpos 10"
 style[texbynum]=$data/texbynum/source_photo.png
 guides[texbynum]="segment 1"
+# Guided texture synthesis (EmbarkStudios/texture-synthesis imgs/2.jpg): masks as the guide.
+style[guided2]=$data/../texture-synthesis/2.jpg
+guides[guided2]="mask 1"
 
 # Runs "$@" under /usr/bin/time; sets secs and mib.
 timed() {
@@ -58,11 +61,15 @@ timed() {
 }
 
 printf "%-10s %-9s %8s %8s %9s %8s %9s\n" example tool "time s" "x eb" "RSS MiB" texture fidelity
-for name in stylit facestyle texbynum; do
+for name in stylit facestyle texbynum guided2; do
   eb_args=() ex_args=()
   set -- ${guides[$name]}
   while (($# > 0)); do
-    s=$data/$name/source_$1.png t=$data/$name/target_$1.png
+    if [[ $name == guided2 ]]; then
+      s=$data/../texture-synthesis/masks/2_example.jpg t=$data/../texture-synthesis/masks/2_target.jpg
+    else
+      s=$data/$name/source_$1.png t=$data/$name/target_$1.png
+    fi
     eb_args+=(-guide "$s" "$t" -weight "$2")
     ex_args+=(--guide "$s" "$t" --weight "$2")
     shift 2
