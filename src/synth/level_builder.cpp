@@ -64,7 +64,6 @@ bool constant_channel(const Image& image, int c, float value) {
 // dropped; a channel equal to an earlier one on both sides adds the same squared differences
 // and is merged into it (the weights add). Guides with a weight map keep all their channels.
 // Fewer bytes per pixel make every patch distance cheaper (docs/PERFORMANCE.md).
-std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& guides);
 std::vector<ReducedGuide> reduce_guide_channels(const std::vector<GuidePair>& guides) {
     struct Kept {
         std::size_t guide;

@@ -42,6 +42,9 @@ class LevelBuilder {
 public:
     LevelBuilder(const SynthesisInput& input, const SynthesisOptions& options, int levels,
                  int threads);
+    // The reduced guides point into the input and into this object.
+    LevelBuilder(const LevelBuilder&) = delete;
+    LevelBuilder& operator=(const LevelBuilder&) = delete;
 
     int levels() const { return levels_; }
     int target_width() const { return tw_; }
