@@ -311,8 +311,9 @@ TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
     expect_failure_as_is(
         {"animate", job(R"("quality": "superb")")}, 1,
         path("job.json") + ": quality: 'superb' is invalid (must be one of fast, default, best)");
-    expect_failure_as_is({"animate", job(), "--quality", "fine"}, 1,
-                         "--quality: quality: 'fine' is invalid");
+    expect_failure_as_is(
+        {"animate", job(), "--quality", "fine"}, 1,
+        "exemplar: quality: 'fine' is invalid (must be one of fast, default, best)");
     expect_failure_as_is({"animate", job(R"("ribbons": 1)")}, 1,
                          path("job.json") + ": key 'ribbons' must be true or false");
     expect_failure_as_is({"animate", job(R"("weights": {"input-derivative": -1})")}, 1,
