@@ -333,5 +333,20 @@ TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
     expect_failure_as_is({"animate", path("video.json")}, 1, "clip.mp4");
 }
 
+// The output pattern's folders are created (animate -o shots/a/%02d.png on a fresh checkout); a
+// file in the way is a one-line error before any frame is solved.
+TEST_F(AnimateCli, OutputFoldersAreCreated) {
+    const CliRun r =
+        run({"animate", job(), "--frames", "0-1", "-q", "-o", path("shots/a/%02d.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("shots/a/00.png")));
+    EXPECT_TRUE(fs::exists(path("shots/a/01.png")));
+    std::ofstream(path("blocker")) << "x";
+    expect_failure_as_is({"animate", job(), "--frames", "0-1", "-o", path("blocker/%02d.png")}, 1,
+                         "output " + path("blocker/00.png") + ": cannot create folder \"" +
+                             path("blocker") + "\": " + path("blocker") +
+                             " is a file, not a folder");
+}
+
 }  // namespace
 }  // namespace exemplar::cli::testing

@@ -377,6 +377,15 @@ TEST_F(Cli, CommandLineGrammarErrorsExitWith2) {
 
 // --- Output files -----------------------------------------------------------------------------
 
+// The output's missing folders are created (the maps' are, in
+// StylizeWritesTheOutputAndPrintsItsPath); a file in the way is checked before the run below.
+TEST_F(Cli, OutputFolderIsCreated) {
+    const CliRun r = run(with(stylize_args(), {"-o", path("new/deeper/out.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("new/deeper/out.png") + "\n");
+    EXPECT_EQ(read("new/deeper/out.png").width(), 36);
+}
+
 TEST_F(Cli, OutputsAreCheckedBeforeTheRun) {
     expect_failure_as_is(with(stylize_args(), {"-o", path("style.png/out.png")}), 1,
                          "--output " + path("style.png/out.png") + ": cannot create folder");
