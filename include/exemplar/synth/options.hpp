@@ -47,15 +47,15 @@ Result<VoteMode> parse_vote_mode(std::string_view name);
 /// quality_changes() changed, so a change of a default carries over to every preset it does not
 /// set. Measurements of each in docs/PERFORMANCE.md ("Quality presets").
 enum class Quality {
-    /// Previews: one EM iteration on the finest level, two on the one before, one PatchMatch
-    /// iteration per warm search; about 2x faster than Default, a little less texture and a
-    /// little further from the exemplar.
+    /// Previews: fewer EM iterations on the two finest levels and fewer PatchMatch iterations
+    /// per warm search; about 2x faster than Default, a little less texture and a little
+    /// further from the exemplar.
     Fast,
     /// The defaults of SynthesisOptions.
     Default,
-    /// Finals: 16 EM iterations per coarse level (they are cheap and set the layout), 8 on the
-    /// level before the finest and 3 on the finest; closer to the exemplar and more of its
-    /// texture, about 1.7x the time of Default.
+    /// Finals: many more EM iterations on the coarse levels (they are cheap and set the
+    /// layout) and more on the two finest; closer to the exemplar and more of its texture,
+    /// about 1.7x the time of Default.
     Best,
 };
 
