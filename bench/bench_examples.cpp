@@ -3,6 +3,8 @@
 //
 // Usage: bench_examples [stylit|facestyle|texbynum|guided2|all] [threads] [repeats] [options...]
 //   --scale S          resize inputs by S first (0.5 = the bundled half-resolution job)
+//   --quality NAME     start from SynthesisOptions::preset (fast, default, best); --usage and
+//                      --set apply over it, whatever the order
 //   --usage NAME       patch-usage strategy (none, uniform, error-budget, occurrence)
 //   --set NAME=VALUE   any numeric synthesis option (see `exemplar stylize --help`)
 //   --out FILE         save the result (to look at it)
@@ -172,10 +174,22 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
 }
 
 bool parse_options(int argc, char** argv, int first, Settings& settings) {
+    // The preset first, as the CLI does, so that --usage and --set override it in any order.
+    for (int i = first; i + 1 < argc; ++i) {
+        if (std::strcmp(argv[i], "--quality") != 0) continue;
+        auto quality = parse_quality(argv[i + 1]);
+        if (!quality.ok()) {
+            std::fprintf(stderr, "%s\n", quality.status().message().c_str());
+            return false;
+        }
+        settings.options = SynthesisOptions::preset(*quality);
+    }
     for (int i = first; i < argc; ++i) {
         const std::string arg = argv[i];
         const bool has_value = i + 1 < argc;
-        if (arg == "--scale" && has_value) {
+        if (arg == "--quality" && has_value) {
+            ++i;  // applied above
+        } else if (arg == "--scale" && has_value) {
             settings.scale = std::stod(argv[++i]);
         } else if (arg == "--out" && has_value) {
             settings.out = argv[++i];

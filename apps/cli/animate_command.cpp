@@ -137,7 +137,7 @@ AnimateCommand::AnimateCommand(CLI::App& parent) {
     app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
     seed_flag_ = app_->add_option("--seed", seed_, "Random seed (same seed, same output)");
     app_->add_option("--quality", quality_,
-                     "Search effort: fast (previews), default, best; overrides the job's "
+                     "Search effort: fast (previews), default, best (slower); overrides the job's "
                      "\"quality\" (its explicit engine options still apply)");
     app_->add_flag("--resume,!--no-resume", resume_,
                    "Skip frames whose output exists (default on)");
@@ -152,8 +152,10 @@ Status AnimateCommand::run(const Streams& streams) const {
     if (!mp4_.empty()) job.mp4 = mp4_;
     if (chunk_ >= 0) job.chunk = chunk_;
     if (!quality_.empty()) {
+        // The job's own options were checked when it was read: only the flag can be wrong here.
+        if (auto quality = parse_quality(quality_); !quality.ok()) return quality.status();
         job.quality = quality_;
-        EXEMPLAR_RETURN_IF_ERROR(build_synthesis_options(job, "--quality"));
+        EXEMPLAR_RETURN_IF_ERROR(build_synthesis_options(job, job_path_));
     }
     if (seed_flag_->count() > 0) job.options.synthesis.seed = seed_;
     if (job.output.empty()) return invalid_argument(job_path_ + ": key 'output' is missing");

@@ -41,9 +41,23 @@ bool is_expert_option(const OptionSpec& spec) {
     return spec.name != "patch-size" && spec.name != "style-weight" && spec.name != "seed";
 }
 
+std::string quality_flags(Quality quality) {
+    std::string text;
+    for (const QualityChange& change : quality_changes(quality)) {
+        if (!text.empty()) text.append(" ");
+        text.append("--").append(change.option).append(" ").append(format_number(change.value));
+    }
+    return text;
+}
+
 std::string expert_options_help() {
     std::string text =
-        "\nSearch tuning (experts; --quality sets these together, explicit flags override it):\n";
+        "\nSearch tuning (experts). --quality sets some of them; explicit flags override it, "
+        "whatever their order:\n";
+    for (Quality quality : {Quality::Fast, Quality::Best}) {
+        text.append("  --quality ").append(to_string(quality)).append(" = ");
+        text.append(quality_flags(quality)).append("\n");
+    }
     for (const OptionSpec& spec : synthesis_option_specs()) {
         if (!is_expert_option(spec)) continue;
         text.append("  --").append(spec.name).append(is_integer_option(spec) ? " INT" : " FLOAT");

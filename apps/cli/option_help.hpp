@@ -34,6 +34,11 @@ std::string describe(const OptionSpec& spec);
 /// `--help` lists them only under `--help-all` (--quality sets them together).
 bool is_expert_option(const OptionSpec& spec);
 
+/// What a quality preset sets, as the flags that would set it:
+/// "--finest-em-iterations 1 --second-finest-em-iterations 2 ..." (empty for Default). Listed by
+/// `--help-all` and, word for word, by docs/cli.md.
+std::string quality_flags(Quality quality);
+
 /// The expert options as a help section ("Search tuning (experts) ..." with one
 /// "  --name TYPE  description" entry each), for `--help-all`.
 std::string expert_options_help();

@@ -97,8 +97,8 @@ StylitCommand::StylitCommand(CLI::App& parent) {
                    "Patch-usage strategy: error-budget (default), uniform, none, occurrence")
         ->group(kSynthesis);
     app.add_option("--quality", quality_,
-                   "Search effort: fast (~2.5x faster), default, best (closer to the exemplar, "
-                   "~2.3x the time)")
+                   "Search effort: fast (previews), default, best (closer to the exemplar, "
+                   "slower); the presets of stylize --quality")
         ->group(kSynthesis);
     app.add_option("--seed", seed_, "Random seed [default 1]; same seed, same output")
         ->group(kSynthesis);

@@ -171,8 +171,8 @@ StylizeCommand::StylizeCommand(CLI::App& parent) {
     app.add_option("--vote", flag_job_.vote, "Voting: average or weighted (default)")
         ->group(kSynthesis);
     app.add_option("--quality", flag_job_.quality,
-                   "Search effort: fast (previews, ~2.5x faster), default, best (closer to the "
-                   "exemplar, ~2.3x the time); explicit tuning flags override it")
+                   "Search effort: fast (previews), default, best (closer to the exemplar, "
+                   "slower); the tuning flags of --help-all override it")
         ->group(kSynthesis);
     for (const OptionSpec& spec : synthesis_option_specs()) {
         const std::string name(spec.name);

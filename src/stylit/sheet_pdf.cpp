@@ -4,27 +4,22 @@
 
 #include <cairo-pdf.h>
 #include <cairo.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <numbers>
 #include <sstream>
 
-#include "exemplar/io/folders.hpp"
+#include "atomic_file.hpp"
 #include "exemplar/stylit/sheet.hpp"
 #include "marks.hpp"
 
 namespace exemplar {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 constexpr double kPointsPerInch = 72.0;
 constexpr double kBorderPt = 10.0 / 25.4 * kPointsPerInch;  // 10 mm unprinted border
@@ -42,37 +37,18 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
     return CAIRO_STATUS_SUCCESS;
 }
 
-// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
+// Writes `bytes` to `path` through a temporary file in the same folder (created if missing) and
+// a rename.
 Status write_atomically(const std::string& bytes, const std::string& path) {
-    static std::atomic<unsigned> counter{0};
-    EXEMPLAR_RETURN_IF_ERROR(create_parent_folders(path));
-    const fs::path target(path);
-    fs::path folder = target.parent_path();
-    if (folder.empty()) folder = ".";
-    // Built by appending: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string&&.
-    std::string name(1, '.');
-    name.append(target.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
-    name.append("-").append(std::to_string(counter++));
-    const fs::path temp = folder / name;
+    io_detail::TempFile temp(path);
+    EXEMPLAR_RETURN_IF_ERROR(temp.status());
     {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        std::ofstream out(temp.path(), std::ios::binary | std::ios::trunc);
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         out.close();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(temp, ec);
-            std::string reason = "folder " + folder.string() + " does not exist";
-            if (fs::is_directory(folder, ec)) reason = "folder not writable or disk full";
-            return io_error(path + ": cannot write (" + reason + ")");
-        }
+        if (!out) return io_error(path + ": cannot write (disk full or not writable)");
     }
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec) {
-        fs::remove(temp, ec);
-        return io_error(path + ": cannot write (" + ec.message() + ")");
-    }
-    return Status::ok();
+    return temp.commit();
 }
 
 // The marks as filled paths, in sheet pixel coordinates: each black band is a disc with the

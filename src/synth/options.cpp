@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "exemplar/core/check.hpp"
+
 namespace exemplar {
 
 std::string_view to_string(UsageStrategy strategy) {
@@ -53,27 +55,37 @@ Result<Quality> parse_quality(std::string_view name) {
     return invalid_argument(std::move(message));
 }
 
+std::span<const QualityChange> quality_changes(Quality quality) {
+    // Measured on bench_examples stylit and facestyle, seeds 1-3 (docs/PERFORMANCE.md, "Quality
+    // presets"). Fast: the finest levels iterate less and warm searches run once; the coarse
+    // levels keep their iterations (3 instead of 6 there saves little and costs stylit a fifth
+    // of its fidelity). Best: the coarse levels iterate much more, which is nearly free and
+    // brings the most fidelity, then the two finest levels converge further.
+    static constexpr std::array kFast{
+        QualityChange{"finest-em-iterations", 1},
+        QualityChange{"second-finest-em-iterations", 2},
+        QualityChange{"warm-search-iterations", 1},
+    };
+    static constexpr std::array kBest{
+        QualityChange{"em-iterations", 16},
+        QualityChange{"finest-em-iterations", 3},
+        QualityChange{"second-finest-em-iterations", 8},
+    };
+    switch (quality) {
+        case Quality::Fast: return kFast;
+        case Quality::Default: return {};
+        case Quality::Best: return kBest;
+    }
+    return {};
+}
+
 SynthesisOptions SynthesisOptions::preset(Quality quality) {
     SynthesisOptions o;
-    switch (quality) {
-        case Quality::Fast:
-            // Every level searches less: bench_examples (2 threads) stylit 4.3 -> 1.9 s,
-            // facestyle 2.8 -> 1.1 s; fidelity 0.037 -> 0.055 and 0.0124 -> 0.0133.
-            o.em_iterations = 3;
-            o.finest_em_iterations = 1;
-            o.second_finest_em_iterations = 2;
-            o.search_iterations = 3;
-            o.warm_search_iterations = 1;
-            o.budget_max_rounds = 8;
-            break;
-        case Quality::Default: break;
-        case Quality::Best:
-            // The two finest levels converge further, every warm search runs 3 iterations.
-            o.finest_em_iterations = 4;
-            o.second_finest_em_iterations = 6;
-            o.warm_search_iterations = 3;
-            o.finest_first_round_iterations = 0;
-            break;
+    for (const QualityChange& change : quality_changes(quality)) {
+        // A bug, not bad input: the presets' names and values are tested.
+        const OptionSpec* spec = find_option(change.option);
+        EXEMPLAR_CHECK(spec != nullptr);
+        EXEMPLAR_CHECK(set_option(o, *spec, change.value).is_ok());
     }
     return o;
 }

@@ -338,6 +338,28 @@ TEST(Animate, InBetweensMoveSmoothlyBetweenTwoKeys) {
     EXPECT_LT(worst_step, 0.2 * base_step);
 }
 
+// The animation's quality dial: Default is the animation's own defaults (so their changes carry
+// over); Fast iterates less and Best more; all are valid.
+TEST(Animate, QualityPresetsAroundTheAnimationDefaults) {
+    const SynthesisOptions defaults = animate_default_synthesis_options();
+    const SynthesisOptions preset = animate_synthesis_options(Quality::Default);
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        EXPECT_EQ(get_option(preset, spec), get_option(defaults, spec)) << spec.name;
+    }
+    EXPECT_EQ(preset.usage, defaults.usage);
+    EXPECT_EQ(preset.vote, defaults.vote);
+    const SynthesisOptions fast = animate_synthesis_options(Quality::Fast);
+    const SynthesisOptions best = animate_synthesis_options(Quality::Best);
+    EXPECT_TRUE(validate(fast).is_ok());
+    EXPECT_TRUE(validate(best).is_ok());
+    EXPECT_EQ(fast.usage, defaults.usage);
+    EXPECT_EQ(best.usage, defaults.usage);
+    EXPECT_LT(fast.em_iterations, defaults.em_iterations);
+    EXPECT_GT(best.em_iterations, defaults.em_iterations);
+    EXPECT_LE(fast.warm_search_iterations, defaults.warm_search_iterations);
+    EXPECT_GE(best.warm_search_iterations, defaults.warm_search_iterations);
+}
+
 TEST(Animate, ErrorsNameTheProblem) {
     Scene scene;
     scene.frames = 3;

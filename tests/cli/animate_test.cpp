@@ -311,8 +311,9 @@ TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
     expect_failure_as_is(
         {"animate", job(R"("quality": "superb")")}, 1,
         path("job.json") + ": quality: 'superb' is invalid (must be one of fast, default, best)");
-    expect_failure_as_is({"animate", job(), "--quality", "fine"}, 1,
-                         "--quality: quality: 'fine' is invalid");
+    expect_failure_as_is(
+        {"animate", job(), "--quality", "fine"}, 1,
+        "exemplar: quality: 'fine' is invalid (must be one of fast, default, best)");
     expect_failure_as_is({"animate", job(R"("ribbons": 1)")}, 1,
                          path("job.json") + ": key 'ribbons' must be true or false");
     expect_failure_as_is({"animate", job(R"("weights": {"input-derivative": -1})")}, 1,
@@ -330,6 +331,21 @@ TEST_F(AnimateCli, ErrorsAreOneLineAndNameTheProblem) {
         << R"({"frames": "clip.mp4", "style": {"input": "s_in.png", "output": "s_out.png"},)"
         << R"( "output": "out/%02d.png"})";
     expect_failure_as_is({"animate", path("video.json")}, 1, "clip.mp4");
+}
+
+// The output pattern's folders are created (animate -o shots/a/%02d.png on a fresh checkout); a
+// file in the way is a one-line error before any frame is solved.
+TEST_F(AnimateCli, OutputFoldersAreCreated) {
+    const CliRun r =
+        run({"animate", job(), "--frames", "0-1", "-q", "-o", path("shots/a/%02d.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("shots/a/00.png")));
+    EXPECT_TRUE(fs::exists(path("shots/a/01.png")));
+    std::ofstream(path("blocker")) << "x";
+    expect_failure_as_is({"animate", job(), "--frames", "0-1", "-o", path("blocker/%02d.png")}, 1,
+                         "output " + path("blocker/00.png") + ": cannot create folder \"" +
+                             path("blocker") + "\": " + path("blocker") +
+                             " is a file, not a folder");
 }
 
 }  // namespace

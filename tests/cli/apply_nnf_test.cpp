@@ -104,5 +104,18 @@ TEST_F(ApplyNnf, Errors) {
                    "vote: 'loudly' is invalid");
 }
 
+// Missing output folders are created; a file in the way of one is a one-line error.
+TEST_F(ApplyNnf, OutputFoldersAreCreated) {
+    const CliRun r = run(with(apply_args("style.png"), {"-o", path("new/deeper/again.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("new/deeper/again.png") + "\n");
+    EXPECT_EQ(read("new/deeper/again.png").width(), 36);
+    std::ofstream(path("blocker")) << "x";
+    expect_failure_as_is(with(apply_args("style.png"), {"-o", path("blocker/sub/again.png")}), 1,
+                         "--output " + path("blocker/sub/again.png") + ": cannot create folder \"" +
+                             path("blocker/sub") + "\": " + path("blocker") +
+                             " is a file, not a folder");
+}
+
 }  // namespace
 }  // namespace exemplar::cli::testing

@@ -43,5 +43,22 @@ TEST_F(Cli, FlowRejectsBadInputs) {
     expect_failure_as_is({"flow", "--from", a, "--to", a}, 2, "--output");
 }
 
+// Missing output folders are created for each of the three outputs; a file in the way of one
+// is a one-line error, and nothing is written.
+TEST_F(Cli, FlowCreatesOutputFolders) {
+    const std::string a = path("a.png");
+    const CliRun r =
+        run({"flow", "--from", a, "--to", a, "-o", path("f/fwd.flo"), "--backward",
+             path("b/deeper/bwd.exr"), "--occlusion", path("o/occ.png"), "--preset", "ultrafast"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(load_flow(path("f/fwd.flo")).ok());
+    EXPECT_TRUE(load_flow(path("b/deeper/bwd.exr")).ok());
+    EXPECT_EQ(read("o/occ.png").channels(), 1);
+    std::ofstream(path("blocker")) << "x";
+    expect_failure_as_is({"flow", "--from", a, "--to", a, "-o", path("out.flo"), "--occlusion",
+                          path("blocker/occ.png")},
+                         1, "--occlusion " + path("blocker/occ.png") + ": cannot create folder");
+}
+
 }  // namespace
 }  // namespace exemplar::cli::testing

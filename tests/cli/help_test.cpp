@@ -32,6 +32,13 @@ TEST(CliHelp, StylizeHelpIsGeneratedFromTheOptionTable) {
     EXPECT_GE(experts, 15);
     EXPECT_NE(h.out.find("--help-all"), std::string::npos);
     EXPECT_NE(h.out.find("--quality"), std::string::npos);
+    // --help-all tells what each preset sets, as flags.
+    for (Quality q : {Quality::Fast, Quality::Best}) {
+        const std::string line =
+            std::string("--quality ").append(to_string(q)).append(" = ").append(quality_flags(q));
+        EXPECT_NE(all.out.find(line + "\n"), std::string::npos) << line;
+        EXPECT_EQ(h.out.find(line), std::string::npos) << line;
+    }
     const auto flags = [](const std::string& text) {
         int count = 0;
         for (std::size_t at = text.find("\n  -"); at != std::string::npos;
@@ -88,21 +95,32 @@ TEST(CliHelp, NumbersAreWrittenPlainly) {
     EXPECT_EQ(format_number(9007199254740992.0), "9007199254740992");
 }
 
-// docs/cli.md lists every numeric option as the table has it: a row
-// | `--name` | INT or FLOAT | doc | range | default |
+// docs/cli.md lists every numeric option as the table has it, and marks the expert ones: a row
+// | `--name` | INT or FLOAT | doc | range | default | `--help` or `--help-all` |
+// and tells what each quality preset sets, as `--help-all` does.
 TEST(CliDocs, ReferenceAgreesWithTheOptionTable) {
     std::ifstream in(std::string(EXEMPLAR_SOURCE_DIR) + "/docs/cli.md");
     ASSERT_TRUE(in);
     std::vector<std::string> lines;
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    std::string text;
+    for (std::string line; std::getline(in, line);) {
+        lines.push_back(line);
+        text.append(line).append("\n");
+    }
     for (const OptionSpec& spec : synthesis_option_specs()) {
         std::string row = std::string("| `--").append(spec.name).append("` | ");
         row.append(is_integer_option(spec) ? "INT" : "FLOAT").append(" | ");
         row.append(spec.doc).append(" | ").append(format_range(spec)).append(" | ");
-        row.append(format_default(spec)).append(" |");
+        row.append(format_default(spec)).append(" | ");
+        row.append(is_expert_option(spec) ? "`--help-all`" : "`--help`").append(" |");
         EXPECT_NE(std::find(lines.begin(), lines.end(), row), lines.end())
             << "docs/cli.md should have the row\n"
             << row;
+    }
+    for (Quality q : {Quality::Fast, Quality::Best}) {
+        const std::string says =
+            std::string("`").append(to_string(q)).append("` = `").append(quality_flags(q)) + "`";
+        EXPECT_NE(text.find(says), std::string::npos) << "docs/cli.md should say " << says;
     }
 }
 

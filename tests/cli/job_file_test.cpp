@@ -55,6 +55,12 @@ TEST_F(Cli, JobFileErrorsNameTheFileAndKey) {
     std::ofstream(path("bad_type.json")) << R"({"style": "style.png", "patch-size": "five"})";
     expect_failure({"stylize", "--config", path("bad_type.json")}, 1,
                    path("bad_type.json") + ": key 'patch-size' must be a number");
+    std::ofstream(path("bad_quality.json")) << R"({"style": "style.png", "quality": "max"})";
+    expect_failure({"stylize", "--config", path("bad_quality.json")}, 1,
+                   "quality: 'max' is invalid (must be one of fast, default, best)");
+    std::ofstream(path("quality_number.json")) << R"({"style": "style.png", "quality": 2})";
+    expect_failure({"stylize", "--config", path("quality_number.json")}, 1,
+                   path("quality_number.json") + ": key 'quality' must be a string");
     std::ofstream(path("broken.json")) << "{ not json";
     expect_failure({"stylize", "--config", path("broken.json")}, 1,
                    path("broken.json") + ": not valid JSON");

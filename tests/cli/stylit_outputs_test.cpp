@@ -122,6 +122,9 @@ TEST_F(StylitOutputs, JobFileErrorsNameTheFileAndKey) {
     std::ofstream(path("bad_preview.json")) << R"({"exemplar": "style.png", "preview": 1})";
     expect_failure({"stylit", "--config", path("bad_preview.json")}, kExitFailure,
                    path("bad_preview.json") + ": key 'preview' must be true or false");
+    std::ofstream(path("bad_quality.json")) << R"({"exemplar": "style.png", "quality": "max"})";
+    expect_failure(with(args(), {"--config", path("bad_quality.json")}), kExitFailure,
+                   "quality: 'max' is invalid (must be one of fast, default, best)");
     expect_failure({"stylit", "--config", path("none.json")}, kExitFailure,
                    path("none.json") + ": no such file");
 }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "cli_fixture.hpp"
+#include "option_help.hpp"
 
 namespace exemplar::cli::testing {
 namespace {
@@ -58,9 +59,9 @@ TEST_F(Cli, SameBytesForAnyThreadCount) {
     EXPECT_EQ(file_bytes(path("one.png")), file_bytes(path("two.png")));
 }
 
-// --quality applies its preset under the explicit flags: fast with one knob given equals the
-// preset's knobs given one by one with that value; "quality" in a job file equals the flag;
-// default equals no preset.
+// --quality applies its preset under the explicit flags: fast with one of its knobs given
+// otherwise, before or after it, equals the preset's knobs given one by one with that value;
+// "quality" in a job file equals the flag; default equals no preset.
 TEST_F(Cli, QualityPresetLiesUnderExplicitFlags) {
     const std::vector<std::string> base = {
         "stylize", "--style", path("style.png"), "--guide", path("a.png"), path("b.png"), "-q"};
@@ -76,17 +77,33 @@ TEST_F(Cli, QualityPresetLiesUnderExplicitFlags) {
     const auto fast = bytes_of({"--quality", "fast"}, "fast.png");
     EXPECT_NE(fast, plain);
     EXPECT_NE(bytes_of({"--quality", "best"}, "best.png"), plain);
-    const auto overridden =
-        bytes_of({"--warm-search-iterations", "2", "--quality", "fast"}, "fast_warm2.png");
-    const auto by_hand = bytes_of({"--em-iterations", "3", "--finest-em-iterations", "1",
-                                   "--second-finest-em-iterations", "2", "--search-iterations", "3",
-                                   "--warm-search-iterations", "2", "--budget-max-rounds", "8"},
-                                  "by_hand.png");
-    EXPECT_EQ(overridden, by_hand);
+    // The preset's first knob back at its default, the others as the preset has them.
+    const auto changes = quality_changes(Quality::Fast);
+    ASSERT_FALSE(changes.empty());
+    const std::string knob = "--" + std::string(changes[0].option);
+    const std::string value = format_default(*find_option(changes[0].option));
+    std::vector<std::string> by_hand_flags = {knob, value};
+    for (std::size_t i = 1; i < changes.size(); ++i) {
+        by_hand_flags.push_back("--" + std::string(changes[i].option));
+        by_hand_flags.push_back(format_number(changes[i].value));
+    }
+    const auto by_hand = bytes_of(by_hand_flags, "by_hand.png");
+    EXPECT_NE(by_hand, fast);
+    EXPECT_EQ(bytes_of({knob, value, "--quality", "fast"}, "knob_first.png"), by_hand);
+    EXPECT_EQ(bytes_of({"--quality", "fast", knob, value}, "knob_last.png"), by_hand);
+    // In a job file: the job's knob over the job's preset, and a --quality flag over the job's.
     std::ofstream(path("fast.json")) << R"({"style": "style.png", "quality": "fast",
         "guides": [{"source": "a.png", "target": "b.png"}], "quiet": true})";
     ASSERT_EQ(run({"stylize", "--config", path("fast.json"), "-o", path("job.png")}).code, 0);
     EXPECT_EQ(file_bytes(path("job.png")), fast);
+    std::ofstream(path("knob.json")) << R"({"style": "style.png", "quality": "best", ")"
+                                     << changes[0].option << "\": " << value << R"(,
+        "guides": [{"source": "a.png", "target": "b.png"}], "quiet": true})";
+    ASSERT_EQ(
+        run({"stylize", "--config", path("knob.json"), "--quality", "fast", "-o", path("k.png")})
+            .code,
+        0);
+    EXPECT_EQ(file_bytes(path("k.png")), by_hand);
 }
 
 TEST_F(Cli, SixteenBitStyleGivesSixteenBitPng) {
@@ -359,6 +376,15 @@ TEST_F(Cli, CommandLineGrammarErrorsExitWith2) {
 }
 
 // --- Output files -----------------------------------------------------------------------------
+
+// The output's missing folders are created (the maps' are, in
+// StylizeWritesTheOutputAndPrintsItsPath); a file in the way is checked before the run below.
+TEST_F(Cli, OutputFolderIsCreated) {
+    const CliRun r = run(with(stylize_args(), {"-o", path("new/deeper/out.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("new/deeper/out.png") + "\n");
+    EXPECT_EQ(read("new/deeper/out.png").width(), 36);
+}
 
 TEST_F(Cli, OutputsAreCheckedBeforeTheRun) {
     expect_failure_as_is(with(stylize_args(), {"-o", path("style.png/out.png")}), 1,

@@ -97,6 +97,19 @@ TEST_F(Beautify, FitRefitsPenPolylinesAsSmoothPaths) {
               1.5);
 }
 
+// Missing folders of every output are created (on the bundled sketch: no shared data needed).
+TEST_F(Beautify, OutputFoldersAreCreated) {
+    const std::string house = EXEMPLAR_SOURCE_DIR "/examples/sketch/house.svg";
+    const CliRun r = run({"beautify", house, "-q", "-o", path("clean/a/clean.svg"), "--report",
+                          path("reports/r.json"), "--suggestions", path("s/last.svg"), "--preview",
+                          path("p/q/before_after.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* name :
+         {"clean/a/clean.svg", "reports/r.json", "s/last.svg", "p/q/before_after.png"}) {
+        EXPECT_TRUE(fs::exists(path(name))) << name;
+    }
+}
+
 TEST_F(Beautify, BadInputsGiveOneLineErrors) {
     write_text("empty.svg", "<svg xmlns=\"http://www.w3.org/2000/svg\"><g/></svg>");
     write_text("dot.svg",

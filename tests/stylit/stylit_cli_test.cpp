@@ -120,5 +120,35 @@ TEST_F(StylitCli, HelpOfEachLevel) {
     EXPECT_NE(r.err.find("(see exemplar stylit align --help)"), std::string::npos) << r.err;
 }
 
+// Missing output folders are created by stylit, stylit sheet (image and PDF) and stylit align; a
+// file in the way of one is a one-line error, and nothing is written.
+TEST_F(StylitCli, OutputFoldersAreCreated) {
+    CliRun r = run(with(args(), {"-q", "-o", path("out/a/styled.png"), "--save-nnf",
+                                 path("out/b/nnf.exr"), "--save-error", path("out/c/error.exr")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(read("out/a/styled.png").width(), 36);
+    EXPECT_TRUE(fs::exists(path("out/b/nnf.exr")));
+    EXPECT_TRUE(fs::exists(path("out/c/error.exr")));
+    const std::string render = exemplar::testing::example_path("source_fullgi.png");
+    r = run({"stylit", "sheet", "--render", render, "-o", path("print/png/sheet.png"), "--pdf",
+             path("print/pdf/sheet.pdf")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("print/pdf/sheet.pdf")));
+    r = run({"stylit", "align", "--scan", path("print/png/sheet.png"), "--render", render, "-o",
+             path("scans/aligned/painting.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(read("scans/aligned/painting.png").width(), 600);
+
+    std::ofstream(path("blocker")) << "x";
+    const std::string in_the_way = path("blocker") + " is a file, not a folder";
+    expect_failure_as_is(with(args(), {"-o", path("blocker/styled.png")}), kExitFailure,
+                         in_the_way);
+    expect_failure_as_is({"stylit", "sheet", "--render", render, "--pdf", path("blocker/s.pdf")},
+                         kExitFailure, "--pdf " + path("blocker/s.pdf") + ": cannot create folder");
+    expect_failure_as_is({"stylit", "align", "--scan", path("print/png/sheet.png"), "--render",
+                          render, "-o", path("blocker/a/painting.png")},
+                         kExitFailure, in_the_way);
+}
+
 }  // namespace
 }  // namespace exemplar::cli::testing

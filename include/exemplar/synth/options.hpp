@@ -42,24 +42,39 @@ std::string_view to_string(VoteMode mode);
 /// Parses the names of to_string; error names the accepted values.
 Result<VoteMode> parse_vote_mode(std::string_view name);
 
-/// The quality dial: presets of the search effort (iterations per level, reversed-retrieval
-/// rounds, coherence sweeps) for users who do not want to tune the search. Measurements of each
-/// in docs/PERFORMANCE.md.
+/// The quality dial: presets of the search effort (EM and PatchMatch iterations per level) for
+/// users who do not want to tune the search. Each preset is the defaults with the few options of
+/// quality_changes() changed, so a change of a default carries over to every preset it does not
+/// set. Measurements of each in docs/PERFORMANCE.md ("Quality presets").
 enum class Quality {
-    /// Previews: about 2.5x faster than Default, with fewer iterations on every level; a little
-    /// less texture and more seams.
+    /// Previews: fewer EM iterations on the two finest levels and fewer PatchMatch iterations
+    /// per warm search; about 2x faster than Default, a little less texture and a little
+    /// further from the exemplar.
     Fast,
     /// The defaults of SynthesisOptions.
     Default,
-    /// More iterations on the two finest levels and wider searches: closer to the exemplar,
-    /// about 2.3x the time of Default.
+    /// Finals: many more EM iterations on the coarse levels (they are cheap and set the
+    /// layout) and more on the two finest; closer to the exemplar and more of its texture,
+    /// about 1.7x the time of Default.
     Best,
 };
 
 /// "fast", "default", "best".
 std::string_view to_string(Quality quality);
-/// Parses the names of to_string; error names the accepted values.
+/// Parses the names of to_string; error names the accepted values
+/// (`quality: 'superb' is invalid (must be one of fast, default, best)`).
 Result<Quality> parse_quality(std::string_view name);
+
+/// One option a quality preset sets: its name in synthesis_option_specs() and its value.
+struct QualityChange {
+    std::string_view option;
+    double value = 0.0;
+};
+
+/// The options `quality` sets on top of the defaults, in the order of synthesis_option_specs()
+/// (none for Default): the one description of the presets, which SynthesisOptions::preset
+/// applies and `exemplar stylize --help-all` and docs/cli.md list.
+std::span<const QualityChange> quality_changes(Quality quality);
 
 /// "none", "uniform", "error-budget", "occurrence".
 std::string_view to_string(UsageStrategy strategy);
@@ -144,7 +159,7 @@ struct SynthesisOptions {
     float occurrence_threshold = 0.0f;
     std::uint64_t seed = 1;  ///< Random seed; same seed → same output for any thread count.
 
-    /// The options of a quality preset: the defaults above with the search effort changed
+    /// The options of a quality preset: the defaults above with quality_changes(quality) applied
     /// (preset(Quality::Default) is a default-constructed SynthesisOptions). Callers that also
     /// set options explicitly apply them after the preset, so explicit values win.
     static SynthesisOptions preset(Quality quality);
