@@ -29,6 +29,7 @@
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/synth/synthesize.hpp"
+#include "shared_data.hpp"
 
 using namespace exemplar;
 
@@ -92,8 +93,9 @@ bool load(const std::string& path, double scale, Image& out) {
 // `folder`: the example's folder under ../shared/data/guided (default: ebsynth/<name>).
 int run(const std::string& name, const char* style, const std::vector<GuideFiles>& guides,
         const Settings& settings, const std::string& folder = "") {
-    const std::string dir = std::string(EXEMPLAR_SHARED_DATA_DIR) + "/guided/" +
-                            (folder.empty() ? "ebsynth/" + name : folder) + "/";
+    const std::string dir =
+        bench::shared_data("guided/" + (folder.empty() ? "ebsynth/" + name : folder) + "/");
+    if (!bench::shared_data_present(dir)) return 1;
     SynthesisInput in;
     if (!load(dir + style, settings.scale, in.style)) return 1;
     for (const GuideFiles& g : guides) {

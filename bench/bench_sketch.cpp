@@ -1,6 +1,6 @@
 // Interactive latency of sketch beautification: suggestions for one new stroke against a
 // resolved drawing of 100 paths (ShipShape is run on every pen-up; the budget is 30 ms).
-// The drawing is the TU-Berlin sketches' strokes (../shared/data/strokes/tu-berlin, all in one
+// The drawing is the TU-Berlin sketches' strokes (tests/data/strokes/tu-berlin, all in one
 // 800x800 canvas, so denser than any single sketch), replayed and accepted in order until it
 // holds 100 paths; each following stroke is then timed against it (setup is not timed).
 // Usage: bench_sketch [new strokes] [repeats]
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
     std::vector<std::string> files;
     for (const auto& e : std::filesystem::recursive_directory_iterator(
-             std::string(EXEMPLAR_SHARED_DATA_DIR) + "/strokes/tu-berlin")) {
+             std::string(EXEMPLAR_TEST_DATA_DIR) + "/strokes/tu-berlin")) {
         if (e.path().extension() == ".svg") files.push_back(e.path().string());
     }
     std::sort(files.begin(), files.end());

@@ -22,6 +22,7 @@
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/stylit/preview.hpp"
 #include "exemplar/stylit/stylit.hpp"
+#include "shared_data.hpp"
 
 using namespace exemplar;
 
@@ -166,7 +167,8 @@ int main(int argc, char** argv) {
     const int first_option = bench::parse_counts(argc, argv, settings.threads, settings.repeats);
     if (!parse_options(argc, argv, first_option, settings)) return 2;
 
-    const std::string dir = std::string(EXEMPLAR_SHARED_DATA_DIR) + "/guided/ebsynth/stylit/";
+    const std::string dir = bench::shared_data("guided/ebsynth/stylit/");
+    if (!bench::shared_data_present(dir)) return 1;
     Data data;
     auto exemplar = load_image(dir + "source_style.png");
     if (!exemplar.ok()) {

@@ -11,6 +11,7 @@
 #include "animate_scene.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "shared_data.hpp"
 
 using namespace exemplar;
 
@@ -34,7 +35,9 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    auto painting = load_image(EXEMPLAR_SHARED_DATA_DIR "/style/neural-style/starry_night.jpg");
+    const std::string painting_file = bench::shared_data("style/neural-style/starry_night.jpg");
+    if (!bench::shared_data_present(painting_file)) return 1;
+    auto painting = load_image(painting_file);
     if (!painting.ok()) {
         std::fprintf(stderr, "%s\n", painting.status().message().c_str());
         return 1;

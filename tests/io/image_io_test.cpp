@@ -563,14 +563,12 @@ TEST_F(ImageIo, FailedWriteKeepsExistingDestination) {
     EXPECT_EQ(files_in_dir(), (std::set<std::string>{"out.png", "taken.png"}));
 }
 
-TEST_F(ImageIo, LoadsSharedStyleImage) {
-    const std::string file =
-        std::string(EXEMPLAR_SHARED_DATA_DIR) + "/guided/ebsynth/stylit/source_style.png";
-    if (!fs::exists(file)) GTEST_SKIP() << "shared data not available: " << file;
+TEST_F(ImageIo, LoadsBundledStyleImage) {
+    const std::string file = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/stylit/source_style.png";
     auto loaded = load_image(file);
     ASSERT_TRUE(loaded.ok()) << loaded.status().message();
-    EXPECT_EQ(loaded->width(), 1200);
-    EXPECT_EQ(loaded->height(), 912);
+    EXPECT_EQ(loaded->width(), 600);
+    EXPECT_EQ(loaded->height(), 456);
     ASSERT_GE(loaded->channels(), 3);
     const auto [lo, hi] = std::minmax_element(loaded->data().begin(), loaded->data().end());
     EXPECT_GE(*lo, 0.0f);

@@ -12,7 +12,7 @@ namespace exemplar::cli::testing {
 namespace {
 
 const std::string kSketch =
-    std::string(EXEMPLAR_SHARED_DATA_DIR) + "/strokes/tu-berlin/alarm_clock/85.svg";
+    std::string(EXEMPLAR_TEST_DATA_DIR) + "/strokes/tu-berlin/alarm_clock/85.svg";
 
 class Beautify : public Cli {
 protected:

@@ -1,4 +1,4 @@
-// Every TU-Berlin sketch (../shared/data/strokes/tu-berlin, CC BY 4.0, Eitz, Hays and Alexa 2012)
+// Every TU-Berlin sketch (tests/data/strokes/tu-berlin, CC BY 4.0, Eitz, Hays and Alexa 2012)
 // replayed stroke by stroke: no stroke moves further than a bound relative to its size, and the
 // relations enforced are reported.
 
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> sketches() {
     std::vector<std::string> files;
-    const fs::path root = fs::path(EXEMPLAR_SHARED_DATA_DIR) / "strokes" / "tu-berlin";
+    const fs::path root = fs::path(EXEMPLAR_TEST_DATA_DIR) / "strokes" / "tu-berlin";
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
         if (entry.path().extension() == ".svg") files.push_back(entry.path().string());
     }
