@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libopenimageio-dev openimageio-tools   # image IO (the CMake config needs the tools too)
+  libpng-dev libjpeg-dev libtiff-dev libopenexr-dev  # image files
   libtbb-dev                             # threads
   libhwy-dev                             # SIMD with runtime dispatch
   libcli11-dev nlohmann-json3-dev        # CLI, job files

@@ -1,19 +1,20 @@
-// Image files through OpenImageIO.
-//
-// OpenImageIO does most of the work; this file adds what the library promises on top of it:
-// - errors are Status values of one line naming the file (OIIO's messages may span lines), and
-//   no exception leaves this file: every public function catches them (e.g. std::bad_alloc);
-// - nothing is printed: OIIO errors are always retrieved (so none is left pending), and PNG files
-//   are validated before libpng sees them (see png_check.hpp);
-// - alpha is kept unassociated (OIIO would premultiply PNG/TIFF alpha on read and divide on write);
+// Image files: the format is chosen by content on reading and by extension on writing, and each
+// format is handled by its reference library (codecs.hpp). This file adds what the library
+// promises on top of them:
+// - errors are Status values of one line naming the file, and no exception leaves this file:
+//   every public function catches them (OpenEXR reports errors as exceptions; std::bad_alloc);
+// - nothing is printed, and damaged PNG files get a precise reason (png_check.hpp);
+// - alpha is kept unassociated: colour values are never multiplied or divided by alpha;
 // - each output format accepts only the channel counts and sample formats it can store; anything
-//   else is rejected instead of being converted silently (OIIO would write a 5-channel image to
-//   JPEG as RGB, or floats to PNG as 8-bit);
+//   else is rejected instead of being converted silently;
 // - writes are atomic (atomic_file.hpp).
+//
+// OpenImageIO did all of this until 2026-11: it links about 260 libraries that cost 130 MB of
+// resident memory and 0.15 s in every process before main() (docs/PERFORMANCE.md), for the
+// five formats used here.
 
 #include "exemplar/io/image_io.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -28,6 +29,7 @@
 #include <utility>
 
 #include "atomic_file.hpp"
+#include "codecs.hpp"
 #include "png_check.hpp"
 
 namespace exemplar {
@@ -35,11 +37,12 @@ namespace exemplar {
 namespace {
 
 namespace fs = std::filesystem;
+using io_detail::Codec;
 using io_detail::TempFile;
 
 constexpr const char* kKnownExtensions = ".png, .jpg, .tif, .exr, .ppm or .pgm";
 
-// Joins the lines of an OpenImageIO message into one ("a; b") and trims it.
+// Joins the lines of a library's message into one ("a; b") and trims it.
 std::string one_line(const std::string& text) {
     std::string out;
     std::size_t start = 0;
@@ -84,9 +87,9 @@ auto guarded(const std::string& path, Body&& body) -> decltype(body()) {
 // ---------------------------------------------------------------------------------------------
 // Reading
 
-// Checks what OIIO reports badly or not at all: missing files, folders, permissions, and PNG
-// files that would make libpng print to stderr.
-Status check_readable(const std::string& path) {
+// Checks that `path` is a readable, non-empty file (PNG files also for damage) and finds its
+// codec from its first bytes.
+Result<Codec> open_codec(const std::string& path) {
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     if (ec && ec != std::errc::no_such_file_or_directory) {
@@ -107,79 +110,52 @@ Status check_readable(const std::string& path) {
     if (io_detail::has_png_signature(bytes)) {
         // Whole file, for the CRC check. PNGs are compressed, so this is small next to the
         // decoded image.
+        std::string whole = bytes;
         std::vector<char> buffer(std::size_t{1} << 16);
         std::size_t n = 0;
         while ((n = std::fread(buffer.data(), 1, buffer.size(), file)) > 0) {
-            bytes.append(buffer.data(), n);
+            whole.append(buffer.data(), n);
         }
-        problem = io_detail::check_png(bytes);
+        problem = io_detail::check_png(whole);
     }
     const bool read_failed = std::ferror(file) != 0;
     std::fclose(file);
     if (read_failed) return io_error(fmt::format("{}: read error", path));
     if (!problem.empty()) return io_error(fmt::format("{}: {}", path, problem));
-    return Status::ok();
+    Codec codec{};
+    if (io_detail::codec_from_signature(bytes, codec)) return codec;
+    // No format recognizes the content. If the extension names a known format, the file is
+    // damaged; otherwise the format is unknown.
+    static const std::set<std::string> kKnown = {".png", ".jpg", ".jpeg", ".tif", ".tiff",
+                                                 ".exr", ".ppm", ".pgm",  ".pbm", ".pnm"};
+    const std::string extension = lowercase_extension(path);
+    if (kKnown.count(extension) == 0) {
+        return unsupported(
+            fmt::format("{}: unknown or unsupported image format (exemplar reads "
+                        "PNG, JPEG, TIFF, OpenEXR and PNM files)",
+                        path));
+    }
+    return io_error(fmt::format("{}: cannot read image: not a valid {} file", path, extension));
 }
 
-// Opens `path` for reading with alpha left unassociated, and checks that it is an ordinary 2D
-// image.
-Result<std::unique_ptr<OIIO::ImageInput>> open_input(const std::string& path) {
-    EXEMPLAR_RETURN_IF_ERROR(check_readable(path));
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        const std::string error = one_line(OIIO::geterror());
-        if (error.find("could not find a format reader") != std::string::npos) {
-            // No reader accepted the file. If one exists for its extension, the file is damaged;
-            // otherwise the format is unknown.
-            if (!OIIO::ImageInput::create(path, false)) {
-                OIIO::geterror();
-                return unsupported(fmt::format("{}: unknown or unsupported image format", path));
-            }
-            return io_error(fmt::format("{}: cannot read image: not a valid {} file", path,
-                                        lowercase_extension(path)));
-        }
-        return io_error(fmt::format("{}: cannot read image: {}", path,
-                                    error.empty() ? "unknown error" : error));
+// Every channel of the file.
+Result<Image> read_all(const std::string& path, Codec codec) {
+    switch (codec) {
+        case Codec::Png: return io_detail::read_png(path);
+        case Codec::Jpeg: return io_detail::read_jpeg(path);
+        case Codec::Tiff: return io_detail::read_tiff(path);
+        case Codec::Exr: return io_detail::read_exr(path, {});
+        case Codec::Pnm: return io_detail::read_pnm(path);
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.deep) return unsupported(fmt::format("{}: deep images are not supported", path));
-    if (spec.depth > 1)
-        return unsupported(fmt::format("{}: volume images are not supported", path));
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
-        return io_error(fmt::format("{}: corrupt: image is {}x{} with {} channels", path,
-                                    spec.width, spec.height, spec.nchannels));
-    }
-    return in;
+    return unsupported(fmt::format("{}: unknown image format", path));
 }
 
-// Reads channels `channels` (indices into the file's channels, ascending) of the first subimage.
-Result<Image> read_channels(OIIO::ImageInput& in, const std::string& path,
-                            const std::vector<int>& channels) {
-    const OIIO::ImageSpec& spec = in.spec();
-    const int first = channels.front();
-    const int count = channels.back() - first + 1;
-    Image block(spec.width, spec.height, count);
-    if (!in.read_image(0, 0, first, first + count, OIIO::TypeDesc::FLOAT, block.data().data())) {
-        const std::string error = one_line(in.geterror());
-        return io_error(fmt::format("{}: cannot read pixels: {}", path,
-                                    error.empty() ? "file is truncated or corrupt" : error));
-    }
-    std::vector<std::string> names;
-    for (int c = first; c < first + count; ++c) {
-        names.push_back(c < static_cast<int>(spec.channelnames.size()) &&
-                                !spec.channelnames[static_cast<std::size_t>(c)].empty()
-                            ? spec.channelnames[static_cast<std::size_t>(c)]
-                            : fmt::format("c{}", c));
-    }
-    block.set_channel_names(std::move(names));
-    if (static_cast<int>(channels.size()) == count) return block;
-
-    // Keep only the requested channels of the contiguous block.
-    std::vector<int> in_block;
-    for (int c : channels) in_block.push_back(c - first);
-    return select_channels(block, in_block);
+// Channel names of the file (EXR from its header, the others by decoding).
+Result<std::vector<std::string>> channel_names_of(const std::string& path, Codec codec) {
+    if (codec == Codec::Exr) return io_detail::read_exr_channel_names(path);
+    auto image = read_all(path, codec);
+    if (!image.ok()) return image.status();
+    return image->channel_names();
 }
 
 // Layer of a channel name: the part before the last '.', or "" if there is no dot.
@@ -221,40 +197,38 @@ std::string quoted_list(const std::vector<std::string>& items) {
 // ---------------------------------------------------------------------------------------------
 // Writing
 
-// What an output format can hold. Empty lists mean "whatever OpenImageIO accepts".
+// What an output format can hold.
 struct FormatRules {
+    Codec codec;
     std::string label;                 ///< Format name for messages ("PNG").
-    std::vector<int> channel_counts;   ///< Storable channel counts.
+    std::vector<int> channel_counts;   ///< Storable channel counts; empty: any.
     std::vector<PixelFormat> formats;  ///< Storable sample formats.
     PixelFormat natural = PixelFormat::Auto;
     bool named_channels = false;  ///< Stores channel names (so they must be unique).
 };
 
-FormatRules rules_for(const std::string& format_name, const std::string& extension) {
+// The format written for a (lowercase) extension; false if there is none.
+bool rules_for(const std::string& extension, FormatRules& rules) {
     using P = PixelFormat;
-    if (format_name == "png") return {"PNG", {1, 2, 3, 4}, {P::UInt8, P::UInt16}, P::UInt8, false};
-    if (format_name == "jpeg") return {"JPEG", {1, 3}, {P::UInt8}, P::UInt8, false};
-    if (format_name == "tiff") {
-        // OIIO 2.4 writes half-float TIFF as 32-bit float, so Half is not offered.
-        return {"TIFF", {}, {P::UInt8, P::UInt16, P::Float}, P::UInt16, false};
+    if (extension == ".png") {
+        rules = {Codec::Png, "PNG", {1, 2, 3, 4}, {P::UInt8, P::UInt16}, P::UInt8, false};
+    } else if (extension == ".jpg" || extension == ".jpeg") {
+        rules = {Codec::Jpeg, "JPEG", {1, 3}, {P::UInt8}, P::UInt8, false};
+    } else if (extension == ".tif" || extension == ".tiff") {
+        // Half-float TIFF is valid but few readers support it, so it is not offered.
+        rules = {Codec::Tiff, "TIFF", {}, {P::UInt8, P::UInt16, P::Float}, P::UInt16, false};
+    } else if (extension == ".exr") {
+        rules = {Codec::Exr, "EXR", {}, {P::Half, P::Float}, P::Half, true};
+    } else if (extension == ".ppm") {
+        rules = {Codec::Pnm, "PPM", {3}, {P::UInt8}, P::UInt8, false};
+    } else if (extension == ".pgm") {
+        rules = {Codec::Pnm, "PGM", {1}, {P::UInt8}, P::UInt8, false};
+    } else if (extension == ".pnm") {
+        rules = {Codec::Pnm, "PNM", {1, 3}, {P::UInt8}, P::UInt8, false};
+    } else {
+        return false;
     }
-    if (format_name == "openexr") return {"EXR", {}, {P::Half, P::Float}, P::Half, true};
-    if (format_name == "pnm") {
-        // OIIO picks PGM or PPM from the channel count, whatever the extension says. Its 2.4
-        // writer declares 16-bit files but fills them from 8-bit data, so only 8-bit is offered
-        // (16-bit PNM files are read correctly).
-        std::vector<int> counts = {1, 3};
-        if (extension == ".pgm" || extension == ".pbm") counts = {1};
-        if (extension == ".ppm") counts = {3};
-        std::string label = extension.size() > 1 ? extension.substr(1) : "PNM";
-        std::transform(label.begin(), label.end(), label.begin(),
-                       [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
-        return {label, counts, {P::UInt8}, P::UInt8, false};
-    }
-    std::string label = format_name;
-    std::transform(label.begin(), label.end(), label.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::toupper(ch)); });
-    return {label, {}, {}, P::Auto, false};
+    return true;
 }
 
 const char* describe(PixelFormat format) {
@@ -266,17 +240,6 @@ const char* describe(PixelFormat format) {
         case PixelFormat::Float: return "float";
     }
     return "unknown";
-}
-
-OIIO::TypeDesc type_of(PixelFormat format) {
-    switch (format) {
-        case PixelFormat::UInt8: return OIIO::TypeDesc::UINT8;
-        case PixelFormat::UInt16: return OIIO::TypeDesc::UINT16;
-        case PixelFormat::Half: return OIIO::TypeDesc::HALF;
-        case PixelFormat::Float:
-        case PixelFormat::Auto: break;
-    }
-    return OIIO::TypeDesc::FLOAT;
 }
 
 std::string join_counts(const std::vector<int>& counts) {
@@ -297,13 +260,6 @@ std::string join_formats(const std::vector<PixelFormat>& formats) {
     return out;
 }
 
-// Values for an integer file: clamped to [0, 1], NaN written as 0.
-std::vector<float> clamped_copy(const Image& image) {
-    std::vector<float> values(image.data().begin(), image.data().end());
-    for (float& v : values) v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-    return values;
-}
-
 Status write_file(const Image& image, const std::string& path, const SaveOptions& options) {
     if (options.jpeg_quality < 1 || options.jpeg_quality > 100) {
         return invalid_argument(fmt::format("{}: jpeg_quality: {} is invalid (must be 1..100)",
@@ -319,15 +275,13 @@ Status write_file(const Image& image, const std::string& path, const SaveOptions
             fmt::format("{}: no file extension to choose the image format from (use {})", path,
                         kKnownExtensions));
     }
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        OIIO::geterror();  // consume OIIO's message: ours says the same in one line
+    FormatRules rules;
+    if (!rules_for(extension, rules)) {
         return unsupported(fmt::format("{}: unknown image file extension \"{}\" (use {})", path,
                                        extension, kKnownExtensions));
     }
 
     // Check the request against what the format can hold.
-    const FormatRules rules = rules_for(out->format_name(), extension);
     const int channels = image.channels();
     if (!rules.channel_counts.empty() &&
         std::find(rules.channel_counts.begin(), rules.channel_counts.end(), channels) ==
@@ -355,45 +309,20 @@ Status write_file(const Image& image, const std::string& path, const SaveOptions
         }
     }
 
-    OIIO::ImageSpec spec(image.width(), image.height(), channels, type_of(format));
-    spec.channelnames = image.channel_names();
-    spec.alpha_channel = find_channel(image, "A");
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (format == PixelFormat::UInt8 || format == PixelFormat::UInt16) {
-        spec.attribute("oiio:BitsPerSample", format == PixelFormat::UInt8 ? 8 : 16);
-    }
-    if (rules.label == "JPEG") {
-        spec.attribute("Compression", fmt::format("jpeg:{}", options.jpeg_quality));
-    }
-
     // Write the temporary file.
     TempFile temp(path);
     EXEMPLAR_RETURN_IF_ERROR(temp.status());
-    if (!out->open(temp.path(), spec)) {
-        return io_error(fmt::format("{}: cannot write: {}", path, one_line(out->geterror())));
+    Status written;
+    switch (rules.codec) {
+        case Codec::Png: written = io_detail::write_png(image, temp.path(), path, format); break;
+        case Codec::Jpeg:
+            written = io_detail::write_jpeg(image, temp.path(), path, options.jpeg_quality);
+            break;
+        case Codec::Tiff: written = io_detail::write_tiff(image, temp.path(), path, format); break;
+        case Codec::Exr: written = io_detail::write_exr(image, temp.path(), path, format); break;
+        case Codec::Pnm: written = io_detail::write_pnm(image, temp.path(), path); break;
     }
-    const OIIO::ImageSpec& opened = out->spec();
-    if (opened.nchannels != channels ||
-        (format != PixelFormat::Auto && opened.format != type_of(format))) {
-        out->close();
-        out->geterror();
-        return unsupported(fmt::format("{}: {} cannot store {} {} channels", path, rules.label,
-                                       channels, describe(format)));
-    }
-    bool written = false;
-    if (opened.format.is_floating_point()) {
-        written = out->write_image(OIIO::TypeDesc::FLOAT, image.data().data());
-    } else {
-        const std::vector<float> values = clamped_copy(image);
-        written = out->write_image(OIIO::TypeDesc::FLOAT, values.data());
-    }
-    const bool closed = out->close();
-    if (!written || !closed) {
-        const std::string error = one_line(out->geterror());
-        return io_error(
-            fmt::format("{}: cannot write: {}", path, error.empty() ? "unknown error" : error));
-    }
-    out.reset();
+    EXEMPLAR_RETURN_IF_ERROR(written);
     return temp.commit();
 }
 
@@ -401,44 +330,51 @@ Status write_file(const Image& image, const std::string& path, const SaveOptions
 
 Result<Image> load_image(const std::string& path) {
     return guarded(path, [&]() -> Result<Image> {
-        auto in = open_input(path);
-        if (!in.ok()) return in.status();
-        std::vector<int> all((*in)->spec().nchannels);
-        for (int c = 0; c < static_cast<int>(all.size()); ++c) all[static_cast<std::size_t>(c)] = c;
-        return read_channels(**in, path, all);
+        auto codec = open_codec(path);
+        if (!codec.ok()) return codec.status();
+        return read_all(path, *codec);
     });
 }
 
 Result<Image> load_image_layer(const std::string& path, const std::string& layer) {
     return guarded(path, [&]() -> Result<Image> {
-        auto in = open_input(path);
-        if (!in.ok()) return in.status();
-        const std::vector<std::string>& names = (*in)->spec().channelnames;
-        std::vector<int> channels;
+        auto codec = open_codec(path);
+        if (!codec.ok()) return codec.status();
+        auto names = channel_names_of(path, *codec);
+        if (!names.ok()) return names.status();
+        std::vector<std::string> selected;
+        std::vector<int> indices;
         std::vector<std::string> short_names;
-        for (int c = 0; c < static_cast<int>(names.size()); ++c) {
-            const std::string& name = names[static_cast<std::size_t>(c)];
+        for (int c = 0; c < static_cast<int>(names->size()); ++c) {
+            const std::string& name = (*names)[static_cast<std::size_t>(c)];
             const bool whole = !layer.empty() && name == layer;  // single-channel layer
             if (whole || layer_of(name) == layer) {
-                channels.push_back(c);
+                selected.push_back(name);
+                indices.push_back(c);
                 short_names.push_back(name_in_layer(name));
             }
         }
-        if (channels.empty()) {
+        if (selected.empty()) {
             return io_error(fmt::format("{}: layer \"{}\" not found (layers in the file: {})", path,
-                                        layer, quoted_list(layers_of(names))));
+                                        layer, quoted_list(layers_of(*names))));
         }
-        auto image = read_channels(**in, path, channels);
-        if (image.ok()) image->set_channel_names(std::move(short_names));
+        // EXR reads just the layer's channels; the other formats have one layer.
+        Result<Image> image =
+            *codec == Codec::Exr ? io_detail::read_exr(path, selected) : read_all(path, *codec);
+        if (!image.ok()) return image;
+        if (*codec != Codec::Exr && selected.size() != names->size()) {
+            image = select_channels(*image, indices);
+        }
+        image->set_channel_names(std::move(short_names));
         return image;
     });
 }
 
 Result<std::vector<std::string>> read_channel_names(const std::string& path) {
     return guarded(path, [&]() -> Result<std::vector<std::string>> {
-        auto in = open_input(path);
-        if (!in.ok()) return in.status();
-        return (*in)->spec().channelnames;
+        auto codec = open_codec(path);
+        if (!codec.ok()) return codec.status();
+        return channel_names_of(path, *codec);
     });
 }
 

@@ -1,12 +1,12 @@
 #pragma once
 // Structural validation of PNG files before they reach libpng.
 //
-// OpenImageIO 2.4 installs a libpng error handler that returns instead of jumping, so libpng
-// falls back to its default handler and prints "libpng error: ..." to stderr for every truncated
-// or corrupt PNG. The library must never print, so PNG files are checked here first: a file that
-// passes has a valid signature, well-formed chunks with correct CRCs, a sane IHDR and the chunk
-// order libpng requires. What remains possible (a valid-CRC chunk holding a broken zlib stream)
-// is only produced by a buggy encoder, not by truncation or bit rot.
+// libpng reports damage tersely ("Read Error", "IDAT: CRC error") and only once it reaches it.
+// PNG files are checked here first, so the one-line error says what is wrong and where: a file
+// that passes has a valid signature, well-formed chunks with correct CRCs, a sane IHDR and the
+// chunk order libpng requires. What remains possible (a valid-CRC chunk holding a broken zlib
+// stream) is only produced by a buggy encoder, not by truncation or bit rot, and gets libpng's
+// message (codec_png.cpp; libpng never prints).
 
 #include <string>
 #include <string_view>

@@ -1,7 +1,10 @@
 #pragma once
 /// \file
-/// Reading and writing images through OpenImageIO: PNG, JPEG, TIFF, OpenEXR (multi-channel,
-/// named layers), PPM/PGM and anything else OIIO reads. 8/16-bit data is normalized to [0, 1];
+/// Reading and writing images: PNG (libpng), JPEG (libjpeg-turbo), TIFF (libtiff), OpenEXR
+/// (multi-channel, named layers; OpenEXR) and PBM/PGM/PPM. The format is recognized from the
+/// file's content on reading and chosen by the extension on writing. Readers take the layouts
+/// other tools write (tiled, planar, compressed, ASCII PNM, EXR data windows; palette, CMYK and
+/// other TIFF/JPEG colour models are converted to RGB). 8/16-bit data is normalized to [0, 1];
 /// float data is kept as is (including NaN and infinity: callers that need finite values check
 /// with `all_finite`). Alpha is preserved as an ordinary, unassociated channel: colour values are
 /// never multiplied or divided by alpha, on reading or writing. Every write goes to a temporary
@@ -27,9 +30,8 @@ namespace exemplar {
 /// Sample format of a written file. What each format can store (anything else is rejected with
 /// `Unsupported`, never converted silently):
 /// PNG 8/16-bit, 1-4 channels (gray, gray+alpha, RGB, RGBA); JPEG 8-bit, 1 or 3 channels;
-/// PPM 8-bit, 3 channels; PGM 8-bit, 1 channel (OpenImageIO 2.4 cannot write 16-bit PNM
-/// correctly; 16-bit PNM files are read fine); TIFF 8/16-bit or float, any channel count;
-/// EXR half or float, any channel count.
+/// PPM 8-bit, 3 channels; PGM 8-bit, 1 channel (16-bit PNM files are read); TIFF 8/16-bit or
+/// float, any channel count; EXR half or float, any channel count.
 enum class PixelFormat {
     Auto,    ///< Format's natural choice: 8-bit for PNG/JPEG/PPM, half for EXR, 16-bit TIFF.
     UInt8,   ///< 8-bit unsigned, values clamped to [0, 1] and scaled by 255.
@@ -47,7 +49,10 @@ struct SaveOptions {
 };
 
 /// Loads every channel of the first subimage (its data window, at full resolution). Channel names
-/// come from the file (e.g. "R", "G", "B", "A", "Y", "diffuse.R"). Fails with the path and the
+/// come from the file (e.g. "R", "G", "B", "A", "Y", "diffuse.R"); formats without names get
+/// Y, Y A, R G B, R G B A and "channel4", ... for extra channels. EXR channels come in the order
+/// OpenImageIO gives them (R G B A Z first within a layer, X Y Z W in a vector layer, the others
+/// by name). Fails with the path and the
 /// reason: `<path>: no such file`, unreadable, corrupt or truncated (IoError), unknown format
 /// (Unsupported).
 Result<Image> load_image(const std::string& path);
@@ -66,12 +71,12 @@ Result<std::vector<std::string>> read_channel_names(const std::string& path);
 Result<std::vector<std::string>> read_layer_names(const std::string& path);
 
 /// Writes an image atomically (temp file + rename); the format follows the extension
-/// (case-insensitive; .png, .jpg/.jpeg, .tif/.tiff, .exr, .ppm, .pgm, and other formats OIIO
-/// writes). Channel names are written where the format stores them (EXR, where they must be
-/// unique and non-empty); other formats store channels by position. A channel named "A" is
-/// marked as alpha. Values are clamped to [0, 1] for integer formats (NaN becomes 0).
-/// Fails if the format cannot hold the channel count (e.g. 5 channels to PNG) or the sample
-/// format, with a message saying so; fails on an empty image or a missing folder.
+/// (case-insensitive; .png, .jpg/.jpeg, .tif/.tiff, .exr, .ppm, .pgm, .pnm). Channel names are
+/// written where the format stores them (EXR, where they must be unique and non-empty); other
+/// formats store channels by position. A channel named "A" is marked as alpha. Values are clamped
+/// to [0, 1] for integer formats (NaN becomes 0). Fails if the format cannot hold the channel count
+/// (e.g. 5 channels to PNG) or the sample format, with a message saying so; fails on an empty image
+/// or a missing folder.
 Status save_image(const Image& image, const std::string& path, const SaveOptions& options = {});
 
 /// Writes several named layers into one multi-layer EXR: channel `c` of layer `name` is stored as
