@@ -472,9 +472,9 @@ TEST_F(ImageIo, CorruptFilesFailQuietlyWithOneLine) {
         write_bytes(path(std::string("truncated_") + name), bytes.substr(0, bytes.size() / 2));
     }
 
-    for (const char* name : {"x.png", "truncated.png", "flipped.png", "x.exr", "x.jpg", "x.tif",
-                             "empty.ppm", "truncated_t.jpg", "truncated_t.tif", "truncated_t.exr",
-                             "truncated_t.ppm"}) {
+    for (const char* name :
+         {"x.png", "truncated.png", "flipped.png", "x.exr", "x.jpg", "x.tif", "empty.ppm",
+          "truncated_t.jpg", "truncated_t.tif", "truncated_t.exr", "truncated_t.ppm"}) {
         ::testing::internal::CaptureStderr();
         auto loaded = load_image(path(name));
         const std::string printed = ::testing::internal::GetCapturedStderr();
