@@ -197,20 +197,10 @@ public:
                 }
             }
         });
-        // Keys per band of targets, concatenated in band order, then sorted.
-        const int bands = std::max(1, std::min<int>(64, L_.th));
-        std::vector<std::vector<std::uint64_t>> parts(static_cast<std::size_t>(bands));
-        parallel_for(0, bands, threads, [&](int b) {
-            const std::size_t t0 = best.size() * static_cast<std::size_t>(b) / bands;
-            const std::size_t t1 = best.size() * static_cast<std::size_t>(b + 1) / bands;
-            auto& part = parts[static_cast<std::size_t>(b)];
-            for (std::size_t t = t0; t < t1; ++t) {
-                if (best[t] != kNone) part.push_back(best[t]);
-            }
-        });
-        // Keys are unique (a source has one match), so the order is that of candidate_less.
-        std::vector<std::uint64_t> keys;
-        for (const auto& part : parts) keys.insert(keys.end(), part.begin(), part.end());
+        // The targets' keys, compacted in place (no second array: at 1 Mpx each is 8 MB), then
+        // sorted. Keys are unique (a source has one match): the order is candidate_less's.
+        std::vector<std::uint64_t>& keys = best;
+        keys.erase(std::remove(keys.begin(), keys.end(), kNone), keys.end());
         parallel_sort(keys, threads);
         std::vector<Candidate> out(keys.size());
         parallel_for_ranges(0, static_cast<int>(keys.size()), threads, 4096, [&](int b, int e) {
