@@ -281,22 +281,23 @@ Status StylizeCommand::run(const Streams& streams) {
     // The input files, then the library's semantic checks, then the output formats.
     auto loaded = load_stylize_input(job);
     if (!loaded.ok()) return loaded.status();
-    const SynthesisInput& input = loaded->input;
+    SynthesisInput& input = loaded->input;
     EXEMPLAR_RETURN_IF_ERROR(with_names(validate_input(input, options), *loaded));
     EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs_of(job), input.style, job.style));
+    // Chosen now: the engine releases the inputs' images once it no longer needs them.
+    const SaveOptions save = output_options(input.style, job.style, job.output);
 
     // Run.
     const bool quiet = job.quiet.value_or(false);
     ProgressBar bar(streams.err, "stylize", !quiet && streams.err_is_terminal);
     RunContext context(threads);
     context.progress = [&bar](const ProgressEvent& event) { bar.update(event); };
-    auto result = synthesize(input, options, context);
+    auto result = synthesize(std::move(input), options, context);
     bar.finish();
     if (!result.ok()) return with_names(result.status(), *loaded);
 
     // Write the outputs (each atomically).
-    EXEMPLAR_RETURN_IF_ERROR(
-        save_image(result->image, job.output, output_options(input.style, job.style, job.output)));
+    EXEMPLAR_RETURN_IF_ERROR(save_image(result->image, job.output, save));
     EXEMPLAR_RETURN_IF_ERROR(save_nnf_and_error(*result, outputs_of(job)));
     if (!quiet) {
         streams.out << job.output << '\n';

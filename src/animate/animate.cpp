@@ -588,7 +588,7 @@ Status Solver::solve_frame(const LevelData& L, int level, int t, int neighbour, 
         call.progress = [&](const ProgressEvent& e) { report(stage, level, t, e.fraction); };
     }
     auto start = Clock::now();
-    auto r = synthesize(s, o, call);
+    auto r = synthesize(std::move(s), o, call);
     (backward_sweep ? result_.times.backward : result_.times.forward) += seconds_since(start);
     if (!r.ok()) return r.status();
     done_work_ += call_work_;

@@ -80,7 +80,7 @@ Result<StylitResult> stylize_render(const Image& exemplar, const std::vector<Lpe
         for (const GuidePair& guide : input.guides)
             result.guide_channels += guide.source.channels();
     }
-    auto synthesis = synthesize(input, synthesis_options, context);
+    auto synthesis = synthesize(std::move(input), synthesis_options, context);
     if (!synthesis.ok()) return synthesis.status();
     result.synthesis = std::move(synthesis).value();
     return result;

@@ -212,7 +212,14 @@ LevelBuilder::LevelBuilder(const SynthesisInput& in, const SynthesisOptions& opt
     // The finest level of every image is exactly the input (no resampling round-off).
 }
 
+void LevelBuilder::release_inputs() {
+    guides_.clear();
+    guides_.shrink_to_fit();
+    released_ = true;
+}
+
 Level LevelBuilder::build(int index, int patch_size) const {
+    EXEMPLAR_DCHECK(!released_);  // release_inputs() ends the builder's use
     const int d = depth(index);
     // This level's inputs, resampled from full resolution (the inputs themselves when finest).
     const float ratio = options_.pyramid_ratio;

@@ -56,6 +56,10 @@ public:
     /// set_target_style once B' is known), for patches of `patch_size` (default: the options').
     Level build(int index, int patch_size = 0) const;
 
+    /// Frees the reduced guides this builder made; from here on neither it nor the input may be
+    /// used to build a level (the input's owner may release it too).
+    void release_inputs();
+
 private:
     int depth(int index) const { return levels_ - 1 - index; }
 
@@ -68,6 +72,7 @@ private:
     // or their principal components) and their weights per channel.
     std::vector<ReducedGuide> guides_;
     Image no_map_;  // the weight map of compressed guides: none
+    bool released_ = false;
     SynthesisResult::GuideCompression compression_;
 };
 

@@ -411,8 +411,12 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
     return Status::ok();
 }
 
-Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOptions& options,
-                                   const RunContext& context, const DebugSink& debug) {
+namespace {
+
+// `owned`: the caller's input to release after the finest level is built (nullptr: keep it).
+Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* owned,
+                                      const SynthesisOptions& options, const RunContext& context,
+                                      const DebugSink& debug) {
     EXEMPLAR_RETURN_IF_ERROR(validate_input(in, options));
     const int threads = context.threads;
     int tw = 0, th = 0;
@@ -496,6 +500,11 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
         // The run's last vote (finest level, or the final pass after it) keeps the fine grain.
         const bool finest = l == levels - 1;
         const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
+        if (finest && !final_pass && owned != nullptr) {
+            // Nothing reads the full-resolution inputs any more: the level holds its own copies.
+            builder.release_inputs();
+            *owned = SynthesisInput{};
+        }
         const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
         run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,
                /*end_run=*/finest && !final_pass, nnf, reverse_field, current, tracker, debug);
@@ -526,6 +535,18 @@ Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOpti
     result.image = std::move(current);
     result.nnf = std::move(nnf);
     return result;
+}
+
+}  // namespace
+
+Result<SynthesisResult> synthesize(const SynthesisInput& in, const SynthesisOptions& options,
+                                   const RunContext& context, const DebugSink& debug) {
+    return run_synthesis(in, nullptr, options, context, debug);
+}
+
+Result<SynthesisResult> synthesize(SynthesisInput&& in, const SynthesisOptions& options,
+                                   const RunContext& context, const DebugSink& debug) {
+    return run_synthesis(in, &in, options, context, debug);
 }
 
 }  // namespace exemplar

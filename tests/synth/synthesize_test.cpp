@@ -151,6 +151,39 @@ TEST(Synthesize, DeterministicForAnyThreadCount) {
     }
 }
 
+// The consuming overload releases the input (its images are gone afterwards) and gives the same
+// bytes as the copying one, also with a target mask, labels and a candidate field.
+TEST(Synthesize, ConsumingTheInputGivesTheSameResult) {
+    SynthesisInput in;
+    in.style = testing::texture(48, 40, 3, 7);
+    in.guides.push_back(
+        GuidePair{"g", testing::texture(48, 40, 2, 8), testing::texture(60, 52, 2, 9), 2.0f, {}});
+    in.guides.push_back(
+        GuidePair{"h", testing::texture(48, 40, 1, 10), testing::texture(60, 52, 1, 11), 0.5f, {}});
+    in.target_mask = Image(60, 52, 1, 1.0f);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 60; ++x) in.target_mask.at(x, y, 0) = 0.0f;
+    in.initial_target = testing::texture(60, 52, 3, 12);
+    for (UsageStrategy usage : {UsageStrategy::None, UsageStrategy::ErrorBudget}) {
+        for (int final_pass : {0, 2}) {
+            SynthesisOptions opt;
+            opt.usage = usage;
+            opt.final_pass_iterations = final_pass;
+            auto kept = synthesize(in, opt, RunContext{2});
+            SynthesisInput copy = in;
+            auto consumed = synthesize(std::move(copy), opt, RunContext{2});
+            ASSERT_TRUE(kept.ok() && consumed.ok()) << consumed.status().message();
+            EXPECT_TRUE(std::ranges::equal(kept->image.data(), consumed->image.data()))
+                << to_string(usage);
+            EXPECT_TRUE(std::ranges::equal(kept->error.data(), consumed->error.data()))
+                << to_string(usage);
+            // Released unless the final pass still needed it after the finest level.
+            EXPECT_EQ(copy.style.empty(), final_pass == 0);  // NOLINT(bugprone-use-after-move)
+            EXPECT_EQ(copy.guides.empty(), final_pass == 0);
+        }
+    }
+}
+
 TEST(Synthesize, TargetMaskKeepsOutsidePixelsBitIdentical) {
     SynthesisInput in;
     in.style = testing::texture(50, 50, 3, 21);

@@ -96,4 +96,11 @@ Status validate_input(const SynthesisInput& input, const SynthesisOptions& optio
 Result<SynthesisResult> synthesize(const SynthesisInput& input, const SynthesisOptions& options,
                                    const RunContext& context = {}, const DebugSink& debug = {});
 
+/// The same, consuming the input: its full-resolution images are released once the finest
+/// level has been built from them (the engine works on its own compact copies), so the peak
+/// memory holds them or the finest level's working set, not both. Same result, bit for bit.
+/// For callers that do not need the input afterwards (the CLI, stylit, animate).
+Result<SynthesisResult> synthesize(SynthesisInput&& input, const SynthesisOptions& options,
+                                   const RunContext& context = {}, const DebugSink& debug = {});
+
 }  // namespace exemplar
