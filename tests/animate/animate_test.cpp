@@ -396,12 +396,13 @@ TEST(Animate, ErrorsNameTheProblem) {
     EXPECT_EQ(r.status().message(), "temporal-weight: -1.000000 is invalid (must be >= 0)");
 }
 
-// A real pair (FlyingChairs 0000000, reduced to 128x96) with flow estimated by DIS: the stylized
-// pair is far more consistent along the motion than two independently stylized frames.
+// A pair of painted textures moving like FlyingChairs (tests/data/flow, reduced to 128x96) with
+// flow estimated by DIS: the stylized pair is far more consistent along the motion than two
+// independently stylized frames.
 TEST(Animate, RealPairWithEstimatedFlowIsCoherent) {
-    const std::string dir = EXEMPLAR_SHARED_DATA_DIR "/flow/flyingchairs/0000000-";
+    const std::string dir = EXEMPLAR_TEST_DATA_DIR "/flow/synthetic-";
     std::vector<Image> frames;
-    for (const char* name : {"img0.ppm", "img1.ppm"}) {
+    for (const char* name : {"img0.png", "img1.png"}) {
         auto im = load_image(dir + name);
         ASSERT_TRUE(im.ok()) << im.status().message();
         frames.push_back(resize(*im, 128, 96, ResampleFilter::Gaussian, 1));
@@ -441,7 +442,7 @@ TEST(Animate, RealPairWithEstimatedFlowIsCoherent) {
     const double g_tcia = gradient_energy(r->frames[1]);
     const double g_style = gradient_energy(style.output);
     std::printf(
-        "flyingchairs: warp error tcia %.5f independent %.5f input frames %.5f; gradient "
+        "synthetic pair: warp error tcia %.5f independent %.5f input frames %.5f; gradient "
         "energy tcia %.4f style %.4f\n",
         e_tcia, e_base, e_input, g_tcia, g_style);
     EXPECT_LT(e_tcia, 0.5 * e_base);

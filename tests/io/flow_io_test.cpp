@@ -1,4 +1,4 @@
-// Middlebury .flo and EXR flow files: round trips, known values of a FlyingChairs ground truth,
+// Middlebury .flo and EXR flow files: round trips, known values of a ground-truth flow file,
 // and one-line errors for bad magic, truncated and oversized files.
 
 #include "exemplar/io/flow_io.hpp"
@@ -19,8 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kChairsFlow =
-    std::string(EXEMPLAR_SHARED_DATA_DIR) + "/flow/flyingchairs/0000000-gt.flo";
+// The synthetic pair's exact flow (tests/data/flow, written by bench/make_flow_pair).
+const std::string kPairFlow = std::string(EXEMPLAR_TEST_DATA_DIR) + "/flow/synthetic-gt.flo";
 
 class FlowIo : public ::testing::Test {
 protected:
@@ -46,32 +46,35 @@ protected:
     fs::path dir_;
 };
 
-TEST_F(FlowIo, ReadsFlyingChairsGroundTruth) {
-    auto flow = load_flo(kChairsFlow);
+TEST_F(FlowIo, ReadsGroundTruthFile) {
+    auto flow = load_flo(kPairFlow);
     ASSERT_TRUE(flow.ok()) << flow.status().message();
-    EXPECT_EQ(flow->width(), 512);
-    EXPECT_EQ(flow->height(), 384);
+    EXPECT_EQ(flow->width(), 256);
+    EXPECT_EQ(flow->height(), 192);
     ASSERT_EQ(flow->channels(), 2);
     EXPECT_EQ(flow->channel_names(), (std::vector<std::string>{"u", "v"}));
-    // Values read with an independent script (struct.unpack of the raw file).
-    EXPECT_FLOAT_EQ(flow->at(0, 0, 0), -19.5f);
-    EXPECT_FLOAT_EQ(flow->at(0, 0, 1), 13.75f);
-    EXPECT_FLOAT_EQ(flow->at(100, 50, 0), 2.71875f);
-    EXPECT_FLOAT_EQ(flow->at(100, 50, 1), -22.1875f);
-    EXPECT_FLOAT_EQ(flow->at(511, 383, 0), -0.59375f);
-    EXPECT_FLOAT_EQ(flow->at(511, 383, 1), -1.34375f);
+    // Values read with an independent script (Python's struct.unpack of the raw file). At
+    // (75, 70) and (170, 110), the centres of two objects, the flow is their shift exactly.
+    EXPECT_FLOAT_EQ(flow->at(0, 0, 0), 3.0479865f);
+    EXPECT_FLOAT_EQ(flow->at(0, 0, 1), -7.3041077f);
+    EXPECT_FLOAT_EQ(flow->at(75, 70, 0), 17.0f);
+    EXPECT_FLOAT_EQ(flow->at(75, 70, 1), 8.0f);
+    EXPECT_FLOAT_EQ(flow->at(170, 110, 0), -21.0f);
+    EXPECT_FLOAT_EQ(flow->at(170, 110, 1), 9.0f);
+    EXPECT_FLOAT_EQ(flow->at(255, 191, 0), 2.9590635f);
+    EXPECT_FLOAT_EQ(flow->at(255, 191, 1), 3.2577567f);
 }
 
 TEST_F(FlowIo, FloRoundTripIsByteExact) {
-    auto flow = load_flo(kChairsFlow);
+    auto flow = load_flo(kPairFlow);
     ASSERT_TRUE(flow.ok());
     ASSERT_TRUE(save_flo(*flow, path("copy.flo")).is_ok());
-    EXPECT_EQ(bytes(path("copy.flo")), bytes(kChairsFlow));
+    EXPECT_EQ(bytes(path("copy.flo")), bytes(kPairFlow));
     EXPECT_EQ(entries(), 1u) << "no temporary file left behind";
 }
 
 TEST_F(FlowIo, ExrRoundTripIsExactAndLoadsThroughLayers) {
-    auto flow = load_flo(kChairsFlow);
+    auto flow = load_flo(kPairFlow);
     ASSERT_TRUE(flow.ok());
     ASSERT_TRUE(save_flow(*flow, path("flow.exr")).is_ok());
     auto back = load_flow(path("flow.exr"));
@@ -89,7 +92,7 @@ TEST_F(FlowIo, ExrRoundTripIsExactAndLoadsThroughLayers) {
     auto layer = load_flow(path("render.exr"), "motion");
     ASSERT_TRUE(layer.ok()) << layer.status().message();
     EXPECT_EQ(layer->channel_names(), (std::vector<std::string>{"u", "v"}));
-    EXPECT_FLOAT_EQ(layer->at(100, 50, 1), -22.1875f);
+    EXPECT_FLOAT_EQ(layer->at(75, 70, 1), 8.0f);
 
     auto colour_layer = load_flow(path("render.exr"), "");
     ASSERT_FALSE(colour_layer.ok());
@@ -98,7 +101,7 @@ TEST_F(FlowIo, ExrRoundTripIsExactAndLoadsThroughLayers) {
 }
 
 TEST_F(FlowIo, RejectsBadFiles) {
-    const std::string good = bytes(kChairsFlow);
+    const std::string good = bytes(kPairFlow);
     write_bytes("magic.flo", "XXXX" + good.substr(4));
     write_bytes("truncated.flo", good.substr(0, good.size() - 100));
     write_bytes("oversized.flo", good + "0123");
@@ -110,10 +113,10 @@ TEST_F(FlowIo, RejectsBadFiles) {
 
     const std::pair<const char*, const char*> cases[] = {
         {"magic.flo", "bad magic number"},
-        {"truncated.flo", "truncated .flo file: 1572776 bytes, but a 512x384 flow needs 1572876"},
+        {"truncated.flo", "truncated .flo file: 393128 bytes, but a 256x192 flow needs 393228"},
         {"oversized.flo", "oversized .flo file"},
         {"header.flo", "the header alone has 12"},
-        {"huge.flo", "corrupt .flo header: size 1048576x384"},
+        {"huge.flo", "corrupt .flo header: size 1048576x192"},
         {"missing.flo", "no such file"},
     };
     for (const auto& [name, part] : cases) {
@@ -141,7 +144,7 @@ TEST_F(FlowIo, RejectsNonFlowImagesAndFormats) {
     EXPECT_EQ(folder.code(), ErrorCode::IoError) << folder.message();
     EXPECT_NE(folder.message().find("is a file, not a folder"), std::string::npos)
         << folder.message();
-    auto layered = load_flow(kChairsFlow, "motion");
+    auto layered = load_flow(kPairFlow, "motion");
     EXPECT_EQ(layered.status().code(), ErrorCode::InvalidArgument);
 }
 
