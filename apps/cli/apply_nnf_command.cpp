@@ -11,23 +11,7 @@
 
 namespace exemplar::cli {
 
-namespace {
-
-// Distance from the image border of the matched entry closest to it. The synthesis leaves every
-// pixel within patch_size / 2 of the border unmatched (-1, -1), so an NNF made with patch size p
-// has p / 2 <= this distance (more with a target mask). INT_MAX if nothing is matched.
-int matched_border_distance(const Nnf& nnf) {
-    int distance = std::numeric_limits<int>::max();
-    for (int y = 0; y < nnf.height(); ++y) {
-        for (int x = 0; x < nnf.width(); ++x) {
-            if (nnf.at(x, y).x < 0) continue;
-            distance = std::min({distance, x, y, nnf.width() - 1 - x, nnf.height() - 1 - y});
-        }
-    }
-    return distance;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 ApplyNnfCommand::ApplyNnfCommand(CLI::App& parent) {
     app_ = parent.add_subcommand(
@@ -76,18 +60,11 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     }
     EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", output_));
 
-    // The NNF, checked against the patch size.
+    // The NNF.
     auto nnf_image = load_image(nnf_);
     if (!nnf_image.ok()) return nnf_image.status();
     auto nnf = nnf_from_image(*nnf_image);
     if (!nnf.ok()) return invalid_argument("--nnf " + nnf_ + ": " + nnf.status().message());
-    const int border = matched_border_distance(*nnf);
-    if (patch_size_ / 2 > border) {
-        return invalid_argument("--patch-size: " + std::to_string(patch_size_) + " does not fit " +
-                                "--nnf " + nnf_ + " (it has matches " + std::to_string(border) +
-                                " px from the border, so its patch size is at most " +
-                                std::to_string(2 * border + 1) + ")");
-    }
 
     // The source.
     auto source = load_image(source_);

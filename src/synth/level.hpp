@@ -52,6 +52,20 @@ struct Level {
     std::vector<std::vector<int>> valid_by_group;
 
     int feature_channels() const { return source_features.channels(); }
+    /// Whether the patch centred at source pixel `s` lies inside the source (no repeated border
+    /// pixels): only such patches are the exemplar's own, which usage control distributes.
+    bool source_inside(std::size_t s) const {
+        const int x = static_cast<int>(s % static_cast<std::size_t>(sw));
+        const int y = static_cast<int>(s / static_cast<std::size_t>(sw));
+        return x >= radius && y >= radius && x < sw - radius && y < sh - radius;
+    }
+    /// The same for target pixel `t`: usage control assigns only such target patches; those
+    /// over the border take nearest neighbours.
+    bool target_inside(std::size_t t) const {
+        const int x = static_cast<int>(t % static_cast<std::size_t>(tw));
+        const int y = static_cast<int>(t / static_cast<std::size_t>(tw));
+        return x >= radius && y >= radius && x < tw - radius && y < th - radius;
+    }
     bool rotated() const { return !source_angle.empty(); }
     bool labelled() const { return !source_label.empty(); }
     std::size_t target_index(int x, int y) const {

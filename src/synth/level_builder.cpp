@@ -152,9 +152,12 @@ std::vector<std::uint8_t> source_validity(int w, int h, int fr, const Image& mas
         };
         return at(x1 + 1, y1 + 1) - at(x0, y1 + 1) - at(x1 + 1, y0) + at(x0, y0);
     };
-    for (int y = fr; y < h - fr; ++y) {
-        for (int x = fr; x < w - fr; ++x) {
-            if (mask.empty() || sum(x - fr, y - fr, x + fr, y + fr) == 0) {
+    // Every pixel is a centre; a patch over the border reads the border pixels repeated, so
+    // only its footprint clipped to the image must lie in the mask.
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            if (mask.empty() || sum(std::max(0, x - fr), std::max(0, y - fr),
+                                    std::min(w - 1, x + fr), std::min(h - 1, y + fr)) == 0) {
                 valid[static_cast<std::size_t>(y) * w + x] = 1;
             }
         }
@@ -361,14 +364,15 @@ Level LevelBuilder::build(int index, int patch_size) const {
         L.target_angle = channel0(at(input_.target_orientation, RF::Nearest).get());
     }
 
-    // Target: active patch centres are those whose patch lies inside the target (so border
-    // pixels are covered by fewer patches but every vote is exact), restricted to the mask
+    // Target: every pixel is a patch centre. A patch reaching over the border of either image
+    // reads that image's border pixels repeated (patch_distance's clamped path; sources as
+    // source_validity allows), and votes only inside the target. So a border pixel is voted by
+    // (r + 1) x P patches, not by the P of a single column (a corner by (r + 1)², not 1): one
+    // bad match no longer shows as a streak along the border, and a border patch can still
+    // match the same border of the exemplar (the identity stays exact). Restricted to the mask
     // dilated by the patch radius; fixed pixels are outside the mask.
     const std::size_t nt = static_cast<std::size_t>(L.tw) * L.th;
-    L.target_active.assign(nt, 0);
-    for (int y = L.radius; y < L.th - L.radius; ++y) {
-        for (int x = L.radius; x < L.tw - L.radius; ++x) L.target_active[L.target_index(x, y)] = 1;
-    }
+    L.target_active.assign(nt, 1);
     const AtDepth target_mask = at(input_.target_mask, RF::Box);
     if (!target_mask.get().empty()) {
         const Image& m = target_mask.get();

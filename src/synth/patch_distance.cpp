@@ -24,7 +24,8 @@ float general_distance(const Level& L, int tx, int ty, int sx, int sy, float ang
             const int x = std::clamp(tx + dx, 0, L.tw - 1);
             const RotatedOffset o = rotate ? rotate_offset(dx, dy, c, s) : RotatedOffset{dx, dy};
             const std::uint8_t* t = L.target_features.pixel(x, y);
-            const std::uint8_t* src = L.source_features.pixel(sx + o.dx, sy + o.dy);
+            const std::uint8_t* src = L.source_features.pixel(std::clamp(sx + o.dx, 0, L.sw - 1),
+                                                              std::clamp(sy + o.dy, 0, L.sh - 1));
             const float* w = L.channel_weight.data();
             const float* map = weighted ? L.target_weights.pixel(x, y) : nullptr;
             float px = 0.0f;

@@ -37,7 +37,8 @@ float patch_distance_general(const Level& level, int tx, int ty, int sx, int sy,
 inline float patch_distance(const Level& L, int tx, int ty, int sx, int sy, float angle_rad,
                             float bound = std::numeric_limits<float>::infinity()) {
     const int r = L.radius;
-    const bool interior = tx >= r && ty >= r && tx < L.tw - r && ty < L.th - r;
+    const bool interior = tx >= r && ty >= r && tx < L.tw - r && ty < L.th - r && sx >= r &&
+                          sy >= r && sx < L.sw - r && sy < L.sh - r;
     if (!interior || angle_rad != 0.0f || !L.pixel_weight.empty()) {
         return patch_distance_general(L, tx, ty, sx, sy, angle_rad, bound);
     }

@@ -185,6 +185,7 @@ synth::VoteParams vote_params(const synth::Level& L, VoteMode mode, float cohere
                               std::vector<float>* weights, int threads) {
     synth::VoteParams vp;
     vp.patch_size = L.patch_size;
+    vp.clamp_source = true;  // source patches over the border repeat its pixels
     vp.active = L.target_active.data();
     vp.fixed = L.target_fixed.empty() ? nullptr : L.target_fixed.data();
     if (mode == VoteMode::Weighted && weights != nullptr) {

@@ -84,7 +84,7 @@ public:
         const std::size_t n_t = static_cast<std::size_t>(L_.tw) * L_.th;
         free_.assign(n_t, 0);
         for (std::size_t t = 0; t < n_t; ++t) {
-            if (L_.target_active[t]) {
+            if (L_.target_active[t] && L_.target_inside(t)) {  // border: search_border_targets
                 free_[t] = 1;
                 ++free_count_;
             }
@@ -109,14 +109,16 @@ public:
     const Nnf& nnf() const { return nnf_; }
     std::size_t active_count() const { return active_count_; }
     std::vector<std::uint8_t>& query_mask() { return query_; }
-    // Sets the query mask to the valid sources whose label group still has free targets and
-    // for which `wanted(s)` holds. Rows in parallel: `wanted` may only read shared state.
+    // Sets the query mask to the valid sources inside the source (patches over its border are
+    // for nearest-neighbour matches, not patches to distribute) whose label group still has free
+    // targets and for which `wanted(s)` holds. Rows in parallel: `wanted` may only read shared
+    // state.
     template <class Wanted>
     void select_queries(Wanted wanted) {
         parallel_for(0, L_.sh, s_.threads, [&](int y) {
             for (int x = 0; x < L_.sw; ++x) {
                 const std::size_t s = L_.source_index(x, y);
-                query_[s] = L_.source_valid[s] &&
+                query_[s] = L_.source_valid[s] && L_.source_inside(s) &&
                             !free_by_group_[static_cast<std::size_t>(L_.source_group(s))].empty() &&
                             wanted(s);
             }
@@ -259,6 +261,25 @@ private:
     bool warm_ = false;
 };
 
+// Target patches over the border are left out of usage control, as source patches over the
+// border are: neither is the image's own patch. They take nearest neighbours over every source
+// (border patches included, so an identity keeps its border exact). Returns how many.
+std::size_t search_border_targets(const SearchSetup& setup, Nnf& nnf) {
+    const Level& L = setup.level;
+    std::vector<std::uint8_t> border(L.target_active.size(), 0);
+    std::size_t count = 0;
+    for (std::size_t t = 0; t < border.size(); ++t) {
+        border[t] = L.target_active[t] && !L.target_inside(t) ? 1 : 0;
+        count += border[t];
+    }
+    if (count == 0) return 0;
+    const ForwardProblem problem = forward_problem(setup, border.data(), nullptr, nullptr);
+    evaluate_field(problem, nnf, hash_keys(setup.key, 0xB0), setup.threads);
+    run_patchmatch(problem, nnf, search_iterations(setup), hash_keys(setup.key, 0xB1),
+                   setup.threads);
+    return count;
+}
+
 SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
     const ForwardProblem problem =
         forward_problem(setup, setup.level.target_active.data(), nullptr, nullptr);
@@ -272,7 +293,7 @@ SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
 }
 
 // LazyFluids §5.4.1: every source patch is used K = |X| / |Z| or K + 1 times (R = |X| mod |Z|
-// of them K + 1), per label group.
+// of them K + 1), per label group. Z: the patches inside the source (Level::source_inside).
 SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     const Level& L = setup.level;
     ReverseRetrieval rr(setup, nnf);
@@ -284,7 +305,11 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
             if (rr.free_mask()[t]) ++targets[static_cast<std::size_t>(L.target_group(t))];
         }
         for (std::size_t g = 0; g < groups; ++g) {
-            const std::size_t sources = L.valid_by_group[g].size();
+            const auto& valid = L.valid_by_group[g];
+            const auto sources =
+                static_cast<std::size_t>(std::count_if(valid.begin(), valid.end(), [&](int s) {
+                    return L.source_inside(static_cast<std::size_t>(s));
+                }));
             K[g] = sources == 0 ? 0 : targets[g] / sources;
             R[g] = sources == 0 ? 0 : targets[g] % sources;
         }
@@ -292,7 +317,7 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     std::vector<std::uint32_t> count(static_cast<std::size_t>(L.sw) * L.sh, 0);
     auto has_capacity = [&](std::size_t s) {
         const auto g = static_cast<std::size_t>(L.source_group(s));
-        return count[s] < K[g] || (count[s] == K[g] && R[g] > 0);
+        return L.source_inside(s) && (count[s] < K[g] || (count[s] == K[g] && R[g] > 0));
     };
     auto try_assign = [&](const Candidate& c) {
         const auto s = static_cast<std::size_t>(c.source);
@@ -348,6 +373,7 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
             break;
         }
     }
+    stats.forward_assigned += search_border_targets(setup, nnf);
     return stats;
 }
 
@@ -457,6 +483,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         stats.forward_assigned = rr.free_count();
         rr.forward_candidates(nullptr, 0);
     }
+    stats.forward_assigned += search_border_targets(setup, nnf);
     if (setup.options.coherence_sweeps > 0) merge_stray_matches(setup, nnf);
     return stats;
 }

@@ -236,12 +236,16 @@ TEST(Synthesize, SourceMaskExcludesOutsidePixels) {
         for (float v : red.data()) {
             ASSERT_LT(v, 1.5f) << to_string(usage);
         }
+        // Every source patch read (its footprint clipped to the style: patches over the border
+        // repeat the border pixels) lies inside the mask.
         for (const Match& m : result->nnf.matches()) {
             if (m.x < 0) continue;
             const int r = result->nnf_patch_size / 2;
             for (int dy = -r; dy <= r; ++dy)
                 for (int dx = -r; dx <= r; ++dx)
-                    ASSERT_GT(in.source_mask.at(m.x + dx, m.y + dy, 0), 0.5f);
+                    ASSERT_GT(in.source_mask.at(std::clamp(m.x + dx, 0, 59),
+                                                std::clamp(m.y + dy, 0, 49), 0),
+                              0.5f);
         }
     }
 }
@@ -523,17 +527,17 @@ TEST(Synthesize, DebugSinkReceivesUsageMaps) {
     };
     ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
     // One frame per EM iteration: the coarse level's and the finest level's (no 3x3 pass by
-    // default); the last one counts the 5x5 patch centres, at least 2 px from the border.
+    // default); the last one counts the patch centres: every target pixel, border included.
     EXPECT_EQ(opt.final_pass_iterations, 0);
     EXPECT_EQ(frames, opt.em_iterations + opt.finest_em_iterations);
-    EXPECT_EQ(last_usage_sum, 28.0f * 28.0f);
+    EXPECT_EQ(last_usage_sum, 32.0f * 32.0f);
 
-    // With the final 3x3 pass, its iterations come last: centres at least 1 px from the border.
+    // With the final 3x3 pass, its iterations come last.
     opt.final_pass_iterations = 2;
     frames = 0;
     ASSERT_TRUE(synthesize(in, opt, RunContext{1}, sink).ok());
     EXPECT_EQ(frames, opt.em_iterations + opt.finest_em_iterations + opt.final_pass_iterations);
-    EXPECT_EQ(last_usage_sum, 30.0f * 30.0f);
+    EXPECT_EQ(last_usage_sum, 32.0f * 32.0f);
 
     // finest-em-iterations 0: every level runs em-iterations.
     opt.finest_em_iterations = 0;

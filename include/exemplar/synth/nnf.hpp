@@ -13,8 +13,9 @@
 namespace exemplar {
 
 /// One NNF entry. A target offset d maps to source position (x, y) + Rot(angle_rad) d.
-/// x = y = -1 marks a target pixel that is not a patch centre (within patch_size / 2 of the
-/// border, or outside the dilated target mask); such entries do not vote.
+/// x = y = -1 marks a target pixel that is not a patch centre (outside the dilated target
+/// mask); such entries do not vote. Every other pixel is one, and a patch over the border of
+/// either image reads that image's border pixels repeated.
 struct Match {
     std::int32_t x = 0;      ///< Source patch centre, x.
     std::int32_t y = 0;      ///< Source patch centre, y.
