@@ -1,17 +1,12 @@
 // `exemplar apply-nnf`: a saved NNF applied to another image on the style's grid (a 16-bit or
 // extra-channel version of the style), voting as the synthesis did.
 
-#include <algorithm>
-#include <limits>
-
 #include "commands.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/synth/nnf.hpp"
 #include "output_files.hpp"
 
 namespace exemplar::cli {
-
-namespace {}  // namespace
 
 ApplyNnfCommand::ApplyNnfCommand(CLI::App& parent) {
     app_ = parent.add_subcommand(

@@ -59,7 +59,7 @@ struct Level {
         const int y = static_cast<int>(s / static_cast<std::size_t>(sw));
         return x >= radius && y >= radius && x < sw - radius && y < sh - radius;
     }
-    /// The same for target pixel `t`: usage control assigns only such target patches; those
+    /// The same for target pixel `t`: uniform usage assigns only such target patches; those
     /// over the border take nearest neighbours.
     bool target_inside(std::size_t t) const {
         const int x = static_cast<int>(t % static_cast<std::size_t>(tw));

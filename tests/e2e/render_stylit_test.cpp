@@ -153,10 +153,10 @@ protected:
         EXPECT_GE(yellow_total, 4);
         EXPECT_GE(fraction(yellow_placed, yellow_total), 0.9);
         EXPECT_GE(cow, 2000);
-        // Measured 0.966 (PNG buffers) and 0.882 (EXR) since every pixel is a patch centre
+        // Measured 0.976 (PNG buffers) and 0.898 (EXR) since every pixel is a patch centre
         // (0.979 and 0.919 before): the coarse levels, where the border band is a large part of
         // the image, decide a little differently.
-        EXPECT_GE(fraction(cow_blue, cow), 0.85);
+        EXPECT_GE(fraction(cow_blue, cow), 0.88);
         EXPECT_GE(shadow, 1000);
         EXPECT_GE(fraction(shadow_dark, shadow), 0.8);
     }

@@ -205,27 +205,26 @@ TEST_F(Comparison, ErrorBudgetAvoidsWashOutAndKeepsHighlights) {
     const Metrics uniform = results_->at({UsageStrategy::Uniform, 1});
     const Metrics budget = results_->at({UsageStrategy::ErrorBudget, 1});
     EXPECT_LT(none.distinct_patches, 0.6);                            // measured 0.506
-    EXPECT_GT(budget.distinct_patches, none.distinct_patches + 0.1);  // measured 0.661
+    EXPECT_GT(budget.distinct_patches, none.distinct_patches + 0.1);  // measured 0.657
     EXPECT_GT(uniform.distinct_patches, 0.9);  // measured 0.991 (border patches: nearest)
-    // Measured 1.44x (1.32-1.44x over seeds 1-3; 1.06x before every pixel was a centre).
+    // Measured 1.32x (1.32-1.41x over seeds 1-3; 1.06x before every pixel was a centre).
     EXPECT_GT(budget.object_texture, none.object_texture * 1.03);
 
-    // Highlight pixels fed from outside the exemplar's highlight, seeds 1, 2, 3 (2026-11-24:
-    // every pixel a patch centre, usage control over the patches inside both images): error
-    // budget 9.6%, 9.6%, 9.6%; uniform 18.0%, 15.8%, 21.9%; nearest neighbours 6.2%, 9.6%, 9.6%.
-    // On every seed the error budget keeps more highlights than uniform usage, and over the
-    // seeds about as many as nearest neighbours (which need not spread the usage); over the
-    // seeds it misses clearly fewer than uniform usage.
-    double budget_miss = 0.0, uniform_miss = 0.0, none_miss = 0.0;
+    // Highlight pixels fed from outside the exemplar's highlight, seeds 1, 2, 3 (2026-11-24,
+    // every pixel a patch centre): error budget 4.4%, 9.6%, 9.6%; uniform 18.0%, 15.8%, 21.9%;
+    // nearest neighbours 6.2%, 9.6%, 9.6%. On every seed the error budget keeps at least the
+    // highlights nearest neighbours keep with the same seed, and more than uniform usage; over
+    // the seeds it misses clearly fewer than uniform usage.
+    double budget_miss = 0.0, uniform_miss = 0.0;
     for (std::uint64_t seed : kSeeds) {
         const Metrics& b = results_->at({UsageStrategy::ErrorBudget, seed});
         const Metrics& u = results_->at({UsageStrategy::Uniform, seed});
+        const Metrics& n = results_->at({UsageStrategy::None, seed});
+        EXPECT_GE(b.highlight_fidelity, n.highlight_fidelity - 0.01) << "seed " << seed;
         EXPECT_GE(b.highlight_fidelity, u.highlight_fidelity) << "seed " << seed;
         budget_miss += 1.0 - b.highlight_fidelity;
         uniform_miss += 1.0 - u.highlight_fidelity;
-        none_miss += 1.0 - results_->at({UsageStrategy::None, seed}).highlight_fidelity;
     }
-    EXPECT_LE(budget_miss / 3.0, none_miss / 3.0 + 0.02);
     EXPECT_LT(budget_miss, 0.8 * uniform_miss);
 }
 
