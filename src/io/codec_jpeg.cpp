@@ -46,6 +46,14 @@ void on_message(j_common_ptr info, int level) {
     }
 }
 
+// The state's error manager, reporting through on_error and on_message.
+jpeg_error_mgr* errors(JpegState* s) {
+    jpeg_error_mgr* manager = jpeg_std_error(&s->error);
+    manager->error_exit = on_error;
+    manager->emit_message = on_message;
+    return manager;
+}
+
 bool allocate(JpegState& s) {
     try {
         s.pixels.resize(static_cast<std::size_t>(s.width) * s.height * s.channels);
@@ -58,9 +66,7 @@ bool allocate(JpegState& s) {
 
 bool decode(JpegState* s) {
     jpeg_decompress_struct info{};
-    info.err = jpeg_std_error(&s->error);
-    s->error.error_exit = on_error;
-    s->error.emit_message = on_message;
+    info.err = errors(s);
     if (setjmp(s->jump)) {
         jpeg_destroy_decompress(&info);
         return false;
@@ -96,9 +102,7 @@ bool decode(JpegState* s) {
 
 bool encode(JpegState* s) {
     jpeg_compress_struct info{};
-    info.err = jpeg_std_error(&s->error);
-    s->error.error_exit = on_error;
-    s->error.emit_message = on_message;
+    info.err = errors(s);
     if (setjmp(s->jump)) {
         jpeg_destroy_compress(&info);
         return false;
@@ -127,12 +131,9 @@ bool encode(JpegState* s) {
 
 Result<Image> read_jpeg(const std::string& file) {
     auto state = std::make_unique<JpegState>();
-    state->file = std::fopen(file.c_str(), "rb");
-    if (state->file == nullptr) return io_error(fmt::format("{}: cannot open", file));
-    const bool ok = decode(state.get());
-    std::fclose(state->file);
-    if (!ok) return io_error(fmt::format("{}: cannot read JPEG: {}", file, state->message));
-    const JpegState& s = *state;
+    JpegState& s = *state;
+    EXEMPLAR_RETURN_IF_ERROR(
+        run_file_codec(file, file, "rb", "JPEG", s.file, s.message, [&] { return decode(&s); }));
     const int channels = s.cmyk ? 3 : s.channels;
     Image image(s.width, s.height, channels);
     float* out = image.data().data();
@@ -144,8 +145,7 @@ Result<Image> read_jpeg(const std::string& file) {
                 out[3 * i + c] = static_cast<float>(p[c]) * static_cast<float>(p[3]) / 65025.0f;
         }
     } else {
-        for (std::size_t i = 0; i < image.size(); ++i)
-            out[i] = static_cast<float>(s.pixels[i]) / 255.0f;
+        samples_to_floats(s.pixels.data(), 8, image.size(), out);
     }
     image.set_channel_names(default_channel_names(channels));
     return image;
@@ -160,15 +160,8 @@ Status write_jpeg(const Image& image, const std::string& file, const std::string
     s.channels = image.channels();
     s.quality = quality;
     if (!allocate(s)) return io_error(fmt::format("{}: out of memory", shown));
-    for (std::size_t i = 0; i < image.size(); ++i)
-        s.pixels[i] = static_cast<unsigned char>(to_level(image.data()[i], 255));
-    s.file = std::fopen(file.c_str(), "wb");
-    if (s.file == nullptr) return io_error(fmt::format("{}: cannot write", shown));
-    const bool ok = encode(&s);
-    const bool closed = std::fclose(s.file) == 0;
-    if (!ok) return io_error(fmt::format("{}: cannot write JPEG: {}", shown, s.message));
-    if (!closed) return io_error(fmt::format("{}: cannot write: disk full or I/O error", shown));
-    return Status::ok();
+    floats_to_samples(image.data().data(), image.size(), 8, s.pixels.data());
+    return run_file_codec(file, shown, "wb", "JPEG", s.file, s.message, [&] { return encode(&s); });
 }
 
 }  // namespace exemplar::io_detail

@@ -101,21 +101,11 @@ bool encode(PngState* s) {
 
 Result<Image> read_png(const std::string& file) {
     auto state = std::make_unique<PngState>();
-    state->file = std::fopen(file.c_str(), "rb");
-    if (state->file == nullptr) return io_error(fmt::format("{}: cannot open", file));
-    const bool ok = decode(state.get());
-    std::fclose(state->file);
-    if (!ok) return io_error(fmt::format("{}: cannot read PNG: {}", file, state->message));
-    const PngState& s = *state;
+    PngState& s = *state;
+    EXEMPLAR_RETURN_IF_ERROR(
+        run_file_codec(file, file, "rb", "PNG", s.file, s.message, [&] { return decode(&s); }));
     Image image(s.width, s.height, s.channels);
-    float* out = image.data().data();
-    const std::size_t n = image.size();
-    if (s.bits == 16) {
-        const auto* in = reinterpret_cast<const std::uint16_t*>(s.pixels.data());
-        for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>(in[i]) / 65535.0f;
-    } else {
-        for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<float>(s.pixels[i]) / 255.0f;
-    }
+    samples_to_floats(s.pixels.data(), s.bits, image.size(), image.data().data());
     image.set_channel_names(default_channel_names(s.channels));
     return image;
 }
@@ -131,22 +121,8 @@ Status write_png(const Image& image, const std::string& file, const std::string&
     const std::size_t row_bytes =
         static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.channels) * (s.bits / 8);
     if (!allocate(s, row_bytes)) return io_error(fmt::format("{}: out of memory", shown));
-    const float* in = image.data().data();
-    if (s.bits == 16) {
-        auto* out = reinterpret_cast<std::uint16_t*>(s.pixels.data());
-        for (std::size_t i = 0; i < image.size(); ++i)
-            out[i] = static_cast<std::uint16_t>(to_level(in[i], 65535));
-    } else {
-        for (std::size_t i = 0; i < image.size(); ++i)
-            s.pixels[i] = static_cast<unsigned char>(to_level(in[i], 255));
-    }
-    s.file = std::fopen(file.c_str(), "wb");
-    if (s.file == nullptr) return io_error(fmt::format("{}: cannot write", shown));
-    const bool ok = encode(&s);
-    const bool closed = std::fclose(s.file) == 0;
-    if (!ok) return io_error(fmt::format("{}: cannot write PNG: {}", shown, s.message));
-    if (!closed) return io_error(fmt::format("{}: cannot write: disk full or I/O error", shown));
-    return Status::ok();
+    floats_to_samples(image.data().data(), image.size(), s.bits, s.pixels.data());
+    return run_file_codec(file, shown, "wb", "PNG", s.file, s.message, [&] { return encode(&s); });
 }
 
 }  // namespace exemplar::io_detail

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+
 namespace exemplar::io_detail {
 
 bool codec_from_signature(const std::string& bytes, Codec& codec) {
@@ -24,6 +26,26 @@ bool codec_from_signature(const std::string& bytes, Codec& codec) {
         return false;
     }
     return true;
+}
+
+void samples_to_floats(const unsigned char* samples, int bits, std::size_t count, float* out) {
+    if (bits == 16) {
+        const auto* in = reinterpret_cast<const std::uint16_t*>(samples);
+        for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<float>(in[i]) / 65535.0f;
+    } else {
+        for (std::size_t i = 0; i < count; ++i) out[i] = static_cast<float>(samples[i]) / 255.0f;
+    }
+}
+
+void floats_to_samples(const float* values, std::size_t count, int bits, unsigned char* out) {
+    if (bits == 16) {
+        auto* samples = reinterpret_cast<std::uint16_t*>(out);
+        for (std::size_t i = 0; i < count; ++i)
+            samples[i] = static_cast<std::uint16_t>(to_level(values[i], 65535));
+    } else {
+        for (std::size_t i = 0; i < count; ++i)
+            out[i] = static_cast<unsigned char>(to_level(values[i], 255));
+    }
 }
 
 std::vector<std::string> default_channel_names(int count) {

@@ -9,6 +9,9 @@
 // setjmp in a function without them). Readers return every channel as float in [0, 1] for
 // integer files (v / max), float data as stored; channel names as the format defines them.
 
+#include <fmt/format.h>
+
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -54,6 +57,35 @@ inline unsigned to_level(float v, unsigned max) {
     if (!(v > 0.0f)) return 0;  // also NaN
     if (v >= 1.0f) return max;
     return static_cast<unsigned>(static_cast<double>(v) * max + 0.5);
+}
+
+/// Integer samples (8 or 16 bits, native byte order) as values in [0, 1].
+void samples_to_floats(const unsigned char* samples, int bits, std::size_t count, float* out);
+/// Values as integer samples (8 or 16 bits, native byte order): to_level of each.
+void floats_to_samples(const float* values, std::size_t count, int bits, unsigned char* out);
+
+/// Runs a C library codec on a file: opens `file` with `mode` ("rb" or "wb") into `handle`,
+/// calls `codec()` (false on failure, with its reason in the buffer `message` by then), closes
+/// it. Errors name `shown`: "<shown>: cannot read PNG: <message>".
+template <class Codec>
+Status run_file_codec(const std::string& file, const std::string& shown, const char* mode,
+                      const char* label, std::FILE*& handle, const char* message, Codec&& codec) {
+    const bool reading = mode[0] == 'r';
+    handle = std::fopen(file.c_str(), mode);
+    if (handle == nullptr) {
+        return io_error(fmt::format("{}: cannot {}", shown, reading ? "open" : "write"));
+    }
+    const bool ok = codec();
+    const bool closed = std::fclose(handle) == 0;
+    handle = nullptr;
+    if (!ok) {
+        return io_error(
+            fmt::format("{}: cannot {} {}: {}", shown, reading ? "read" : "write", label, message));
+    }
+    if (!closed && !reading) {
+        return io_error(fmt::format("{}: cannot write: disk full or I/O error", shown));
+    }
+    return Status::ok();
 }
 
 /// The conventional channel names for `count` channels of an integer file: Y, Y A, R G B,
