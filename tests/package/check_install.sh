@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs a build of exemplar into a temporary prefix and builds two programs against it, as a
+# user's project would: tests/package/consumer with find_package(exemplar CONFIG), and the same
+# source with pkg-config and g++ alone. Each must run and stylize an image.
+#   check_install.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1
+source=$2
+work=$(mktemp -d /tmp/exemplar-package.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+prefix=$work/prefix
+
+cmake --install "$build" --prefix "$prefix" > "$work/install.log"
+test -f "$prefix/include/exemplar/synth/synthesize.hpp"
+test -x "$prefix/bin/exemplar"
+
+# CMake package.
+cmake -S "$source/tests/package/consumer" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+cmake --build "$work/cmake" > "$work/build.log"
+"$work/cmake/consumer" "$work/cmake.png"
+
+# pkg-config module (relocatable: found through PKG_CONFIG_PATH under any prefix).
+pc_dir=$(dirname "$(find "$prefix" -name exemplar.pc)")
+flags=$(PKG_CONFIG_PATH=$pc_dir pkg-config --cflags --libs exemplar)
+libdir=$(PKG_CONFIG_PATH=$pc_dir pkg-config --variable=libdir exemplar)
+# shellcheck disable=SC2086
+g++ "$source/tests/package/consumer/main.cpp" $flags -Wl,-rpath,"$libdir" -o "$work/pc"
+"$work/pc" "$work/pc.png"
+echo "package: CMake and pkg-config consumers built and ran against $prefix"
