@@ -44,3 +44,22 @@ file(RELATIVE_PATH EXEMPLAR_PC_TO_PREFIX "${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig
      "${CMAKE_INSTALL_PREFIX}")
 configure_file(${PROJECT_SOURCE_DIR}/cmake/exemplar.pc.in ${PROJECT_BINARY_DIR}/exemplar.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/exemplar.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# `cpack -G DEB` (in the build folder): one .deb with the command, the library, the headers and
+# the CMake/pkg-config files under /usr; dpkg-shlibdeps turns the shared objects' needs into
+# Depends, so apt resolves them on a fresh Debian.
+set(CPACK_PACKAGE_NAME exemplar)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
+set(CPACK_PACKAGE_DESCRIPTION
+    "Transfers the look of a painting, drawing or photo onto renders, segmentations and\n\
+ animations by example (StyLit, TCIA, ShipShape): the `exemplar` command, libexemplar.so,\n\
+ its C++ headers, CMake package and pkg-config module.")
+set(CPACK_PACKAGE_CONTACT "exemplar developers <exemplar-dev@users.noreply.github.com>")
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+include(CPack)
