@@ -3,6 +3,9 @@
 // exit codes live here and nowhere else; the library never prints or exits.
 
 #include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace exemplar::cli {
 
@@ -22,5 +25,11 @@ enum ExitCode : int {
 /// to `err`; the bar is drawn only when `err_is_terminal`. Never throws; returns the exit code.
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
             bool err_is_terminal = false);
+
+/// The manual pages of the command, generated from the parser's own option tables: ("exemplar",
+/// page), then ("exemplar-VERB", page) per verb (and "exemplar-VERB-SUB" per sub-verb), in roff
+/// (man(7)). Every flag the parser accepts is listed, including the tuning knobs that `--help`
+/// leaves out.
+std::vector<std::pair<std::string, std::string>> man_pages();
 
 }  // namespace exemplar::cli

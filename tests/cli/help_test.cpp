@@ -1,5 +1,7 @@
 // Help, version, and the CLI reference (docs/cli.md) agreeing with the option table.
 
+#include <cctype>
+
 #include "cli_fixture.hpp"
 #include "option_help.hpp"
 
@@ -121,6 +123,69 @@ TEST(CliDocs, ReferenceAgreesWithTheOptionTable) {
         const std::string says =
             std::string("`").append(to_string(q)).append("` = `").append(quality_flags(q)) + "`";
         EXPECT_NE(text.find(says), std::string::npos) << "docs/cli.md should say " << says;
+    }
+}
+
+// The manual pages come from the parser itself: a page per verb and sub-verb, each listing every
+// flag its --help shows and, for stylize, every tuning knob of the option table.
+TEST(CliManPages, EveryVerbHasAPageWithEveryFlag) {
+    const auto roff_flag = [](std::string flag) {
+        std::string escaped;
+        for (char c : flag) escaped += c == '-' ? std::string("\\-") : std::string(1, c);
+        return escaped;
+    };
+    const auto pages = man_pages();
+    ASSERT_FALSE(pages.empty());
+    EXPECT_EQ(pages.front().first, "exemplar");
+    int verbs = 0;
+    for (const auto& [name, page] : pages) {
+        EXPECT_EQ(page.rfind(".TH " + roff_flag(name) + " 1 ", 0), 0u) << name;
+        EXPECT_NE(page.find(".SH NAME\n"), std::string::npos) << name;
+        if (name == "exemplar") continue;
+        ++verbs;
+        // "exemplar-stylit-sheet" is `exemplar stylit sheet --help`.
+        std::vector<std::string> args;
+        std::istringstream words(name.substr(std::string("exemplar-").size()));
+        for (std::string word; std::getline(words, word, '-');) args.push_back(word);
+        if (args.front() == "apply") args = {"apply-nnf"};
+        args.push_back("--help");
+        const CliRun help = run(args);
+        ASSERT_EQ(help.code, 0) << name << ": " << help.err;
+        int flags = 0;
+        for (std::size_t at = help.out.find("--"); at != std::string::npos;
+             at = help.out.find("--", at + 2)) {
+            std::size_t end = at + 2;
+            while (
+                end < help.out.size() &&
+                (std::isalnum(static_cast<unsigned char>(help.out[end])) || help.out[end] == '-'))
+                ++end;
+            const std::string flag = help.out.substr(at, end - at);
+            if (flag.size() < 4 || (at > 0 && help.out[at - 1] != ' ' && help.out[at - 1] != ','))
+                continue;
+            ++flags;
+            EXPECT_NE(page.find(roff_flag(flag)), std::string::npos) << name << " lacks " << flag;
+        }
+        EXPECT_GT(flags, 0) << name;
+    }
+    EXPECT_GE(verbs, 7);
+    const auto stylize = std::find_if(pages.begin(), pages.end(), [](const auto& page) {
+        return page.first == "exemplar-stylize";
+    });
+    ASSERT_NE(stylize, pages.end());
+    for (const OptionSpec& spec : synthesis_option_specs())
+        EXPECT_NE(stylize->second.find(roff_flag(std::string("--").append(spec.name))),
+                  std::string::npos)
+            << spec.name;
+    // No line of a page starts with a dot that is not a request.
+    for (const auto& [name, page] : pages) {
+        std::istringstream lines(page);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.empty() || line[0] != '.') continue;
+            const std::string request = line.substr(0, line.find(' '));
+            EXPECT_TRUE(request == ".TH" || request == ".SH" || request == ".TP" ||
+                        request == ".B" || request == ".nf" || request == ".fi")
+                << name << ": " << line;
+        }
     }
 }
 

@@ -28,7 +28,7 @@ fi
 contents=$(dpkg-deb --contents "$deb")
 for file in ./usr/bin/exemplar ./usr/lib/libexemplar.so ./usr/include/exemplar/synth/synthesize.hpp \
   ./usr/lib/cmake/exemplar/exemplarConfig.cmake ./usr/lib/pkgconfig/exemplar.pc \
-  ./usr/lib/exemplar/libexemplar_video_mp4.so; do
+  ./usr/lib/exemplar/libexemplar_video_mp4.so ./usr/share/man/man1/exemplar-stylize.1; do
   if ! grep -qF " $file" <<< "$contents"; then
     echo "check_deb: $deb has no $file" >&2
     exit 1

@@ -13,6 +13,15 @@ prefix=$work/prefix
 cmake --install "$build" --prefix "$prefix" > "$work/install.log"
 test -f "$prefix/include/exemplar/synth/synthesize.hpp"
 test -x "$prefix/bin/exemplar"
+# A manual page per verb, generated from the parser (apps/cli/man_main.cpp); man renders the
+# stylize page with its flags as typed.
+for page in exemplar exemplar-stylize exemplar-stylit exemplar-stylit-sheet exemplar-animate; do
+  head -n 1 "$prefix/share/man/man1/$page.1" | grep -q '^\.TH '
+done
+if command -v man > /dev/null; then
+  MANWIDTH=100 man -l "$prefix/share/man/man1/exemplar-stylize.1" 2> /dev/null |
+    grep -q -- '--patch-size'
+fi
 
 # CMake package.
 cmake -S "$source/tests/package/consumer" -B "$work/cmake" -DCMAKE_PREFIX_PATH="$prefix" \
