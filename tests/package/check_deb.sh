@@ -34,6 +34,13 @@ for file in ./usr/bin/exemplar ./usr/lib/libexemplar.so ./usr/include/exemplar/s
     exit 1
   fi
 done
+# apt accepts the package and resolves its Depends (simulated: nothing is installed).
+if command -v apt-get > /dev/null; then
+  apt-get install -s "$deb" > "$work/apt.log" 2>&1 || {
+    cat "$work/apt.log" >&2
+    exit 1
+  }
+fi
 dpkg-deb -x "$deb" "$work/root"
 "$work/root/usr/bin/exemplar" --version
 echo "deb: $(basename "$deb"), Depends: $depends"
