@@ -15,7 +15,7 @@ packages=(
   libtinyxml2-dev                        # sketch: SVG import
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   libpoppler-cpp-dev zlib1g-dev          # tests: the PDF sheet read back
-  clang-format
+  clang-format ccache                   # formatting; compilations cached across clones
 )
 
 missing=()
