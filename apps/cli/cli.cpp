@@ -53,6 +53,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     FlowCommand flow(app);
     BeautifyCommand beautify(app);
     AnimateCommand animate(app);
+    FluidCommand fluid(app);
     const Streams streams{out, err, err_is_terminal};
 
     Status status;
@@ -72,6 +73,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = beautify.run(streams);
         } else if (animate.parsed()) {
             status = animate.run(streams);
+        } else if (fluid.parsed()) {
+            status = fluid.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

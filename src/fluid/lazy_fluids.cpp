@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "exemplar/core/check.hpp"
@@ -34,11 +35,6 @@ namespace {
 
 std::string size_str(const Image& im) {
     return std::to_string(im.width()) + "x" + std::to_string(im.height());
-}
-
-Status range_error(const char* name, double value, const char* range) {
-    return invalid_argument(std::string(name) + ": " + std::to_string(value) +
-                            " is invalid (must be " + range + ")");
 }
 
 // RGBA with the colour multiplied by alpha.
@@ -121,30 +117,68 @@ Image rotated(const Image& in, int quarter_turns) {
 
 }  // namespace
 
+std::span<const FluidOptionSpec> fluid_option_specs() {
+    using O = FluidOptions;
+    static const FluidOptionSpec specs[] = {
+        {"patch-size", "Patch width (odd). Paper: 5", "px", 3, 15, &O::patch_size},
+        {"temporal-weight",
+         "lambda: weight of the previous output advected along the motion (0 = every frame on its "
+         "own; 0 at emitters and in the first frame). Paper: 0.2",
+         "", 0, 10, &O::temporal_weight},
+        {"boundary-weight",
+         "eta: weight of the blurred alpha guide; lower = more varied boundaries. Paper: 3", "", 0,
+         100, &O::boundary_weight},
+        {"alpha-weight", "Weight of the synthesized alpha channel (1 per colour channel). Paper: 3",
+         "", 0, 100, &O::alpha_weight},
+        {"blur-radius",
+         "r: Gaussian blur (sigma) of the alpha masks before segmentation; scale with the "
+         "resolution. Paper: 3",
+         "px", 0, 50, &O::blur_radius_px},
+        {"boundary-low", "l: blurred alpha above this is fluid (boundary or interior). Paper: 0.1",
+         "", 0, 0.999, &O::boundary_low},
+        {"boundary-high", "u: blurred alpha at or above this is interior. Paper: 0.9", "", 0.001, 1,
+         &O::boundary_high},
+        {"motion-blur",
+         "Motion blur along the motion, sigma as a fraction of the motion's length (0 = off)", "",
+         0, 2, &O::motion_blur},
+    };
+    return specs;
+}
+
+double get_option(const FluidOptions& options, const FluidOptionSpec& spec) {
+    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+}
+
+Status set_option(FluidOptions& options, const FluidOptionSpec& spec, double value) {
+    const bool integral = std::holds_alternative<int FluidOptions::*>(spec.field);
+    if (!(value >= spec.min && value <= spec.max) || (integral && value != std::round(value))) {
+        std::ostringstream msg;
+        msg << spec.name << ": " << value << " is invalid (must be "
+            << (integral ? "an integer " : "") << spec.min << ".." << spec.max << ")";
+        return invalid_argument(msg.str());
+    }
+    if (integral) {
+        options.*std::get<int FluidOptions::*>(spec.field) = static_cast<int>(value);
+    } else {
+        options.*std::get<float FluidOptions::*>(spec.field) = static_cast<float>(value);
+    }
+    return Status::ok();
+}
+
 Status validate(const FluidOptions& o) {
-    if (o.patch_size < 3 || o.patch_size > 15 || o.patch_size % 2 == 0) {
-        return range_error("patch-size", o.patch_size, "odd, 3..15");
+    for (const FluidOptionSpec& spec : fluid_option_specs()) {
+        FluidOptions copy = o;
+        if (Status s = set_option(copy, spec, get_option(o, spec)); !s.is_ok()) return s;
     }
-    if (!(o.temporal_weight >= 0 && o.temporal_weight <= 10)) {
-        return range_error("temporal-weight", o.temporal_weight, "0..10");
+    if (o.patch_size % 2 == 0) {
+        return invalid_argument("patch-size: " + std::to_string(o.patch_size) +
+                                " is invalid (must be odd, 3..15)");
     }
-    if (!(o.boundary_weight >= 0 && o.boundary_weight <= 100)) {
-        return range_error("boundary-weight", o.boundary_weight, "0..100");
-    }
-    if (!(o.alpha_weight >= 0 && o.alpha_weight <= 100)) {
-        return range_error("alpha-weight", o.alpha_weight, "0..100");
-    }
-    if (!(o.blur_radius_px >= 0 && o.blur_radius_px <= 50)) {
-        return range_error("blur-radius", o.blur_radius_px, "0..50");
-    }
-    if (!(o.boundary_low >= 0 && o.boundary_low < 1)) {
-        return range_error("boundary-low", o.boundary_low, "0..1, below 1");
-    }
-    if (!(o.boundary_high > o.boundary_low && o.boundary_high <= 1)) {
-        return range_error("boundary-high", o.boundary_high, "above boundary-low, ..1");
-    }
-    if (!(o.motion_blur >= 0 && o.motion_blur <= 2)) {
-        return range_error("motion-blur", o.motion_blur, "0..2");
+    if (!(o.boundary_high > o.boundary_low)) {
+        std::ostringstream msg;
+        msg << "boundary-high: " << o.boundary_high << " is invalid (must be above boundary-low "
+            << o.boundary_low << ")";
+        return invalid_argument(msg.str());
     }
     return validate(o.synthesis);
 }

@@ -20,6 +20,9 @@
 /// not matter) and returned straight (not premultiplied). Deterministic for a given seed and any
 /// thread count (the engine is). Defaults are the paper's (§5.5).
 
+#include <span>
+#include <string_view>
+#include <variant>
 #include <vector>
 
 #include "exemplar/core/image.hpp"
@@ -71,8 +74,31 @@ struct FluidOptions {
     SynthesisOptions synthesis;
 };
 
-/// Checks every option's range; the message names it (`boundary-high: 0.05 is invalid (must
-/// be boundary-low..1)`).
+/// Description of one numeric LazyFluids option: the one source of the CLI flags, the job-file
+/// keys, validation and docs/fluid.md's table.
+struct FluidOptionSpec {
+    std::string_view name;  ///< kebab-case: --name and the JSON key ('_' accepted too).
+    std::string_view doc;   ///< Meaning, the paper's symbol and default.
+    std::string_view unit;  ///< "px", "" ...
+    double min = 0.0;       ///< Inclusive range.
+    double max = 0.0;
+    std::variant<int FluidOptions::*, float FluidOptions::*> field;
+};
+
+/// The numeric options (patch-size, temporal-weight, boundary-weight, alpha-weight,
+/// blur-radius, boundary-low, boundary-high, motion-blur).
+std::span<const FluidOptionSpec> fluid_option_specs();
+
+/// Sets an option, rejecting values outside its range or non-integral values of integer options
+/// (`temporal-weight: -1 is invalid (must be 0..10)`).
+Status set_option(FluidOptions& options, const FluidOptionSpec& spec, double value);
+
+/// Current value of an option.
+double get_option(const FluidOptions& options, const FluidOptionSpec& spec);
+
+/// Checks every option's range and the cross rules (odd patch size, boundary-high above
+/// boundary-low), then the engine options; the message names the option
+/// (`boundary-high: 0.05 is invalid (must be above boundary-low 0.1)`).
 Status validate(const FluidOptions& options);
 
 /// One target frame. Images are borrowed; optional ones are nullptr when absent.
