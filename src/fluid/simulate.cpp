@@ -2,7 +2,8 @@
 // diffusion, pressure projection; with buoyancy and vorticity confinement (Fedkiw, Stam and
 // Jensen 2001, "Visual simulation of smoke"). Deviations from Stam's paper: a staggered (MAC)
 // grid instead of a collocated one, so that the divergence the pressure solve removes is the one
-// measured (the collocated central differences leave a checkerboard); conjugate gradients
+// measured (the collocated central differences leave a checkerboard); conjugate gradients with a
+// MIC(0) preconditioner, warm-started from the previous frame's pressure,
 // instead of Gauss-Seidel relaxation for the pressure; second-order (midpoint) back-tracing; an
 // open border (pressure 0 outside) instead of closed walls, so that a plume leaves the frame.
 
@@ -23,6 +24,11 @@ namespace {
 int row_grain(int width) {
     return std::max(1, 16384 / std::max(width, 1));
 }
+
+// The simulator's projection: largest divergence left per frame (px/frame, against velocities of
+// pixels per frame), and a cap on the conjugate-gradient iterations.
+constexpr float kProjectionTolerance = 1e-3f;
+constexpr int kProjectionMaxIterations = 1000;
 
 // Jacobi iterations of the implicit diffusion (Stam's solver uses 20).
 constexpr int kDiffusionIterations = 20;
@@ -152,7 +158,7 @@ Image advect(const Image& field, const MacVelocity& velocity, int threads) {
 }
 
 int project(MacVelocity& vel, const std::vector<std::uint8_t>& solid, float tolerance,
-            int max_iterations, int threads) {
+            int max_iterations, int threads, std::vector<double>* pressure_io) {
     const int w = vel.width, h = vel.height;
     const auto n = static_cast<std::size_t>(w) * h;
     auto is_solid = [&](int x, int y) {
@@ -223,20 +229,90 @@ int project(MacVelocity& vel, const std::vector<std::uint8_t>& solid, float tole
         return m;
     };
 
-    std::vector<double> p(n, 0.0), r(n, 0.0), d(n, 0.0), ad(n, 0.0);
+    // Modified incomplete Cholesky preconditioner, MIC(0) (Bridson, "Fluid simulation for
+    // computer graphics", §5.4): sequential sweeps, so deterministic; it cuts the iterations
+    // several-fold against plain CG.
+    auto fluid_cell = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < w && y < h && !is_solid(x, y);
+    };
+    std::vector<double> precon(n, 0.0);
+    constexpr double kTau = 0.97, kSigma = 0.25;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            if (diag[i] == 0.0f) continue;
+            double e = diag[i];
+            if (fluid_cell(x - 1, y)) {
+                const double pl = precon[i - 1];
+                e -= pl * pl;
+                if (fluid_cell(x - 1, y + 1)) e -= kTau * pl * pl;
+            }
+            if (fluid_cell(x, y - 1)) {
+                const double pu = precon[i - static_cast<std::size_t>(w)];
+                e -= pu * pu;
+                if (fluid_cell(x + 1, y - 1)) e -= kTau * pu * pu;
+            }
+            if (e < kSigma * diag[i]) e = diag[i];
+            precon[i] = 1.0 / std::sqrt(e);
+        }
+    }
+    std::vector<double> q(n, 0.0);
+    auto apply_preconditioner = [&](const std::vector<double>& in, std::vector<double>& out) {
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * w + x;
+                if (diag[i] == 0.0f) {
+                    q[i] = 0.0;
+                    continue;
+                }
+                double t = in[i];
+                if (fluid_cell(x - 1, y)) t += precon[i - 1] * q[i - 1];
+                if (fluid_cell(x, y - 1)) {
+                    const std::size_t u = i - static_cast<std::size_t>(w);
+                    t += precon[u] * q[u];
+                }
+                q[i] = t * precon[i];
+            }
+        }
+        for (int y = h - 1; y >= 0; --y) {
+            for (int x = w - 1; x >= 0; --x) {
+                const std::size_t i = static_cast<std::size_t>(y) * w + x;
+                if (diag[i] == 0.0f) {
+                    out[i] = 0.0;
+                    continue;
+                }
+                double t = q[i];
+                if (fluid_cell(x + 1, y)) t += precon[i] * out[i + 1];
+                if (fluid_cell(x, y + 1)) t += precon[i] * out[i + static_cast<std::size_t>(w)];
+                out[i] = t * precon[i];
+            }
+        }
+    };
+
+    std::vector<double> p(n, 0.0), r(n, 0.0), z(n, 0.0), d(n, 0.0), ad(n, 0.0);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             if (!is_solid(x, y)) r[static_cast<std::size_t>(y) * w + x] = -divergence(vel, x, y);
         }
     }
-    d = r;
-    double rr = dot(r, r);
+    if (pressure_io != nullptr && pressure_io->size() == n) {
+        // Warm start: r = b − A p.
+        p = *pressure_io;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (diag[i] == 0.0f) p[i] = 0.0;
+        }
+        apply_a(p, ad);
+        for (std::size_t i = 0; i < n; ++i) r[i] -= ad[i];
+    }
+    apply_preconditioner(r, z);
+    d = z;
+    double rz = dot(r, z);
     int it = 0;
     for (; it < max_iterations && max_abs(r) > tolerance; ++it) {
         apply_a(d, ad);
         const double dad = dot(d, ad);
         if (dad <= 0.0) break;
-        const double alpha = rr / dad;
+        const double alpha = rz / dad;
         parallel_for(
             0, h, threads,
             [&](int y) {
@@ -247,19 +323,21 @@ int project(MacVelocity& vel, const std::vector<std::uint8_t>& solid, float tole
                 }
             },
             row_grain(w));
-        const double rr_next = dot(r, r);
-        const double beta = rr_next / rr;
-        rr = rr_next;
+        apply_preconditioner(r, z);
+        const double rz_next = dot(r, z);
+        const double beta = rz_next / rz;
+        rz = rz_next;
         parallel_for(
             0, h, threads,
             [&](int y) {
                 const std::size_t row = static_cast<std::size_t>(y) * w;
                 for (std::size_t i = row; i < row + static_cast<std::size_t>(w); ++i) {
-                    d[i] = r[i] + beta * d[i];
+                    d[i] = z[i] + beta * d[i];
                 }
             },
             row_grain(w));
     }
+    if (pressure_io != nullptr) *pressure_io = p;
     // Subtract the pressure gradient on every face between non-solid cells (or the border).
     auto pressure = [&](int x, int y) {
         if (x < 0 || y < 0 || x >= w || y >= h) return 0.0;
@@ -478,7 +556,7 @@ void FluidSimulator::update_velocity(int threads) {
             }
         }
     }
-    project(vel, solid_, 1e-4f, 2000, threads);
+    project(vel, solid_, kProjectionTolerance, kProjectionMaxIterations, threads, &pressure_);
 }
 
 void FluidSimulator::advance_density(int threads) {

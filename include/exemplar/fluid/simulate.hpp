@@ -101,11 +101,13 @@ float divergence(const MacVelocity& velocity, int x, int y);
 Image advect(const Image& field, const MacVelocity& velocity, int threads = 0);
 
 /// Pressure projection: removes the divergence of every fluid cell by solving the 5-point
-/// Poisson equation with conjugate gradients (open border: pressure 0 outside; `solid` cells,
-/// one byte per cell or empty, are walls with zero normal velocity). Stops when the largest
-/// remaining divergence is below `tolerance` or after `max_iterations`. Returns the iterations.
+/// Poisson equation with MIC(0)-preconditioned conjugate gradients (open border: pressure 0
+/// outside; `solid` cells, one byte per cell or empty, are walls with zero normal velocity). Stops
+/// when the largest remaining divergence is below `tolerance` or after `max_iterations`. Returns
+/// the iterations. `pressure` (optional, one value per cell) is the solve's start and receives its
+/// solution: the previous frame's pressure is a close start, which saves most iterations.
 int project(MacVelocity& velocity, const std::vector<std::uint8_t>& solid, float tolerance = 1e-4f,
-            int max_iterations = 2000, int threads = 0);
+            int max_iterations = 2000, int threads = 0, std::vector<double>* pressure = nullptr);
 
 /// The solver: state (density, velocity) and one step per frame.
 class FluidSimulator {
@@ -134,6 +136,7 @@ private:
     Image density_;
     MacVelocity velocity_;
     std::vector<std::uint8_t> solid_;
+    std::vector<double> pressure_;  // the last projection's, the next one's start
     int frame_ = 0;
 };
 
