@@ -147,6 +147,16 @@ TEST_F(FluidCli, WritesRgbaFramesAndResumesToTheSameBytes) {
     EXPECT_EQ(fs::last_write_time(path("out/0001.png")), untouched);
 }
 
+TEST_F(FluidCli, WritesAnMp4OfTheRange) {
+    std::vector<std::string> a = args();
+    a.insert(a.end(), {"--mp4", path("movie/plume.mp4")});
+    const CliRun r = run(a);
+    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(path("movie/plume.mp4")));
+    EXPECT_GT(fs::file_size(path("movie/plume.mp4")), 1000u);
+    EXPECT_TRUE(fs::exists(path("out/0005.png")));
+}
+
 TEST_F(FluidCli, JobFileGivesTheSameFramesAsFlags) {
     ASSERT_EQ(run(args()).code, 0);
     std::ofstream(path("job.json")) << R"({"exemplar": "fire.png", "alpha": "sim/alpha/%04d.png",
