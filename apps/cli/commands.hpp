@@ -7,12 +7,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "exemplar/core/status.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
 #include "stylize_job.hpp"
@@ -198,6 +200,45 @@ private:
     std::uint64_t seed_ = 1;
     bool resume_ = true;
     bool quiet_ = false;
+};
+
+/// `exemplar fluid` (+ `fluid simulate`): LazyFluids over a frame range, and targets from the
+/// stable-fluids solver; see docs/fluid.md.
+class FluidCommand {
+public:
+    /// Adds the `fluid` subcommand, its `simulate` subcommand and their flags to `app`.
+    explicit FluidCommand(CLI::App& app);
+    FluidCommand(const FluidCommand&) = delete;
+    FluidCommand& operator=(const FluidCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command (the transfer or the simulation).
+    Status run(const Streams& streams);
+
+private:
+    Status run_transfer(const Streams& streams);
+    Status run_simulate(const Streams& streams) const;
+    Status apply_config(fluid::FluidOptions& options);
+
+    CLI::App* app_ = nullptr;
+    CLI::App* simulate_ = nullptr;
+    CLI::Option* seed_flag_ = nullptr;
+    std::string config_, exemplar_, exemplar_alpha_, alpha_, motion_, motion_layer_, output_, mp4_;
+    std::string usage_;
+    std::optional<int> first_, last_;
+    double fps_ = 24.0;
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
+    bool rotations_ = false;
+    int threads_ = 0;
+    std::uint64_t seed_ = 1;
+    bool resume_ = true;
+    bool quiet_ = false;
+    // simulate
+    std::string scene_, sim_output_;
+    int width_ = 256;
+    int height_ = 256;
+    int frames_ = 0;
 };
 
 }  // namespace exemplar::cli

@@ -1,0 +1,632 @@
+// `exemplar fluid`: LazyFluids (Jamriška et al. 2015) over a range of frames, and
+// `exemplar fluid simulate`: targets from the built-in stable-fluids solver (docs/fluid.md).
+//
+// Frames are solved in order and each is written (atomically) as soon as it is done; only the
+// current and the previous frame are held, so memory does not grow with the range. A frame
+// whose output exists is skipped (resume); the frame after it reads it back as its previous
+// frame. The previous frame is always the one read back from its file, also within one run, so
+// a resumed range gives the same bytes as an uninterrupted one.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "commands.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/fluid/simulate.hpp"
+#include "exemplar/io/flow_io.hpp"
+#include "exemplar/io/folders.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/video/frame_sequence.hpp"
+#include "json_file.hpp"
+#include "output_files.hpp"
+#include "progress_bar.hpp"
+
+namespace exemplar::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string size_str(const Image& im) {
+    return std::to_string(im.width()) + "x" + std::to_string(im.height());
+}
+
+// A job-file path relative to the job file's folder.
+std::string relative_to(const std::string& job, const std::string& path) {
+    if (path.empty() || fs::path(path).is_absolute()) return path;
+    return (fs::path(job).parent_path() / path).string();
+}
+
+Result<std::string> frame_file(const std::string& flag, const std::string& pattern, int n) {
+    auto path = video::format_frame_path(pattern, n);
+    if (!path.ok()) return invalid_argument(flag + ": " + path.status().message());
+    return path;
+}
+
+bool exists(const std::string& path) {
+    std::error_code ec;
+    return fs::is_regular_file(path, ec);
+}
+
+// The exemplar: a still (RGBA, or RGB with a separate alpha) or a folder of frames.
+class Exemplar {
+public:
+    static Result<Exemplar> open(const std::string& path, const std::string& alpha_path) {
+        Exemplar ex;
+        std::error_code ec;
+        if (fs::is_directory(path, ec)) {
+            auto seq = video::FrameSequence::from_folder(path);
+            if (!seq.ok()) return seq.status();
+            ex.frames_.emplace(std::move(seq).value());
+            if (!alpha_path.empty()) {
+                auto alpha = video::FrameSequence::from_folder(alpha_path);
+                if (!alpha.ok()) return alpha.status();
+                if (alpha->size() != ex.frames_->size()) {
+                    return invalid_argument("--exemplar-alpha: " + alpha_path + " has " +
+                                            std::to_string(alpha->size()) + " frames but " + path +
+                                            " has " + std::to_string(ex.frames_->size()));
+                }
+                ex.alpha_frames_.emplace(std::move(alpha).value());
+            }
+            ex.path_ = path;
+            ex.alpha_path_ = alpha_path;
+            // Check the first frame now (channels, alpha), so a bad exemplar fails up front.
+            auto first = ex.frame(0);
+            if (!first.ok()) return first.status();
+            return ex;
+        }
+        ex.path_ = path;
+        ex.alpha_path_ = alpha_path;
+        auto still = ex.load(path, alpha_path);
+        if (!still.ok()) return still.status();
+        ex.still_ = std::move(still).value();
+        return ex;
+    }
+
+    int size() const { return frames_ ? frames_->size() : 1; }
+
+    // Exemplar frame for output frame number n: frame n mod the sequence's length.
+    Result<Image> frame(int n) {
+        if (!frames_) return still_;
+        const int m = frames_->size();
+        const int index = ((n % m) + m) % m;
+        auto image = frames_->read(index);
+        if (!image.ok()) return image.status();
+        std::optional<Image> alpha;
+        if (alpha_frames_) {
+            auto a = alpha_frames_->read(index);
+            if (!a.ok()) return a.status();
+            alpha = std::move(a).value();
+        }
+        return combine(std::move(image).value(), alpha, frames_->frame_name(index),
+                       alpha_frames_ ? alpha_frames_->frame_name(index) : "");
+    }
+
+private:
+    Result<Image> load(const std::string& path, const std::string& alpha_path) {
+        auto image = load_image(path);
+        if (!image.ok()) return image.status();
+        std::optional<Image> alpha;
+        if (!alpha_path.empty()) {
+            auto a = load_image(alpha_path);
+            if (!a.ok()) return a.status();
+            alpha = std::move(a).value();
+        }
+        return combine(std::move(image).value(), alpha, path, alpha_path);
+    }
+
+    static Result<Image> combine(Image image, const std::optional<Image>& alpha,
+                                 const std::string& name, const std::string& alpha_name) {
+        if (alpha) {
+            if (alpha->width() != image.width() || alpha->height() != image.height()) {
+                return invalid_argument(alpha_name + ": alpha is " + size_str(*alpha) +
+                                        " but the exemplar is " + size_str(image));
+            }
+            if (image.channels() == 4) image = extract_channels(image, 0, 3);
+            if (image.channels() == 1) {
+                const Image grey = image;
+                image = concat_channels({&grey, &grey, &grey});
+            }
+            const Image a = extract_channels(*alpha, 0, 1);
+            return concat_channels({&image, &a});
+        }
+        if (image.channels() != 4) {
+            return invalid_argument(name + ": the exemplar has " +
+                                    std::to_string(image.channels()) +
+                                    " channels but needs an alpha channel (RGBA), or give "
+                                    "--exemplar-alpha");
+        }
+        return image;
+    }
+
+    std::string path_, alpha_path_;
+    Image still_;
+    std::optional<video::FrameSequence> frames_;
+    std::optional<video::FrameSequence> alpha_frames_;
+};
+
+// A scene JSON file: {"width":..,"height":..,"emitters":[{"position":[x,y],"radius":r,
+// "rate":q,"velocity":[u,v]}],"obstacles":[{"position":[x,y],"radius":r}],"gravity":[gx,gy],
+// "buoyancy":b,"vorticity":e,"viscosity":n,"diffusion":k,"density-decay":d,
+// "warmup-frames":w,"turbulence":t,"seed":s}; width/height default to the flags'.
+Result<fluid::FluidScene> read_scene(const std::string& path, int width, int height) {
+    auto doc = read_json_object(path);
+    if (!doc.ok()) return doc.status();
+    fluid::FluidScene scene;
+    scene.width = width;
+    scene.height = height;
+    auto number = [&](const nlohmann::json& v, const std::string& key, float& out) {
+        if (!v.is_number()) return type_error(path, key, "a number");
+        out = v.get<float>();
+        return Status::ok();
+    };
+    auto pair = [&](const nlohmann::json& v, const std::string& key, float& a, float& b) {
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number()) {
+            return type_error(path, key, "an array of two numbers");
+        }
+        a = v[0].get<float>();
+        b = v[1].get<float>();
+        return Status::ok();
+    };
+    for (const auto& [raw, value] : doc->items()) {
+        const std::string key = canonical_key(raw);
+        Status s;
+        if (key == "width" || key == "height" || key == "warmup-frames") {
+            if (!value.is_number_integer()) {
+                s = type_error(path, raw, "an integer");
+            } else if (key == "width") {
+                scene.width = value.get<int>();
+            } else if (key == "height") {
+                scene.height = value.get<int>();
+            } else {
+                scene.warmup_frames = value.get<int>();
+            }
+        } else if (key == "seed") {
+            if (!value.is_number_unsigned()) {
+                s = type_error(path, raw, "a non-negative integer");
+            } else {
+                scene.seed = value.get<std::uint64_t>();
+            }
+        } else if (key == "gravity") {
+            s = pair(value, raw, scene.gravity_x, scene.gravity_y);
+        } else if (key == "buoyancy") {
+            s = number(value, raw, scene.buoyancy);
+        } else if (key == "vorticity") {
+            s = number(value, raw, scene.vorticity);
+        } else if (key == "viscosity") {
+            s = number(value, raw, scene.viscosity);
+        } else if (key == "diffusion") {
+            s = number(value, raw, scene.diffusion);
+        } else if (key == "density-decay") {
+            s = number(value, raw, scene.density_decay);
+        } else if (key == "turbulence") {
+            s = number(value, raw, scene.turbulence);
+        } else if (key == "emitters" || key == "obstacles") {
+            if (!value.is_array()) {
+                s = type_error(path, raw, "an array of objects");
+            } else {
+                for (std::size_t i = 0; i < value.size() && s.is_ok(); ++i) {
+                    const nlohmann::json& item = value[i];
+                    const std::string at = raw + "[" + std::to_string(i) + "]";
+                    if (!item.is_object()) {
+                        s = type_error(path, at, "an object");
+                        break;
+                    }
+                    fluid::Emitter e;
+                    fluid::Obstacle o;
+                    for (const auto& [mraw, mv] : item.items()) {
+                        const std::string m = canonical_key(mraw);
+                        const std::string name = at + "." + mraw;
+                        if (m == "position") {
+                            s = key == "emitters" ? pair(mv, name, e.x_px, e.y_px)
+                                                  : pair(mv, name, o.x_px, o.y_px);
+                        } else if (m == "radius") {
+                            s = number(mv, name, key == "emitters" ? e.radius_px : o.radius_px);
+                        } else if (m == "rate" && key == "emitters") {
+                            s = number(mv, name, e.rate);
+                        } else if (m == "velocity" && key == "emitters") {
+                            s = pair(mv, name, e.velocity_x, e.velocity_y);
+                        } else {
+                            s = invalid_argument(path + ": unknown key '" + name + "'");
+                        }
+                        if (!s.is_ok()) break;
+                    }
+                    if (key == "emitters") {
+                        scene.emitters.push_back(e);
+                    } else {
+                        scene.obstacles.push_back(o);
+                    }
+                }
+            }
+        } else {
+            s = invalid_argument(path + ": unknown key '" + raw + "'");
+        }
+        if (!s.is_ok()) return s;
+    }
+    if (Status s = fluid::validate(scene); !s.is_ok())
+        return invalid_argument(path + ": " + s.message());
+    return scene;
+}
+
+}  // namespace
+
+FluidCommand::FluidCommand(CLI::App& parent) {
+    app_ = parent.add_subcommand(
+        "fluid",
+        "Transfer a fluid exemplar onto fluid animations (LazyFluids, Jamriska et al. 2015)");
+    app_->footer(
+        "Targets: per-frame alpha masks and forward motion (.flo or EXR, frame t -> t+1, pixels);\n"
+        "`exemplar fluid simulate` makes them. See docs/fluid.md. Example:\n"
+        "  exemplar fluid simulate --scene plume --width 256 --height 256 --frames 60 -o sim\n"
+        "  exemplar fluid --exemplar fire.png --alpha sim/alpha/%04d.png --motion "
+        "sim/motion/%04d.flo --first 0 --last 59 -o out/%04d.png");
+    app_->add_option("--config", config_,
+                     "Job file (JSON) with the same keys as the flags; flags override it");
+    app_->add_option("--exemplar", exemplar_,
+                     "Exemplar: an RGBA image, or a folder of RGBA frames (output frame t uses "
+                     "frame t mod their count)");
+    app_->add_option("--exemplar-alpha", exemplar_alpha_,
+                     "Alpha of an RGB exemplar: an image (or a folder of frames), channel 0");
+    app_->add_option("--alpha", alpha_, "Target alpha masks, a pattern, e.g. sim/alpha/%04d.png");
+    app_->add_option("--motion", motion_,
+                     "Target motion, a pattern of .flo or EXR files (frame t -> t+1, pixels)");
+    app_->add_option("--motion-layer", motion_layer_,
+                     "EXR layer of the motion files (e.g. motion)");
+    app_->add_option("--first", first_, "First frame number");
+    app_->add_option("--last", last_, "Last frame number");
+    app_->add_option("--output,-o", output_, "Output pattern, RGBA PNG or EXR, e.g. out/%04d.png");
+    app_->add_option("--mp4", mp4_, "Also write the range as an MP4 (over black)");
+    app_->add_option("--fps", fps_, "Frames per second of the MP4 (default 24)");
+    for (const fluid::FluidOptionSpec& spec : fluid::fluid_option_specs()) {
+        const std::string name(spec.name);
+        numeric_flags_[name] =
+            app_->add_option("--" + name, numeric_values_[name], std::string(spec.doc));
+    }
+    app_->add_option("--usage", usage_,
+                     "Patch usage: uniform (LazyFluids, default) or none (plain nearest "
+                     "neighbours, which wash out; for comparisons)");
+    app_->add_flag("--rotations,!--no-rotations", rotations_,
+                   "Add the exemplar rotated by 90, 180 and 270 degrees (default off)");
+    app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
+    seed_flag_ = app_->add_option("--seed", seed_, "Random seed (same seed, same output)");
+    app_->add_flag("--resume,!--no-resume", resume_,
+                   "Skip frames whose output exists (default on)");
+    app_->add_flag("--quiet,-q", quiet_, "No progress bar, no output paths");
+
+    simulate_ = app_->add_subcommand(
+        "simulate", "Simulate a 2D fluid (stable fluids) into target alpha masks and motion");
+    simulate_->add_option("--scene", scene_, "plume (built in) or a scene JSON file")->required();
+    simulate_->add_option("--width", width_, "Frame width, pixels (8..8192)");
+    simulate_->add_option("--height", height_, "Frame height, pixels (8..8192)");
+    simulate_->add_option("--frames", frames_, "Number of frames (written 0..N-1)")->required();
+    simulate_
+        ->add_option("--output,-o", sim_output_,
+                     "Folder: writes DIR/alpha/%04d.png and DIR/motion/%04d.flo")
+        ->required();
+    simulate_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
+    simulate_->add_flag("--quiet,-q", quiet_, "No progress bar, no output paths");
+}
+
+Status FluidCommand::run(const Streams& streams) {
+    if (simulate_->parsed()) return run_simulate(streams);
+    return run_transfer(streams);
+}
+
+Status FluidCommand::run_simulate(const Streams& streams) const {
+    fluid::FluidScene scene;
+    if (scene_ == "plume") {
+        scene = fluid::plume_scene(width_, height_);
+        EXEMPLAR_RETURN_IF_ERROR(fluid::validate(scene));
+    } else {
+        auto read = read_scene(scene_, width_, height_);
+        if (!read.ok()) return read.status();
+        scene = std::move(read).value();
+    }
+    const std::string alpha_dir = (fs::path(sim_output_) / "alpha").string();
+    const std::string motion_dir = (fs::path(sim_output_) / "motion").string();
+    EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", (fs::path(alpha_dir) / "x").string()));
+    EXEMPLAR_RETURN_IF_ERROR(create_folders(alpha_dir));
+    EXEMPLAR_RETURN_IF_ERROR(create_folders(motion_dir));
+    ProgressBar bar(streams.err, "simulate", !quiet_ && streams.err_is_terminal);
+    RunContext context(threads_);
+    const Status status = fluid::simulate(
+        scene, frames_,
+        [&](int frame, const Image& alpha, const Image& motion) {
+            EXEMPLAR_RETURN_IF_ERROR(
+                video::write_frame(alpha, (fs::path(alpha_dir) / "%04d.png").string(), frame));
+            auto motion_path =
+                video::format_frame_path((fs::path(motion_dir) / "%04d.flo").string(), frame);
+            if (!motion_path.ok()) return motion_path.status();
+            EXEMPLAR_RETURN_IF_ERROR(save_flo(motion, *motion_path));
+            bar.update(static_cast<double>(frame + 1) / frames_,
+                       "frame " + std::to_string(frame + 1) + "/" + std::to_string(frames_));
+            return Status::ok();
+        },
+        context);
+    bar.finish();
+    if (!status.is_ok()) return status;
+    if (!quiet_) {
+        streams.out << (fs::path(alpha_dir) / "%04d.png").string() << '\n'
+                    << (fs::path(motion_dir) / "%04d.flo").string() << '\n';
+    }
+    return Status::ok();
+}
+
+Status FluidCommand::apply_config(fluid::FluidOptions& options) {
+    auto doc = read_json_object(config_);
+    if (!doc.ok()) return doc.status();
+    for (const auto& [raw, value] : doc->items()) {
+        const std::string key = canonical_key(raw);
+        auto text = [&](std::string& into) -> Status {
+            if (!value.is_string()) return type_error(config_, raw, "a string");
+            into = relative_to(config_, value.get<std::string>());
+            return Status::ok();
+        };
+        auto integer = [&](int& into) -> Status {
+            if (!value.is_number_integer()) return type_error(config_, raw, "an integer");
+            into = value.get<int>();
+            return Status::ok();
+        };
+        Status s;
+        if (key == "exemplar") {
+            s = exemplar_.empty() ? text(exemplar_) : Status::ok();
+        } else if (key == "exemplar-alpha") {
+            s = exemplar_alpha_.empty() ? text(exemplar_alpha_) : Status::ok();
+        } else if (key == "alpha") {
+            s = alpha_.empty() ? text(alpha_) : Status::ok();
+        } else if (key == "motion") {
+            s = motion_.empty() ? text(motion_) : Status::ok();
+        } else if (key == "output") {
+            s = output_.empty() ? text(output_) : Status::ok();
+        } else if (key == "mp4") {
+            s = mp4_.empty() ? text(mp4_) : Status::ok();
+        } else if (key == "motion-layer") {
+            if (!value.is_string()) return type_error(config_, raw, "a string");
+            if (motion_layer_.empty()) motion_layer_ = value.get<std::string>();
+        } else if (key == "usage") {
+            if (!value.is_string()) return type_error(config_, raw, "a string");
+            if (usage_.empty()) usage_ = value.get<std::string>();
+        } else if (key == "first") {
+            if (!first_) {
+                int v = 0;
+                s = integer(v);
+                first_ = v;
+            }
+        } else if (key == "last") {
+            if (!last_) {
+                int v = 0;
+                s = integer(v);
+                last_ = v;
+            }
+        } else if (key == "threads") {
+            if (app_->count("--threads") == 0) s = integer(threads_);
+        } else if (key == "fps") {
+            if (!value.is_number()) return type_error(config_, raw, "a number");
+            if (app_->count("--fps") == 0) fps_ = value.get<double>();
+        } else if (key == "seed") {
+            if (!value.is_number_unsigned()) return type_error(config_, raw, "an integer >= 0");
+            if (seed_flag_->count() == 0) options.synthesis.seed = value.get<std::uint64_t>();
+        } else if (key == "rotations") {
+            if (!value.is_boolean()) return type_error(config_, raw, "true or false");
+            if (app_->count("--rotations") + app_->count("--no-rotations") == 0) {
+                rotations_ = value.get<bool>();
+            }
+        } else {
+            const fluid::FluidOptionSpec* spec = nullptr;
+            for (const auto& candidate : fluid::fluid_option_specs()) {
+                if (candidate.name == key) spec = &candidate;
+            }
+            if (spec == nullptr) return invalid_argument(config_ + ": unknown key '" + raw + "'");
+            if (!value.is_number()) return type_error(config_, raw, "a number");
+            if (numeric_flags_.at(key)->count() == 0) {
+                s = fluid::set_option(options, *spec, value.get<double>());
+                if (!s.is_ok()) return invalid_argument(config_ + ": " + s.message());
+            }
+        }
+        if (!s.is_ok()) return s;
+    }
+    return Status::ok();
+}
+
+Status FluidCommand::run_transfer(const Streams& streams) {
+    // Options: defaults, then the job file, then flags.
+    fluid::FluidOptions options;
+    if (seed_flag_->count() > 0) options.synthesis.seed = seed_;
+    for (const fluid::FluidOptionSpec& spec : fluid::fluid_option_specs()) {
+        const std::string name(spec.name);
+        if (numeric_flags_.at(name)->count() > 0) {
+            EXEMPLAR_RETURN_IF_ERROR(fluid::set_option(options, spec, numeric_values_.at(name)));
+        }
+    }
+    if (!config_.empty()) EXEMPLAR_RETURN_IF_ERROR(apply_config(options));
+    options.rotations = rotations_;
+    if (!usage_.empty()) {
+        if (usage_ != "uniform" && usage_ != "none") {
+            return invalid_argument("--usage: '" + usage_ +
+                                    "' is invalid (must be one of uniform, none)");
+        }
+        options.uniform_usage = usage_ == "uniform";
+    }
+    EXEMPLAR_RETURN_IF_ERROR(fluid::validate(options));
+    for (const auto& [flag, value] : {std::pair{"--exemplar", &exemplar_},
+                                      {"--alpha", &alpha_},
+                                      {"--motion", &motion_},
+                                      {"--output", &output_}}) {
+        if (value->empty()) return invalid_argument(std::string(flag) + " is required");
+    }
+    if (!first_ || !last_) return invalid_argument("--first and --last are required");
+    const int first = *first_, last = *last_;
+    if (last < first) {
+        return invalid_argument("--last: " + std::to_string(last) + " is before --first " +
+                                std::to_string(first));
+    }
+    if (!(fps_ > 0 && fps_ <= 1000)) {
+        return invalid_argument("--fps: " + std::to_string(fps_) + " is invalid (must be 0..1000)");
+    }
+
+    // Inputs that must exist before any frame is written: every alpha mask of the range, the
+    // motion of every frame followed by another, the exemplar.
+    auto probe = frame_file("--output", output_, first);
+    if (!probe.ok()) return probe.status();
+    EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", *probe));
+    for (int n = first; n <= last; ++n) {
+        auto alpha = frame_file("--alpha", alpha_, n);
+        if (!alpha.ok()) return alpha.status();
+        if (!exists(*alpha)) {
+            return io_error(*alpha + ": no such file (alpha of frame " + std::to_string(n) +
+                            " of " + std::to_string(first) + ".." + std::to_string(last) + ")");
+        }
+        if (n == last) break;
+        auto motion = frame_file("--motion", motion_, n);
+        if (!motion.ok()) return motion.status();
+        if (!exists(*motion)) {
+            return io_error(*motion + ": no such file (motion of frame " + std::to_string(n) +
+                            " to " + std::to_string(n + 1) + ")");
+        }
+    }
+    auto exemplar = Exemplar::open(exemplar_, exemplar_alpha_);
+    if (!exemplar.ok()) return exemplar.status();
+    auto first_alpha = load_image(*frame_file("--alpha", alpha_, first));
+    if (!first_alpha.ok()) return first_alpha.status();
+    const int W = first_alpha->width(), H = first_alpha->height();
+    if (!mp4_.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_output_path("--mp4", mp4_));
+        EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(mp4_));
+        if (!video::mp4_writing_supported()) {
+            return unsupported("--mp4: this OpenCV build cannot encode MP4");
+        }
+        if (W % 2 != 0 || H % 2 != 0) {
+            return invalid_argument("--mp4: the frames are " + std::to_string(W) + "x" +
+                                    std::to_string(H) + " but MP4 needs even sizes");
+        }
+    }
+    std::optional<video::Mp4Writer> mp4;
+    if (!mp4_.empty()) {
+        auto writer = video::Mp4Writer::open(mp4_, W, H, fps_);
+        if (!writer.ok()) return writer.status();
+        mp4.emplace(std::move(writer).value());
+    }
+
+    // Frames in order.
+    ProgressBar bar(streams.err, "fluid", !quiet_ && streams.err_is_terminal);
+    RunContext context(threads_);
+    const int count = last - first + 1;
+    std::optional<Image> previous;  // frame n-1's output as read back from its file
+    {
+        // A finished frame just before the range hands over to it.
+        auto before = frame_file("--output", output_, first - 1);
+        auto before_motion = frame_file("--motion", motion_, first - 1);
+        if (before.ok() && before_motion.ok() && exists(*before) && exists(*before_motion)) {
+            auto image = load_image(*before);
+            if (!image.ok()) return image.status();
+            previous = std::move(image).value();
+        }
+    }
+    int written = 0;
+    for (int n = first; n <= last; ++n) {
+        if (context.cancelled()) return cancelled();
+        const std::string out_path = *frame_file("--output", output_, n);
+        if (!(resume_ && exists(out_path))) {
+            // Load this frame's inputs and check them against each other.
+            const std::string alpha_path = *frame_file("--alpha", alpha_, n);
+            auto alpha = load_image(alpha_path);
+            if (!alpha.ok()) return alpha.status();
+            if (alpha->width() != W || alpha->height() != H) {
+                return invalid_argument(alpha_path + ": alpha is " + size_str(*alpha) +
+                                        " but frame " + std::to_string(first) + "'s is " +
+                                        std::to_string(W) + "x" + std::to_string(H));
+            }
+            std::optional<Image> previous_motion;
+            if (previous) {
+                const std::string motion_path = *frame_file("--motion", motion_, n - 1);
+                auto motion = load_flow(motion_path, motion_layer_);
+                if (!motion.ok()) return motion.status();
+                if (motion->width() != W || motion->height() != H) {
+                    return invalid_argument(motion_path + ": motion is " + size_str(*motion) +
+                                            " but the alpha masks are " + size_str(*alpha));
+                }
+                if (previous->width() != W || previous->height() != H ||
+                    previous->channels() != 4) {
+                    return invalid_argument(
+                        *frame_file("--output", output_, n - 1) + ": previous output is " +
+                        size_str(*previous) + " with " + std::to_string(previous->channels()) +
+                        " channels but the frames are " + size_str(*alpha) + " RGBA");
+                }
+                previous_motion = std::move(motion).value();
+            }
+            std::optional<Image> motion;
+            if (options.motion_blur > 0.0f && n < last) {
+                const std::string motion_path = *frame_file("--motion", motion_, n);
+                auto m = load_flow(motion_path, motion_layer_);
+                if (!m.ok()) return m.status();
+                if (m->width() != W || m->height() != H) {
+                    return invalid_argument(motion_path + ": motion is " + size_str(*m) +
+                                            " but the alpha masks are " + size_str(*alpha));
+                }
+                motion = std::move(m).value();
+            }
+            auto z = exemplar->frame(n);
+            if (!z.ok()) return z.status();
+            std::optional<Image> z_previous;
+            if (previous && exemplar->size() > 1) {
+                auto zp = exemplar->frame(n - 1);
+                if (!zp.ok()) return zp.status();
+                z_previous = std::move(zp).value();
+            }
+
+            fluid::FluidFrameInput in;
+            in.exemplar = &*z;
+            in.previous_exemplar = z_previous ? &*z_previous : nullptr;
+            in.target_alpha = &*alpha;
+            in.previous_output = previous ? &*previous : nullptr;
+            in.previous_motion = previous_motion ? &*previous_motion : nullptr;
+            in.motion = motion ? &*motion : nullptr;
+            RunContext frame_context = context;
+            frame_context.progress = [&](const ProgressEvent& e) {
+                bar.update((n - first + e.fraction) / count, "frame " + std::to_string(n) + " (" +
+                                                                 std::to_string(n - first + 1) +
+                                                                 "/" + std::to_string(count) + ")");
+            };
+            auto result = fluid::synthesize_fluid_frame(in, options, frame_context);
+            if (!result.ok()) return result.status();
+            EXEMPLAR_RETURN_IF_ERROR(video::write_frame(result->rgba, output_, n));
+            ++written;
+            if (!quiet_) streams.out << out_path << '\n';
+        }
+        // The next frame continues from this one as stored.
+        auto stored = load_image(out_path);
+        if (!stored.ok()) return stored.status();
+        previous = std::move(stored).value();
+        if (mp4) {
+            // Over black: the premultiplied colour.
+            Image rgb(previous->width(), previous->height(), 3);
+            for (int y = 0; y < rgb.height(); ++y) {
+                for (int x = 0; x < rgb.width(); ++x) {
+                    const float a = previous->channels() == 4 ? previous->at(x, y, 3) : 1.0f;
+                    for (int c = 0; c < 3; ++c) {
+                        rgb.at(x, y, c) =
+                            previous->at(x, y, std::min(c, previous->channels() - 1)) * a;
+                    }
+                }
+            }
+            EXEMPLAR_RETURN_IF_ERROR(mp4->write(rgb));
+        }
+    }
+    bar.finish();
+    if (mp4) {
+        EXEMPLAR_RETURN_IF_ERROR(mp4->finish());
+        if (!quiet_) streams.out << mp4_ << '\n';
+    }
+    if (!quiet_) {
+        streams.out << written << " frame" << (written == 1 ? "" : "s") << " written, "
+                    << count - written << " already done\n";
+    }
+    return Status::ok();
+}
+
+}  // namespace exemplar::cli
