@@ -1,0 +1,271 @@
+"""Signatures and docstrings of exemplar's functions, generated from one description.
+
+The synthesis keywords (patch_size, em_iterations, ...) come from the library's option table
+(``_exemplar.option_specs()``, the table the CLI's flags, the job-file keys and docs/cli.md come
+from); the other parameters are described once below. The same description gives each function
+its ``inspect.signature``, its docstring and its entry in ``__init__.pyi``:
+
+    PYTHONPATH=build/release/python /usr/bin/python3 python/tools/make_stubs.py
+
+regenerates the stubs (with the built module on PYTHONPATH); a test keeps them equal.
+"""
+
+from __future__ import annotations
+
+import inspect
+import textwrap
+from typing import Any, Callable, NamedTuple
+
+from . import _exemplar
+
+_REQUIRED = inspect.Parameter.empty
+
+
+class Param(NamedTuple):
+    name: str
+    annotation: str
+    doc: str
+    default: Any = _REQUIRED
+    positional: bool = False
+
+
+_IMAGE = "Image"
+_SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option table
+_RUN = [
+    Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
+    Param("progress", "Callable[[Progress], bool | None] | None",
+          "Called (with the GIL) with an exemplar.Progress as the run advances; returning False "
+          "or raising cancels the run (the exception is re-raised, False raises "
+          "exemplar.Cancelled).", None),
+    Param("cancel", "CancelToken | None",
+          "A CancelToken another thread may set to stop the run (exemplar.Cancelled); a "
+          "progress callback that returns False sets it too.", None),
+]
+_WORDS = [
+    Param("quality", "str",
+          "Search effort: 'fast' (previews, about 2x faster), 'default' or 'best' (closer to the "
+          "exemplar, about 1.7x the time); applied first, so explicit options below win.",
+          "default"),
+    Param("usage", "str",
+          "Patch-usage strategy: 'none', 'uniform', 'error-budget' or 'occurrence'.",
+          "error-budget"),
+    Param("vote", "str", "Voting: 'average' or 'weighted' (weights 1/(0.01 + e/mean e)).",
+          "weighted"),
+]
+
+_VERBS: dict[str, tuple[str, list[Any], str]] = {
+    "stylize": (
+        "Guided patch-based synthesis (image analogies A : A' :: B : B'): transfers the style "
+        "exemplar onto the target the guides describe. The CLI's `exemplar stylize`, with "
+        "arrays where it reads files.",
+        [
+            Param("style", _IMAGE, "Style exemplar A' (HxWxC; alpha is just another channel).",
+                  positional=True),
+            Param("guides", "Sequence[Guide]",
+                  "Guide pairs (source, target[, weight[, weight_map]]) or dicts with those "
+                  "keys: source on the style's grid (A_i), target on the target grid (B_i), "
+                  "equal channel counts; weight >= 0 (default 1); weight_map an HxW per-pixel "
+                  "multiplier on the target grid.", (), positional=True),
+            Param("style_weights", "Sequence[float] | None",
+                  "Weights of the style channels, one per channel, >= 0 (default 1 each).", None),
+            Param("target_mask", "Image | None",
+                  "Grey HxW: synthesize only where > 0.5; elsewhere keep init (needs init).",
+                  None),
+            Param("source_mask", "Image | None",
+                  "Grey HxW on the style's grid: use only patches entirely inside (> 0.5).", None),
+            Param("source_labels", "Image | None",
+                  "Label map on the style's grid (HxW or HxWxC; each distinct value is one "
+                  "label); with target_labels.", None),
+            Param("target_labels", "Image | None",
+                  "Label map on the target grid: a pixel takes only patches of its label.", None),
+            Param("source_orientation", "Image | None",
+                  "Angle field of the style (HxW float32, radians); with target_orientation.",
+                  None),
+            Param("target_orientation", "Image | None",
+                  "Angle field of the target: patches are compared rotated by the difference.",
+                  None),
+            Param("init", "Image | None", "Initial target (the style's channels, target size).",
+                  None),
+            Param("init_nnf", "Image | None",
+                  "Initial NNF (HxWx4 float32, as StylizeResult.nnf).", None),
+            Param("size", "tuple[int, int] | None",
+                  "Target size (width, height) for unguided texture synthesis; with guides or "
+                  "init it must equal theirs.", None),
+            _SYNTHESIS,
+            *_RUN,
+        ],
+        "StylizeResult",
+    ),
+    "apply_nnf": (
+        "Re-applies a correspondence field to another image on the style's grid (a 16-bit or "
+        "extra-channel version of the style), voting as the synthesis did. The CLI's "
+        "`exemplar apply-nnf`. Returns an array of the source's channels and dtype.",
+        [
+            Param("nnf", _IMAGE, "The field, HxWx4 (or x, y, angle: HxWx3) float32, as "
+                  "StylizeResult.nnf.", positional=True),
+            Param("source", _IMAGE, "Image to copy from, on the style's grid.", positional=True),
+            Param("patch_size", "int", "Patch size the field was made with "
+                  "(StylizeResult.nnf_patch_size)."),
+            Param("vote_size", "int", "Central part of each patch that votes, as the run's "
+                  "final_vote_size (StylizeResult.vote_size); 0 = whole patches.", 3),
+            Param("vote", "str", "'average' or 'weighted', as the run.", "weighted"),
+            Param("vote_coherence", "float", "Coherence weighting of the weighted vote, as the "
+                  "run's vote_coherence.", 0.0),
+            _RUN[0],
+        ],
+        "numpy.ndarray",
+    ),
+    "stylit": (
+        "StyLit: transfers a painting of an exemplar render onto a new render through both "
+        "renders' light-path buffers (full render, direct diffuse, direct specular, indirect, "
+        "in that order). The CLI's `exemplar stylit`; every synthesis option is accepted.",
+        [
+            Param("exemplar", _IMAGE, "The artist's painting, aligned to the exemplar render "
+                  "(A').", positional=True),
+            Param("source", "Sequence[Image] | Sequence[str] | str",
+                  "Buffers of the exemplar render: arrays in guide order, or as on the CLI file "
+                  "paths, one multi-layer EXR or one folder (named by preset or layers).",
+                  positional=True),
+            Param("target", "Sequence[Image] | Sequence[str] | str",
+                  "Buffers of the target render, in the same order.", positional=True),
+            Param("guidance_weight", "float",
+                  "Total weight of the buffers, split equally among them (mu of Eq. 8.1), "
+                  "0..100.", 2.0),
+            Param("preview", "bool",
+                  "Half resolution on PCA-compressed buffers (output at half size).", False),
+            Param("preset", "str", "EXR layer or folder file names: 'exemplar', 'cycles' or "
+                  "'arnold' (paths only).", "exemplar"),
+            Param("layers", "str | None", "Comma-separated layer names instead of preset "
+                  "(paths only).", None),
+            _SYNTHESIS,
+            *_RUN,
+        ],
+        "StylizeResult",
+    ),
+}
+
+
+def _table_params() -> list[Param]:
+    params = []
+    for spec in _exemplar.option_specs():
+        unit = f" {spec['unit']}" if spec["unit"] else ""
+        doc = f"{spec['doc']} Range {spec['min']}..{spec['max']}{unit}."
+        params.append(Param(spec["name"], spec["type"], doc, spec["default"]))
+    return params
+
+
+def _params(verb: str) -> list[Param]:
+    params = []
+    for param in _VERBS[verb][1]:
+        if param == _SYNTHESIS:
+            params += _WORDS + _table_params()
+        else:
+            params.append(param)
+    return params
+
+
+def signature(verb: str) -> inspect.Signature:
+    """The Python signature of `verb`: positional parameters, then keyword-only ones."""
+    return inspect.Signature(
+        [inspect.Parameter(p.name,
+                           inspect.Parameter.POSITIONAL_OR_KEYWORD if p.positional
+                           else inspect.Parameter.KEYWORD_ONLY,
+                           default=p.default, annotation=p.annotation)
+         for p in _params(verb)],
+        return_annotation=_VERBS[verb][2])
+
+
+def docstring(verb: str) -> str:
+    """The docstring of `verb`: its summary, then one entry per parameter."""
+    lines = textwrap.wrap(_VERBS[verb][0], 88) + ["", "Parameters:"]
+    for p in _params(verb):
+        default = "" if p.default is _REQUIRED else f", default {p.default!r}"
+        lines.append(f"  {p.name} ({p.annotation}{default})")
+        lines += textwrap.wrap(p.doc, 88, initial_indent="      ", subsequent_indent="      ")
+    lines += ["", f"Returns {_VERBS[verb][2]}. Errors raise exemplar.Error subclasses with the "
+              "library's one-line message."]
+    return "\n".join(lines)
+
+
+def decorate(function: Callable[..., Any]) -> Callable[..., Any]:
+    """Gives a verb's wrapper its generated signature and docstring."""
+    function.__signature__ = signature(function.__name__)  # type: ignore[attr-defined]
+    function.__doc__ = docstring(function.__name__)
+    return function
+
+
+_STUB_HEAD = '''\
+# Generated by python/tools/make_stubs.py from the library's option table; do not edit.
+from typing import Any, Callable, Sequence, TypedDict, Union
+
+import numpy
+import numpy.typing
+
+Image = numpy.typing.NDArray[Union[numpy.float32, numpy.uint8]]
+Guide = Union[tuple[Image, Image], tuple[Image, Image, float], tuple[Image, Image, float, Image],
+              dict[str, Any]]
+
+__version__: str
+
+class Error(Exception): ...
+class InvalidArgumentError(Error, ValueError): ...
+class IoError(Error, OSError): ...
+class UnsupportedError(Error, ValueError): ...
+class Cancelled(Error): ...
+class InternalError(Error, RuntimeError): ...
+
+class Progress:
+    stage: str
+    level: int
+    levels: int
+    iteration: int
+    iterations: int
+    fraction: float
+
+class CancelToken:
+    def __init__(self) -> None: ...
+    def cancel(self) -> None: ...
+    @property
+    def cancelled(self) -> bool: ...
+
+class StylizeResult:
+    image: numpy.ndarray
+    nnf: numpy.ndarray
+    error: numpy.ndarray
+    nnf_patch_size: int
+    vote_size: int
+    guide_channels: int
+    explained_variance: float
+
+class OptionSpec(TypedDict):
+    name: str
+    doc: str
+    unit: str
+    type: str
+    min: float
+    max: float
+    default: float
+
+def option_specs() -> list[OptionSpec]: ...
+def load_image(path: str) -> numpy.ndarray: ...
+def save_image(image: Image, path: str) -> None: ...
+'''
+
+
+def stubs() -> str:
+    """The text of __init__.pyi."""
+    out = [_STUB_HEAD]
+    for verb in _VERBS:
+        params = _params(verb)
+        out.append(f"def {verb}(")
+        star = False
+        for p in params:
+            if not p.positional and not star:
+                out.append("    *,")
+                star = True
+            default = "" if p.default is _REQUIRED else f" = {p.default!r}"
+            out.append(f"    {p.name}: {p.annotation}{default},")
+        out.append(f") -> {_VERBS[verb][2]}:")
+        body = textwrap.indent(docstring(verb), "    ")
+        out.append(f'    """{body.lstrip()}\n    """\n')
+    return "\n".join(out)

@@ -1,0 +1,13 @@
+#pragma once
+// The parts of the extension module exemplar._exemplar; module.cpp calls each once.
+
+#include <pybind11/pybind11.h>
+
+namespace exemplar::python {
+
+namespace py = pybind11;
+
+/// stylize, apply_nnf, stylit and their result type (synthesis.cpp).
+void register_synthesis(py::module_& module);
+
+}  // namespace exemplar::python
