@@ -28,16 +28,17 @@ from ._exemplar import (
     StylizeResult,
     UnsupportedError,
     __version__,
+    builtin_scenes,
     load_image,
     option_specs,
     save_image,
 )
-from ._exemplar import _apply_nnf, _stylit, _stylize
+from ._exemplar import _apply_nnf, _render, _stylit, _stylize
 
 __all__ = [
     "CancelToken", "Cancelled", "Error", "InternalError", "InvalidArgumentError", "IoError",
-    "Progress", "StylizeResult", "UnsupportedError", "__version__", "apply_nnf", "load_image",
-    "option_specs", "save_image", "stylit", "stylize",
+    "Progress", "StylizeResult", "UnsupportedError", "__version__", "apply_nnf", "builtin_scenes",
+    "load_image", "option_specs", "render", "save_image", "stylit", "stylize",
 ]
 
 
@@ -56,3 +57,8 @@ def apply_nnf(nnf, source, **options):
 @_signatures.decorate
 def stylit(exemplar, source, target, **options):
     return _stylit(exemplar, source, target, **options)
+
+
+@_signatures.decorate
+def render(scene, **options):
+    return _render(scene, **options)

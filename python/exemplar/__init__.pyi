@@ -49,6 +49,8 @@ class OptionSpec(TypedDict):
     max: float
     default: float
 
+builtin_scenes: tuple[str, ...]
+
 def option_specs() -> list[OptionSpec]: ...
 def load_image(path: str) -> numpy.ndarray: ...
 def save_image(image: Image, path: str) -> None: ...
@@ -408,4 +410,53 @@ def stylit(
           progress callback that returns False sets it too.
 
     Returns StylizeResult. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def render(
+    scene: str,
+    *,
+    width: int = 600,
+    height: int = 456,
+    spp: int = 64,
+    max_bounces: int = 6,
+    seed: int = 1,
+    frame: int | None = None,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> dict[str, numpy.ndarray]:
+    """Path-traces a scene into light-path buffers (StyLit's guides). The CLI's `exemplar
+    render`; returns the buffers as a dict of HxWxC float32 arrays (linear values, as its
+    EXR files hold them): fullgi, direct_diffuse, direct_specular, indirect_diffuse,
+    diffuse_bounces, diffuse_interreflection, normal, depth, object_id, material_id, alpha,
+    orientation, lines; with frame also forward_flow, backward_flow, occlusion,
+    disocclusion.
+
+    Parameters:
+      scene (str)
+          A scene JSON file, or a built-in scene (exemplar.builtin_scenes).
+      width (int, default 600)
+          Image width in pixels, 1..16384.
+      height (int, default 456)
+          Image height in pixels, 1..16384.
+      spp (int, default 64)
+          Samples (paths) per pixel, 1..65536.
+      max_bounces (int, default 6)
+          Surface reflections per path, 1..64.
+      seed (int, default 1)
+          Seed of the random numbers.
+      frame (int | None, default None)
+          Animation frame to render, with its motion vectors and occlusion masks (required
+          for an animated scene; one frame per call).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns dict[str, numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """

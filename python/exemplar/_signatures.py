@@ -142,6 +142,28 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "StylizeResult",
     ),
+    "render": (
+        "Path-traces a scene into light-path buffers (StyLit's guides). The CLI's "
+        "`exemplar render`; returns the buffers as a dict of HxWxC float32 arrays (linear "
+        "values, as its EXR files hold them): fullgi, direct_diffuse, direct_specular, "
+        "indirect_diffuse, diffuse_bounces, diffuse_interreflection, normal, depth, object_id, "
+        "material_id, alpha, orientation, lines; with frame also forward_flow, backward_flow, "
+        "occlusion, disocclusion.",
+        [
+            Param("scene", "str", "A scene JSON file, or a built-in scene "
+                  "(exemplar.builtin_scenes).", positional=True),
+            Param("width", "int", "Image width in pixels, 1..16384.", 600),
+            Param("height", "int", "Image height in pixels, 1..16384.", 456),
+            Param("spp", "int", "Samples (paths) per pixel, 1..65536.", 64),
+            Param("max_bounces", "int", "Surface reflections per path, 1..64.", 6),
+            Param("seed", "int", "Seed of the random numbers.", 1),
+            Param("frame", "int | None",
+                  "Animation frame to render, with its motion vectors and occlusion masks "
+                  "(required for an animated scene; one frame per call).", None),
+            *_RUN,
+        ],
+        "dict[str, numpy.ndarray]",
+    ),
 }
 
 
@@ -245,6 +267,8 @@ class OptionSpec(TypedDict):
     min: float
     max: float
     default: float
+
+builtin_scenes: tuple[str, ...]
 
 def option_specs() -> list[OptionSpec]: ...
 def load_image(path: str) -> numpy.ndarray: ...

@@ -10,4 +10,7 @@ namespace py = pybind11;
 /// stylize, apply_nnf, stylit and their result type (synthesis.cpp).
 void register_synthesis(py::module_& module);
 
+/// render (render.cpp).
+void register_render(py::module_& module);
+
 }  // namespace exemplar::python
