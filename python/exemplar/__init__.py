@@ -18,6 +18,7 @@ See docs/python.md.
 
 from . import _signatures
 from ._exemplar import (
+    BeautifyResult,
     CancelToken,
     Cancelled,
     Error,
@@ -33,11 +34,11 @@ from ._exemplar import (
     option_specs,
     save_image,
 )
-from ._exemplar import _apply_nnf, _render, _stylit, _stylize
+from ._exemplar import _apply_nnf, _beautify, _render, _stylit, _stylize
 
 __all__ = [
-    "CancelToken", "Cancelled", "Error", "InternalError", "InvalidArgumentError", "IoError",
-    "Progress", "StylizeResult", "UnsupportedError", "__version__", "apply_nnf", "builtin_scenes",
+    "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError", "InvalidArgumentError", "IoError",
+    "Progress", "StylizeResult", "UnsupportedError", "__version__", "apply_nnf", "beautify", "builtin_scenes",
     "load_image", "option_specs", "render", "save_image", "stylit", "stylize",
 ]
 
@@ -62,3 +63,8 @@ def stylit(exemplar, source, target, **options):
 @_signatures.decorate
 def render(scene, **options):
     return _render(scene, **options)
+
+
+@_signatures.decorate
+def beautify(drawing, **options):
+    return _beautify(drawing, **options)

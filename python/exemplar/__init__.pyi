@@ -40,6 +40,13 @@ class StylizeResult:
     guide_channels: int
     explained_variance: float
 
+class BeautifyResult:
+    svg: str
+    paths: list[str]
+    strokes: list[dict[str, Any]]
+    relation_counts: dict[str, int]
+    suggestions: list[dict[str, Any]]
+
 class OptionSpec(TypedDict):
     name: str
     doc: str
@@ -459,4 +466,28 @@ def render(
           progress callback that returns False sets it too.
 
     Returns dict[str, numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def beautify(
+    drawing: str | Sequence[numpy.ndarray],
+    *,
+    max_suggestions: int = 10,
+    fit: float = 0.0,
+) -> BeautifyResult:
+    """ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel,
+    perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes
+    before it, keeping the most likely suggestion. The CLI's `exemplar beautify`; returns
+    the beautified SVG, the report and the last stroke's suggestions.
+
+    Parameters:
+      drawing (str | Sequence[numpy.ndarray])
+          SVG text, the path of an .svg file, or strokes as Nx2 arrays of points (polylines,
+          in view pixels), in drawing order.
+      max_suggestions (int, default 10)
+          Suggestions per stroke, 1..100 (the paper's N).
+      fit (float, default 0.0)
+          Refit strokes drawn as polylines (3 or more straight pieces) as smooth Bezier
+          paths within this many view px before beautifying, 0..100; 0 keeps them as drawn.
+
+    Returns BeautifyResult. Errors raise exemplar.Error subclasses with the library's one-line message.
     """

@@ -164,6 +164,24 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "dict[str, numpy.ndarray]",
     ),
+    "beautify": (
+        "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
+        "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
+        "before it, keeping the most likely suggestion. The CLI's `exemplar beautify`; returns "
+        "the beautified SVG, the report and the last stroke's suggestions.",
+        [
+            Param("drawing", "str | Sequence[numpy.ndarray]",
+                  "SVG text, the path of an .svg file, or strokes as Nx2 arrays of points "
+                  "(polylines, in view pixels), in drawing order.", positional=True),
+            Param("max_suggestions", "int", "Suggestions per stroke, 1..100 (the paper's N).",
+                  10),
+            Param("fit", "float",
+                  "Refit strokes drawn as polylines (3 or more straight pieces) as smooth "
+                  "Bezier paths within this many view px before beautifying, 0..100; 0 keeps "
+                  "them as drawn.", 0.0),
+        ],
+        "BeautifyResult",
+    ),
 }
 
 
@@ -258,6 +276,13 @@ class StylizeResult:
     vote_size: int
     guide_channels: int
     explained_variance: float
+
+class BeautifyResult:
+    svg: str
+    paths: list[str]
+    strokes: list[dict[str, Any]]
+    relation_counts: dict[str, int]
+    suggestions: list[dict[str, Any]]
 
 class OptionSpec(TypedDict):
     name: str

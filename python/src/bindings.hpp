@@ -13,4 +13,7 @@ void register_synthesis(py::module_& module);
 /// render (render.cpp).
 void register_render(py::module_& module);
 
+/// beautify and its result type (sketch.cpp).
+void register_sketch(py::module_& module);
+
 }  // namespace exemplar::python
