@@ -34,11 +34,11 @@ from ._exemplar import (
     option_specs,
     save_image,
 )
-from ._exemplar import _apply_nnf, _beautify, _render, _stylit, _stylize
+from ._exemplar import _animate, _apply_nnf, _beautify, _render, _stylit, _stylize
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError", "InvalidArgumentError", "IoError",
-    "Progress", "StylizeResult", "UnsupportedError", "__version__", "apply_nnf", "beautify", "builtin_scenes",
+    "Progress", "StylizeResult", "UnsupportedError", "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes",
     "load_image", "option_specs", "render", "save_image", "stylit", "stylize",
 ]
 
@@ -68,3 +68,8 @@ def render(scene, **options):
 @_signatures.decorate
 def beautify(drawing, **options):
     return _beautify(drawing, **options)
+
+
+@_signatures.decorate
+def animate(style_input, style_output, frames, **options):
+    return _animate(style_input, style_output, frames, **options)

@@ -468,6 +468,195 @@ def render(
     Returns dict[str, numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def animate(
+    style_input: Image,
+    style_output: Image,
+    frames: Sequence[Image],
+    *,
+    flows: Sequence[tuple[Image, Image]] | None = None,
+    keyframes: Sequence[tuple[int, Image] | tuple[int, Image, Image]] = (),
+    lines: tuple[Image, Sequence[Image]] | None = None,
+    output_weight: float = 1.0,
+    input_weight: float = 2.0,
+    temporal_weight: float = 1.0,
+    input_derivative_weight: float = 1.0,
+    keyframe_weight: float = 4.0,
+    line_weight: float = 2.0,
+    line_max_distance: float = 10.0,
+    levels: int = 4,
+    sweeps: int = 1,
+    backward_em_iterations: int = 1,
+    occlusion_tolerance: float = 0.0,
+    orientation: bool = False,
+    ribbons: bool = True,
+    flow_preset: str = 'medium',
+    quality: str = 'default',
+    usage: str = 'occurrence',
+    patch_size: int = 5,
+    pyramid_ratio: float = 0.5,
+    em_iterations: int = 3,
+    finest_em_iterations: int = 2,
+    second_finest_em_iterations: int = 4,
+    search_iterations: int = 3,
+    warm_search_iterations: int = 2,
+    finest_first_round_iterations: int = 1,
+    final_pass_iterations: int = 1,
+    final_vote_size: int = 0,
+    vote_coherence: float = 0.0,
+    style_weight: float = 1.0,
+    falloff_sigma: float = 0.0,
+    guide_pca: float = 0.0,
+    budget_coverage: float = 0.95,
+    coherence_sweeps: int = 2,
+    budget_max_rounds: int = 32,
+    budget_focus: float = 1.0,
+    occurrence_strength: float = 0.05,
+    occurrence_threshold: float = 0.0,
+    seed: int = 1,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> list[numpy.ndarray]:
+    """Stylized animation by example (TCIA, Benard et al. 2013): the analogy style_input :
+    style_output :: frame t : output t, with the texture following the motion; painted
+    keyframes are reproduced exactly. The CLI's `exemplar animate` for one layer, with the
+    job file's keys as keywords (its weights as <name>_weight); returns the stylized frames,
+    the style output's channels and dtype.
+
+    Parameters:
+      style_input (Image)
+          S: the style's input (the frames' channels).
+      style_output (Image)
+          S-hat: the stylized style (any channels).
+      frames (Sequence[Image])
+          The animation's frames, all of one size.
+      flows (Sequence[tuple[Image, Image]] | None, default None)
+          Per consecutive pair of frames, (forward flow of t, backward flow of t+1), HxWx2
+          float32 in pixels (docs/video.md); None = estimate with DIS.
+      keyframes (Sequence[tuple[int, Image] | tuple[int, Image, Image]], default ())
+          Painted keyframes (frame, image[, mask]): the style output's channels, the frames'
+          size; mask HxW coverage in 0..1 for a partial key.
+      lines (tuple[Image, Sequence[Image]] | None, default None)
+          Line drawings for the line term: (on the style's grid, one per frame), dark lines
+          on a light background.
+      output_weight (float, default 1.0)
+          w_out: the style term.
+      input_weight (float, default 2.0)
+          w_in: the guide (style input, frame).
+      temporal_weight (float, default 1.0)
+          w_tc: the previous output warped along the motion.
+      input_derivative_weight (float, default 1.0)
+          w_din: the input's change along the motion, with keyframes; 0 = use
+          temporal_weight there too.
+      keyframe_weight (float, default 4.0)
+          Weight of a keyframe's painted pixels when its offsets are fitted.
+      line_weight (float, default 2.0)
+          w_dt: the line term (with lines).
+      line_max_distance (float, default 10.0)
+          d_max of the line term, px.
+      levels (int, default 4)
+          Pyramid levels of the coarse-to-fine loop, 1..8.
+      sweeps (int, default 1)
+          Forward-backward sweep pairs per level.
+      backward_em_iterations (int, default 1)
+          EM iterations of a backward-sweep call.
+      occlusion_tolerance (float, default 0.0)
+          Occlusion test tolerance, px^2; 0 = automatic (2 given flows, 8 estimated).
+      orientation (bool, default False)
+          Rotate patches by the structure-tensor orientation.
+      ribbons (bool, default True)
+          With keyframes, offer the keys' offsets along the motion.
+      flow_preset (str, default 'medium')
+          DIS preset when flows are estimated: 'ultrafast', 'fast' or 'medium'.
+      quality (str, default 'default')
+          Search effort: 'fast' (previews, about 2x faster), 'default' or 'best' (closer to
+          the exemplar, about 1.7x the time); applied first, so explicit options below win.
+      usage (str, default 'occurrence')
+          Patch-usage strategy: 'none', 'uniform', 'error-budget' or 'occurrence'.
+      patch_size (int, default 5)
+          Patch width; odd. Larger patches keep larger structures but blur detail. Range
+          3..31 px.
+      pyramid_ratio (float, default 0.5)
+          Size ratio between consecutive pyramid levels (StyLit: 0.5). Range 0.3..0.95.
+      em_iterations (int, default 3)
+          Search+vote iterations per pyramid level but the finest (StyLit: 6). Range 1..100
+          iterations.
+      finest_em_iterations (int, default 2)
+          Search+vote iterations on the finest level; 0 = em-iterations. It starts from the
+          upsampled coarser solution and converges fast (StyLit: 6). Range 0..100
+          iterations.
+      second_finest_em_iterations (int, default 4)
+          Search+vote iterations on the level before the finest (not when it is the
+          coarsest); 0 = em-iterations. It starts from an upsampled solution too (StyLit:
+          6). Range 0..100 iterations.
+      search_iterations (int, default 3)
+          PatchMatch iterations per nearest-neighbour search (StyLit: 6). Range 1..100
+          iterations.
+      warm_search_iterations (int, default 2)
+          PatchMatch iterations when the search starts from a close field: the previous EM
+          iteration's, or the previous reversed-retrieval round's (StyLit: 6; fewer is
+          faster but keeps less of the exemplar's fine texture). Range 1..100 iterations.
+      finest_first_round_iterations (int, default 1)
+          Usage strategies: PatchMatch iterations of the first reversed-retrieval round on
+          the finest level, which starts from a close field; 0 = warm-search-iterations.
+          Range 0..100 iterations.
+      final_pass_iterations (int, default 1)
+          EM iterations with 3x3 patches after the finest level (ebsynth's extra pass); 0 =
+          off. Range 0..100 iterations.
+      final_vote_size (int, default 0)
+          The last vote averages only the central NxN pixels of each patch, which keeps the
+          exemplar's fine grain; odd, 0 = the whole patch. Range 0..31 px.
+      vote_coherence (float, default 0.0)
+          Weighted vote: each patch also weighs by how many patches around it map
+          consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
+          coherent pieces of the exemplar outvote stray patches, but also thin strokes made
+          of small pieces. 0 = off. Range 0.0..100.0 px^2.
+      style_weight (float, default 1.0)
+          Weight of the style term (B' vs A') relative to the guides. Range 0.0..1000000.0.
+      falloff_sigma (float, default 0.0)
+          Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal. Range
+          0.0..100.0 px.
+      guide_pca (float, default 0.0)
+          Guide channels are replaced by the fewest principal components that keep this
+          fraction of their weighted variance (faster distances, approximate guides); 0 =
+          off. Not with per-pixel guide weights. Range 0.0..1.0.
+      budget_coverage (float, default 0.95)
+          Error budget: fraction of target patches covered by reversed retrieval before the
+          rest falls back to forward nearest neighbours (StyLit: 0.95). Range 0.0..1.0.
+      coherence_sweeps (int, default 2)
+          Error budget: sweeps after the patch assignment in which every stray match
+          (continuing fewer than two of its neighbours' source regions) takes a neighbour's
+          shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
+          (StyLit as published). Range 0..100 iterations.
+      budget_max_rounds (int, default 32)
+          Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
+          rounds.
+      budget_focus (float, default 1.0)
+          Error budget: below this fraction of free target patches, rounds query only the
+          sources next to a free target's match or not used yet; 0 = query all sources every
+          round, 1 = every round after the first. Range 0.0..1.0.
+      occurrence_strength (float, default 0.05)
+          Occurrence penalty h_s: added squared error per use of a source patch above the
+          threshold. Range 0.0..1000000.0.
+      occurrence_threshold (float, default 0.0)
+          Occurrence penalty h_tau: uses of a source patch before the penalty starts; 0 =
+          automatic (2 x target/source area ratio). Range 0.0..1000000000.0 uses.
+      seed (int, default 1)
+          Random seed; the same seed gives the same output for any thread count. Range
+          0..9007199254740992.
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns list[numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

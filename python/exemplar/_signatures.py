@@ -164,6 +164,56 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "dict[str, numpy.ndarray]",
     ),
+    "animate": (
+        "Stylized animation by example (TCIA, Benard et al. 2013): the analogy style_input : "
+        "style_output :: frame t : output t, with the texture following the motion; painted "
+        "keyframes are reproduced exactly. The CLI's `exemplar animate` for one layer, with "
+        "the job file's keys as keywords (its weights as <name>_weight); returns the stylized "
+        "frames, the style output's channels and dtype.",
+        [
+            Param("style_input", _IMAGE, "S: the style's input (the frames' channels).",
+                  positional=True),
+            Param("style_output", _IMAGE, "S-hat: the stylized style (any channels).",
+                  positional=True),
+            Param("frames", "Sequence[Image]", "The animation's frames, all of one size.",
+                  positional=True),
+            Param("flows", "Sequence[tuple[Image, Image]] | None",
+                  "Per consecutive pair of frames, (forward flow of t, backward flow of t+1), "
+                  "HxWx2 float32 in pixels (docs/video.md); None = estimate with DIS.", None),
+            Param("keyframes", "Sequence[tuple[int, Image] | tuple[int, Image, Image]]",
+                  "Painted keyframes (frame, image[, mask]): the style output's channels, the "
+                  "frames' size; mask HxW coverage in 0..1 for a partial key.", ()),
+            Param("lines", "tuple[Image, Sequence[Image]] | None",
+                  "Line drawings for the line term: (on the style's grid, one per frame), dark "
+                  "lines on a light background.", None),
+            Param("output_weight", "float", "w_out: the style term.", 1.0),
+            Param("input_weight", "float", "w_in: the guide (style input, frame).", 2.0),
+            Param("temporal_weight", "float",
+                  "w_tc: the previous output warped along the motion.", 1.0),
+            Param("input_derivative_weight", "float",
+                  "w_din: the input's change along the motion, with keyframes; 0 = use "
+                  "temporal_weight there too.", 1.0),
+            Param("keyframe_weight", "float",
+                  "Weight of a keyframe's painted pixels when its offsets are fitted.", 4.0),
+            Param("line_weight", "float", "w_dt: the line term (with lines).", 2.0),
+            Param("line_max_distance", "float", "d_max of the line term, px.", 10.0),
+            Param("levels", "int", "Pyramid levels of the coarse-to-fine loop, 1..8.", 4),
+            Param("sweeps", "int", "Forward-backward sweep pairs per level.", 1),
+            Param("backward_em_iterations", "int", "EM iterations of a backward-sweep call.", 1),
+            Param("occlusion_tolerance", "float",
+                  "Occlusion test tolerance, px^2; 0 = automatic (2 given flows, 8 estimated).",
+                  0.0),
+            Param("orientation", "bool", "Rotate patches by the structure-tensor orientation.",
+                  False),
+            Param("ribbons", "bool", "With keyframes, offer the keys' offsets along the motion.",
+                  True),
+            Param("flow_preset", "str", "DIS preset when flows are estimated: 'ultrafast', "
+                  "'fast' or 'medium'.", "medium"),
+            _SYNTHESIS,
+            *_RUN,
+        ],
+        "list[numpy.ndarray]",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
@@ -185,20 +235,32 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
 }
 
 
-def _table_params() -> list[Param]:
+def _table_params(verb: str) -> list[Param]:
+    # animate starts from its own engine defaults and owns `levels` (the solver's).
+    defaults = _exemplar._animate_defaults() if verb == "animate" else {}
     params = []
     for spec in _exemplar.option_specs():
+        if verb == "animate" and spec["name"] == "levels":
+            continue
         unit = f" {spec['unit']}" if spec["unit"] else ""
         doc = f"{spec['doc']} Range {spec['min']}..{spec['max']}{unit}."
-        params.append(Param(spec["name"], spec["type"], doc, spec["default"]))
+        params.append(Param(spec["name"], spec["type"], doc,
+                            defaults.get(spec["name"], spec["default"])))
     return params
+
+
+def _words(verb: str) -> list[Param]:
+    if verb == "animate":  # its job file has no vote key
+        usage = _exemplar._animate_defaults()["usage"]
+        return [_WORDS[0], _WORDS[1]._replace(default=usage)]
+    return _WORDS
 
 
 def _params(verb: str) -> list[Param]:
     params = []
     for param in _VERBS[verb][1]:
         if param == _SYNTHESIS:
-            params += _WORDS + _table_params()
+            params += _words(verb) + _table_params(verb)
         else:
             params.append(param)
     return params

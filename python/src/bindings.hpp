@@ -16,4 +16,7 @@ void register_render(py::module_& module);
 /// beautify and its result type (sketch.cpp).
 void register_sketch(py::module_& module);
 
+/// animate (animate.cpp).
+void register_animate(py::module_& module);
+
 }  // namespace exemplar::python

@@ -82,6 +82,17 @@ void reject_unknown(const py::dict& kwargs, const char* function) {
     }
 }
 
+std::string python_option_name(const OptionSpec& spec) {
+    return python_name(spec.name);
+}
+
+py::object python_option_value(const OptionSpec& spec, double value) {
+    if (!std::holds_alternative<float SynthesisOptions::*>(spec.field)) {
+        return py::int_(static_cast<long long>(value));
+    }
+    return py::float_(shortest_float(static_cast<float>(value)));
+}
+
 py::list option_specs_for_python() {
     py::list specs;
     const SynthesisOptions defaults;
@@ -96,12 +107,11 @@ py::list option_specs_for_python() {
         if (integer) {
             entry["min"] = static_cast<long long>(spec.min);
             entry["max"] = static_cast<long long>(spec.max);
-            entry["default"] = static_cast<long long>(value);
         } else {
             entry["min"] = spec.min;
             entry["max"] = spec.max;
-            entry["default"] = shortest_float(static_cast<float>(value));
         }
+        entry["default"] = python_option_value(spec, value);
         specs.append(entry);
     }
     return specs;

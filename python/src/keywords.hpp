@@ -28,6 +28,13 @@ SynthesisOptions pop_synthesis_options(py::dict& kwargs);
 /// keyword left in `kwargs`, as Python does for a plain function.
 void reject_unknown(const py::dict& kwargs, const char* function);
 
+/// An option's name as a Python keyword (`patch_size`).
+std::string python_option_name(const OptionSpec& spec);
+
+/// An option's value as Python shows it: an int, or the shortest float that reads back as the
+/// option's float (0.95, not 0.949999988079071).
+py::object python_option_value(const OptionSpec& spec, double value);
+
 /// The option table for Python: one dict per option (name with '_', doc, unit, min, max,
 /// default, type "int" or "float"), in the table's order.
 py::list option_specs_for_python();

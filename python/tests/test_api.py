@@ -8,6 +8,7 @@ import subprocess
 import numpy as np
 
 import exemplar
+from conftest import pattern
 from exemplar import _signatures
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "exemplar"
@@ -29,14 +30,22 @@ def test_every_option_of_the_table_is_a_keyword_with_its_default():
     assert coverage["default"] == 0.95
 
 
-def test_every_keyword_of_the_signature_is_accepted(pair):
-    # Each documented keyword reaches the extension (given its default, the run is unchanged).
+def test_every_keyword_of_the_signature_is_accepted_with_its_default(pair):
+    # Each documented keyword reaches the extension, and its documented default is the one
+    # the run uses (spelling every default out changes nothing).
     style, source, target = pair
     plain = exemplar.stylize(style, [(source, target)])
     defaults = {name: p.default for name, p in inspect.signature(exemplar.stylize).parameters.items()
                 if p.kind == inspect.Parameter.KEYWORD_ONLY}
     np.testing.assert_array_equal(exemplar.stylize(style, [(source, target)], **defaults).image,
                                   plain.image)
+    buffers = [pattern(24, 28, 3, phase) for phase in (1.0, 2.0)]
+    targets = [pattern(26, 32, 3, phase) for phase in (1.5, 2.5)]
+    defaults = {name: p.default for name, p in inspect.signature(exemplar.stylit).parameters.items()
+                if p.kind == inspect.Parameter.KEYWORD_ONLY}
+    np.testing.assert_array_equal(
+        exemplar.stylit(style, buffers, targets, **defaults).image,
+        exemplar.stylit(style, buffers, targets).image)
 
 
 def test_the_options_are_the_clis_flags(cli):
