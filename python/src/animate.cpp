@@ -49,16 +49,10 @@ float float_keyword(py::dict& args, const char* name, float value) {
     return given.is_none() ? value : static_cast<float>(number(given, name));
 }
 
+// Out-of-range values go on to animate::validate, which names the range.
 int int_keyword(py::dict& args, const char* name, int value) {
     const py::object given = pop(args, name);
-    if (given.is_none()) return value;
-    if (py::isinstance<py::bool_>(given) || !PyIndex_Check(given.ptr())) {
-        throw py::type_error(std::string(name) + ": must be an int (got " +
-                             std::string(py::str(py::type::of(given).attr("__name__"))) + ")");
-    }
-    // Out-of-range values go on to animate::validate, which names the range.
-    const long long v = py::int_(given).cast<long long>();
-    return static_cast<int>(std::clamp<long long>(v, -1, 1 << 30));
+    return given.is_none() ? value : integer(given, name);
 }
 
 bool bool_keyword(py::dict& args, const char* name, bool value) {
@@ -75,13 +69,11 @@ bool bool_keyword(py::dict& args, const char* name, bool value) {
 SynthesisOptions pop_animate_synthesis(py::dict& args) {
     Quality quality = Quality::Default;
     if (const py::object q = pop(args, "quality"); !q.is_none()) {
-        if (!py::isinstance<py::str>(q)) throw py::type_error("quality: must be a str");
-        quality = take(parse_quality(q.cast<std::string>()));
+        quality = take(parse_quality(text(q, "quality")));
     }
     SynthesisOptions options = animate::animate_synthesis_options(quality);
     if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
-        if (!py::isinstance<py::str>(usage)) throw py::type_error("usage: must be a str");
-        options.usage = take(parse_usage_strategy(usage.cast<std::string>()));
+        options.usage = take(parse_usage_strategy(text(usage, "usage")));
     }
     for (const OptionSpec& spec : synthesis_option_specs()) {
         const std::string name = python_option_name(spec);
@@ -115,8 +107,7 @@ py::list animate_py(const py::object& style_input, const py::object& style_outpu
     options.orientation = bool_keyword(args, "orientation", options.orientation);
     options.ribbons = bool_keyword(args, "ribbons", options.ribbons);
     if (const py::object preset = pop(args, "flow_preset"); !preset.is_none()) {
-        if (!py::isinstance<py::str>(preset)) throw py::type_error("flow_preset: must be a str");
-        options.flow.preset = take(video::parse_flow_preset(preset.cast<std::string>()));
+        options.flow.preset = take(video::parse_flow_preset(text(preset, "flow_preset")));
     }
     const py::object flows = pop(args, "flows");
     const py::object keyframes = pop(args, "keyframes");
@@ -168,12 +159,7 @@ py::list animate_py(const py::object& style_input, const py::object& style_outpu
                 throw py::type_error(what + ": must be (frame, image[, mask])");
             }
             animate::Keyframe keyframe;
-            const py::object frame = key[0];
-            if (py::isinstance<py::bool_>(frame) || !PyIndex_Check(frame.ptr())) {
-                throw py::type_error(what + ": the frame must be an int");
-            }
-            keyframe.frame = static_cast<int>(
-                std::clamp<long long>(py::int_(frame).cast<long long>(), -1, 1 << 30));
+            keyframe.frame = integer(key[0], what + " frame");
             keyframe.image = image_from_array(key[1], what + " image", Shape::Colour).image;
             if (key.size() == 3) {
                 keyframe.mask = image_from_array(key[2], what + " mask", Shape::Grey).image;
@@ -198,7 +184,7 @@ py::list animate_py(const py::object& style_input, const py::object& style_outpu
     }
     check(animate::validate(input, options));
 
-    PythonRun run(threads.is_none() ? 0 : threads.cast<int>(), progress, cancel);
+    PythonRun run(threads_keyword(threads), progress, cancel);
     animate::AnimationResult result =
         run([&](const RunContext& context) { return animate::animate(input, options, context); });
     // The frames in the style output's dtype.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "errors.hpp"
 
@@ -18,14 +19,6 @@ std::string python_name(std::string_view name) {
 
 std::string type_name(const py::handle& value) {
     return py::str(py::type::of(value).attr("__name__"));
-}
-
-// A string keyword (quality, usage, vote).
-std::string word(const py::handle& value, const std::string& name) {
-    if (!py::isinstance<py::str>(value)) {
-        throw py::type_error(name + ": must be a str (got " + type_name(value) + ")");
-    }
-    return value.cast<std::string>();
 }
 
 // The shortest decimal that reads back as `value` (0.95, not 0.949999988079071): the default as
@@ -46,6 +39,22 @@ py::object pop(py::dict& kwargs, const char* name) {
     return kwargs.attr("pop")(name);
 }
 
+std::string text(const py::handle& value, const std::string& name) {
+    if (!py::isinstance<py::str>(value)) {
+        throw py::type_error(name + ": must be a str (got " + type_name(value) + ")");
+    }
+    return value.cast<std::string>();
+}
+
+int integer(const py::handle& value, const std::string& name) {
+    if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) {
+        throw py::type_error(name + ": must be an int (got " + type_name(value) + ")");
+    }
+    const long long v = py::int_(py::reinterpret_borrow<py::object>(value)).cast<long long>();
+    return static_cast<int>(
+        std::clamp<long long>(v, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+}
+
 double number(const py::handle& value, const std::string& name) {
     // bool is an int in Python; `patch_size=True` is a mistake, not 1.
     if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) ||
@@ -59,7 +68,7 @@ SynthesisOptions pop_synthesis_options(py::dict& kwargs) {
     SynthesisOptions options;
     // The quality preset first, so that explicit options override it (as on the CLI).
     if (const py::object quality = pop(kwargs, "quality"); !quality.is_none()) {
-        options = SynthesisOptions::preset(take(parse_quality(word(quality, "quality"))));
+        options = SynthesisOptions::preset(take(parse_quality(text(quality, "quality"))));
     }
     for (const OptionSpec& spec : synthesis_option_specs()) {
         const std::string name = python_name(spec.name);
@@ -67,10 +76,10 @@ SynthesisOptions pop_synthesis_options(py::dict& kwargs) {
         if (!value.is_none()) check(set_option(options, spec, number(value, name)));
     }
     if (const py::object usage = pop(kwargs, "usage"); !usage.is_none()) {
-        options.usage = take(parse_usage_strategy(word(usage, "usage")));
+        options.usage = take(parse_usage_strategy(text(usage, "usage")));
     }
     if (const py::object vote = pop(kwargs, "vote"); !vote.is_none()) {
-        options.vote = take(parse_vote_mode(word(vote, "vote")));
+        options.vote = take(parse_vote_mode(text(vote, "vote")));
     }
     return options;
 }

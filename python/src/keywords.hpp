@@ -16,6 +16,13 @@ namespace py = pybind11;
 /// Removes `name` from `kwargs` and returns its value, or None if it was not given.
 py::object pop(py::dict& kwargs, const char* name);
 
+/// A str keyword; TypeError naming it otherwise.
+std::string text(const py::handle& value, const std::string& name);
+
+/// An int keyword (int or numpy integer; not bool or float), clamped to int's range so that
+/// the library's range check names a value far out of range; TypeError otherwise.
+int integer(const py::handle& value, const std::string& name);
+
 /// A number keyword (int, float or a numpy scalar; not bool or str); TypeError otherwise.
 double number(const py::handle& value, const std::string& name);
 

@@ -39,8 +39,7 @@ bool pop_integer(py::dict& args, const char* name, long long& out) {
     const py::object value = pop(args, name);
     if (value.is_none()) return false;
     if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) {
-        throw py::type_error(std::string(name) + ": must be an int (got " +
-                             std::string(py::str(py::type::of(value).attr("__name__"))) + ")");
+        integer(value, name);  // raises the TypeError naming the keyword
     }
     out = py::int_(value).cast<long long>();
     return true;
@@ -91,7 +90,7 @@ py::dict render_py(const std::string& scene, py::kwargs kwargs) {
                          " is animated (render it one frame at a time)");
     }
 
-    PythonRun run(threads.is_none() ? 0 : threads.cast<int>(), progress, cancel);
+    PythonRun run(threads_keyword(threads), progress, cancel);
     render::RenderBuffers buffers = run([&](const RunContext& context) {
         Result<render::RenderBuffers> result =
             frame_given ? render::render_frame(animation, static_cast<int>(frame), options, context)

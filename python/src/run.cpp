@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "keywords.hpp"
+
 namespace exemplar::python {
 
 namespace {
@@ -22,6 +24,10 @@ PythonRun::PythonRun(int threads, py::object progress, py::object cancel)
     : progress_(std::move(progress)) {
     context_.threads = check_threads(threads);
     if (!cancel.is_none()) {
+        if (!py::isinstance<PyCancelToken>(cancel)) {
+            throw py::type_error("cancel: must be an exemplar.CancelToken (got " +
+                                 std::string(py::str(py::type::of(cancel).attr("__name__"))) + ")");
+        }
         token_ = &cancel.cast<PyCancelToken&>().token;
         cancel_owner_ = std::move(cancel);
     }
@@ -57,6 +63,10 @@ int check_threads(int threads) {
                          " is invalid (must be >= 0; 0 = all cores)");
     }
     return threads;
+}
+
+int threads_keyword(const py::object& threads) {
+    return threads.is_none() ? 0 : check_threads(integer(threads, "threads"));
 }
 
 void register_run_types(py::module_& module) {

@@ -59,6 +59,9 @@ private:
 /// The threads keyword: >= 0, else InvalidArgumentError (the CLI's message for --threads).
 int check_threads(int threads);
 
+/// The threads keyword as given (None = 0, all cores): an int >= 0.
+int threads_keyword(const py::object& threads);
+
 /// Adds exemplar.Progress and exemplar.CancelToken to `module`.
 void register_run_types(py::module_& module);
 

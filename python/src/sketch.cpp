@@ -62,11 +62,11 @@ std::string stroke_name(const Drawing& d, std::size_t i) {
 // The drawing: SVG text, an .svg file, or polylines (Nx2 arrays in view pixels).
 std::pair<Drawing, std::string> drawing_from(const py::object& object) {
     if (py::isinstance<py::str>(object)) {
-        const std::string text = object.cast<std::string>();
-        if (text.find('<') != std::string::npos) {
-            return {take(sketch::parse_svg(text, "drawing")), "drawing"};
+        const std::string given = object.cast<std::string>();
+        if (given.find('<') != std::string::npos) {
+            return {take(sketch::parse_svg(given, "drawing")), "drawing"};
         }
-        return {take(sketch::load_svg(text)), text};
+        return {take(sketch::load_svg(given)), given};
     }
     if (!py::isinstance<py::sequence>(object) || py::isinstance<py::array>(object)) {
         throw py::type_error(

@@ -223,7 +223,12 @@ StylizeResult stylize(const py::object& style, const py::object& guides, py::kwa
         input.initial_nnf = std::move(*field);
     }
     if (const py::object size = pop(args, "size"); !size.is_none()) {
-        const auto pair = size.cast<std::pair<int, int>>();
+        if (!py::isinstance<py::sequence>(size) || py::isinstance<py::str>(size) ||
+            py::len(size) != 2) {
+            throw py::type_error("size: must be (width, height)");
+        }
+        const auto given = py::reinterpret_borrow<py::sequence>(size);
+        const std::pair<int, int> pair{integer(given[0], "size"), integer(given[1], "size")};
         if (pair.first <= 0 || pair.second <= 0) {
             throw InputError("size: (" + std::to_string(pair.first) + ", " +
                              std::to_string(pair.second) +
@@ -250,7 +255,7 @@ StylizeResult stylize(const py::object& style, const py::object& guides, py::kwa
     }
     check(with_label_values(validate_input(input, options), label_values));
 
-    PythonRun run(threads.is_none() ? 0 : threads.cast<int>(), progress, cancel);
+    PythonRun run(threads_keyword(threads), progress, cancel);
     SynthesisResult result = run(
         [&](const RunContext& context) { return synthesize(std::move(input), options, context); });
     const SynthesisResult::GuideCompression compression = result.guide_compression;
@@ -278,15 +283,14 @@ py::array apply_nnf_py(const py::object& nnf, const py::object& source, py::kwar
         throw InputError("vote_size" + s.message().substr(vote_size_spec.name.size()));
     }
     if (const py::object vote = pop(args, "vote"); !vote.is_none()) {
-        if (!py::isinstance<py::str>(vote)) throw py::type_error("vote: must be a str");
-        options.vote = take(parse_vote_mode(vote.cast<std::string>()));
+        options.vote = take(parse_vote_mode(text(vote, "vote")));
     }
     if (const py::object coherence = pop(args, "vote_coherence"); !coherence.is_none()) {
         check(set_option(options, *find_option("vote-coherence"),
                          number(coherence, "vote_coherence")));
     }
     const py::object threads = pop(args, "threads");
-    const int thread_count = check_threads(threads.is_none() ? 0 : threads.cast<int>());
+    const int thread_count = threads_keyword(threads);
     reject_unknown(args, "apply_nnf");
 
     // The field and the source.
@@ -322,7 +326,11 @@ std::vector<LpeBuffer> buffers_from(const py::object& buffers, const char* name,
     }
     const auto sequence = py::reinterpret_borrow<py::sequence>(buffers);
     if (sequence.size() > 0 && py::isinstance<py::str>(sequence[0])) {
-        return take(load_lpe_buffers(sequence.cast<std::vector<std::string>>(), preset));
+        std::vector<std::string> paths;
+        for (std::size_t i = 0; i < sequence.size(); ++i) {
+            paths.push_back(text(sequence[i], indexed(name, i)));
+        }
+        return take(load_lpe_buffers(paths, preset));
     }
     std::vector<LpeBuffer> out;
     for (std::size_t i = 0; i < sequence.size(); ++i) {
@@ -347,10 +355,9 @@ StylizeResult stylit_py(const py::object& exemplar, const py::object& source,
     const py::object preset_name = pop(args, "preset");
     const py::object layers = pop(args, "layers");
     const LayerPreset preset =
-        layers.is_none()
-            ? take(find_layer_preset(preset_name.is_none() ? "exemplar"
-                                                           : preset_name.cast<std::string>()))
-            : take(custom_layer_preset(layers.cast<std::string>()));
+        layers.is_none() ? take(find_layer_preset(
+                               preset_name.is_none() ? "exemplar" : text(preset_name, "preset")))
+                         : take(custom_layer_preset(text(layers, "layers")));
     const py::object progress = pop(args, "progress");
     const py::object cancel = pop(args, "cancel");
     const py::object threads = pop(args, "threads");
@@ -364,7 +371,7 @@ StylizeResult stylit_py(const py::object& exemplar, const py::object& source,
         take(stylit_input(painting.image, source_buffers, target_buffers, options));
     check(validate_input(input, options.synthesis));
 
-    PythonRun run(threads.is_none() ? 0 : threads.cast<int>(), progress, cancel);
+    PythonRun run(threads_keyword(threads), progress, cancel);
     StylitResult result = run([&](const RunContext& context) {
         return stylize_render(painting.image, source_buffers, target_buffers, options, context);
     });

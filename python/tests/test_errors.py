@@ -173,3 +173,22 @@ def test_io_errors_name_the_file(tmp_path):
         exemplar.load_image(missing)
     with pytest.raises(exemplar.UnsupportedError, match="PNG cannot store 5 channels"):
         exemplar.save_image(np.zeros((4, 4, 5), np.uint8), str(tmp_path / "five.png"))
+
+
+def test_wrongly_typed_run_keywords_raise_type_errors(pair):
+    style, source, target = pair
+    guides = [(source, target)]
+    with raises(TypeError, "threads: must be an int (got str)"):
+        exemplar.stylize(style, guides, threads="2")
+    with raises(TypeError, "threads: must be an int (got float)"):
+        exemplar.apply_nnf(np.zeros((4, 4, 4), np.float32), style, patch_size=3, threads=1.5)
+    with raises(TypeError, "size: must be (width, height)"):
+        exemplar.stylize(style, size=40)
+    with raises(TypeError, "size: must be an int (got float)"):
+        exemplar.stylize(style, size=(40.0, 30))
+    with raises(TypeError, "vote: must be a str (got int)"):
+        exemplar.apply_nnf(np.zeros((4, 4, 4), np.float32), style, patch_size=3, vote=1)
+    with raises(TypeError, "preset: must be a str (got int)"):
+        exemplar.stylit(style, [source], [target], preset=3)
+    with raises(TypeError, "cancel: must be an exemplar.CancelToken (got bool)"):
+        exemplar.stylize(style, guides, cancel=True)
