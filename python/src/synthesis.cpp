@@ -219,7 +219,8 @@ StylizeResult stylize(const py::object& style, const py::object& guides, py::kwa
     if (const py::object nnf = pop(args, "init_nnf"); !nnf.is_none()) {
         ImageArg arg = image_from_array(nnf, "init_nnf", Shape::Colour);
         Result<Nnf> field = nnf_from_image(arg.image);
-        if (!field.ok()) throw InputError("init_nnf: " + field.status().message());
+        // nnf_from_image names its argument "nnf"; here it is init_nnf.
+        if (!field.ok()) throw InputError("init_" + field.status().message());
         input.initial_nnf = std::move(*field);
     }
     if (const py::object size = pop(args, "size"); !size.is_none()) {
@@ -301,7 +302,7 @@ py::array apply_nnf_py(const py::object& nnf, const py::object& source, py::kwar
             "StylizeResult.nnf)");
     }
     Result<Nnf> field = nnf_from_image(nnf_arg.image);
-    if (!field.ok()) throw InputError("nnf: " + field.status().message());
+    if (!field.ok()) throw InputError(field.status().message());  // names the nnf
     ImageArg source_arg = image_from_array(source, "source", Shape::Colour);
     if (!all_finite(source_arg.image)) throw InputError("source: contains NaN or infinity");
 

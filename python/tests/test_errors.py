@@ -192,3 +192,13 @@ def test_wrongly_typed_run_keywords_raise_type_errors(pair):
         exemplar.stylit(style, [source], [target], preset=3)
     with raises(TypeError, "cancel: must be an exemplar.CancelToken (got bool)"):
         exemplar.stylize(style, guides, cancel=True)
+
+
+def test_nnf_errors_name_the_argument_once(pair):
+    style = pair[0]
+    with raises(exemplar.InvalidArgumentError,
+                "nnf: has 2 channels (must be 3 or 4: x, y, angle[, error])"):
+        exemplar.apply_nnf(np.zeros((5, 5, 2), np.float32), style, patch_size=3)
+    with raises(exemplar.InvalidArgumentError,
+                "init_nnf: has 2 channels (must be 3 or 4: x, y, angle[, error])"):
+        exemplar.stylize(style, size=(9, 9), init_nnf=np.zeros((9, 9, 2), np.float32))
