@@ -34,12 +34,13 @@ from ._exemplar import (
     option_specs,
     save_image,
 )
-from ._exemplar import _animate, _apply_nnf, _beautify, _render, _stylit, _stylize
+from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
 
 __all__ = [
-    "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError", "InvalidArgumentError", "IoError",
-    "Progress", "StylizeResult", "UnsupportedError", "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes",
-    "load_image", "option_specs", "render", "save_image", "stylit", "stylize",
+    "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
+    "InvalidArgumentError", "IoError", "Progress", "StylizeResult", "UnsupportedError",
+    "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "flow", "load_image",
+    "option_specs", "render", "save_image", "stylit", "stylize",
 ]
 
 
@@ -73,3 +74,8 @@ def beautify(drawing, **options):
 @_signatures.decorate
 def animate(style_input, style_output, frames, **options):
     return _animate(style_input, style_output, frames, **options)
+
+
+@_signatures.decorate
+def flow(from_frame, to_frame, **options):
+    return _flow(from_frame, to_frame, **options)

@@ -657,6 +657,39 @@ def animate(
     Returns list[numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def flow(
+    from_frame: Image,
+    to_frame: Image,
+    *,
+    backward: bool = False,
+    occlusion: bool = False,
+    epsilon: float = 2.0,
+    preset: str = 'medium',
+) -> dict[str, numpy.ndarray]:
+    """Optical flow between two frames (DIS), and on request the backward flow and the
+    occlusion mask of the first frame. The CLI's `exemplar flow`; returns a dict with
+    'forward' (HxWx2 float32, pixels: x of from_frame maps to x + f(x) in to_frame), and
+    'backward' and 'occlusion' (HxW float32, 1 = fails the forward-backward test) when asked
+    for.
+
+    Parameters:
+      from_frame (Image)
+          Frame t.
+      to_frame (Image)
+          Frame t+1 (same size).
+      backward (bool, default False)
+          Also return the backward flow t+1 -> t.
+      occlusion (bool, default False)
+          Also return the occlusion mask of frame t.
+      epsilon (float, default 2.0)
+          Tolerance of the occlusion test in px^2 (squared round-trip distance); 2 (Benard
+          et al. 2013), 4..10 suit estimated flow.
+      preset (str, default 'medium')
+          DIS preset: 'ultrafast', 'fast' or 'medium'.
+
+    Returns dict[str, numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

@@ -214,6 +214,24 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "list[numpy.ndarray]",
     ),
+    "flow": (
+        "Optical flow between two frames (DIS), and on request the backward flow and the "
+        "occlusion mask of the first frame. The CLI's `exemplar flow`; returns a dict with "
+        "'forward' (HxWx2 float32, pixels: x of from_frame maps to x + f(x) in to_frame), "
+        "and 'backward' and 'occlusion' (HxW float32, 1 = fails the forward-backward test) "
+        "when asked for.",
+        [
+            Param("from_frame", _IMAGE, "Frame t.", positional=True),
+            Param("to_frame", _IMAGE, "Frame t+1 (same size).", positional=True),
+            Param("backward", "bool", "Also return the backward flow t+1 -> t.", False),
+            Param("occlusion", "bool", "Also return the occlusion mask of frame t.", False),
+            Param("epsilon", "float", "Tolerance of the occlusion test in px^2 (squared "
+                  "round-trip distance); 2 (Benard et al. 2013), 4..10 suit estimated flow.",
+                  2.0),
+            Param("preset", "str", "DIS preset: 'ultrafast', 'fast' or 'medium'.", "medium"),
+        ],
+        "dict[str, numpy.ndarray]",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "

@@ -19,4 +19,7 @@ void register_sketch(py::module_& module);
 /// animate (animate.cpp).
 void register_animate(py::module_& module);
 
+/// flow (flow.cpp).
+void register_flow(py::module_& module);
+
 }  // namespace exemplar::python
