@@ -1,4 +1,4 @@
-"""exemplar: example-based stylization (guided patch-based synthesis, StyLit).
+"""exemplar: example-based stylization (stylize, stylit, render, beautify, flow, animate, ...).
 
 Every verb of the `exemplar` command is a function here, with the CLI's options as keyword
 arguments (names with underscores, the same defaults) and numpy arrays where the CLI reads
