@@ -50,11 +50,13 @@ def _tag():
 
 
 def _build_package(config_settings):
-    """Builds the module; returns the package folder (build/python/exemplar)."""
+    """Builds the module; returns the build folder, whether it is a temporary one, and the
+    package folder (build/python/exemplar)."""
     if shutil.which("cmake") is None:
         raise RuntimeError("exemplar: building the wheel needs cmake (scripts/install-deps.sh)")
     settings = config_settings or {}
     reuse = settings.get("build-dir") or os.environ.get("EXEMPLAR_BUILD_DIR")
+    temporary = not reuse
     if reuse:
         build = pathlib.Path(reuse)
         if not build.is_absolute():
@@ -63,15 +65,21 @@ def _build_package(config_settings):
             raise RuntimeError(f"exemplar: {build} is not a configured build folder")
     else:
         build = pathlib.Path(tempfile.mkdtemp(prefix="exemplar-wheel-"))
-        subprocess.run(["cmake", "-S", str(_SOURCE), "-B", str(build),
-                        "-DCMAKE_BUILD_TYPE=Release", "-DEXEMPLAR_BUILD_TESTS=OFF",
-                        "-DEXEMPLAR_BUILD_BENCH=OFF", "-DEXEMPLAR_PYTHON=ON",
-                        f"-DEXEMPLAR_PYTHON_EXECUTABLE={sys.executable}"],
-                       check=True, stdout=sys.stderr)
-    jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", "2")
-    subprocess.run(["cmake", "--build", str(build), "--target", "exemplar_python", "-j", jobs],
-                   check=True, stdout=sys.stderr)
-    return build / "python" / _NAME
+    try:
+        if temporary:
+            subprocess.run(["cmake", "-S", str(_SOURCE), "-B", str(build),
+                            "-DCMAKE_BUILD_TYPE=Release", "-DEXEMPLAR_BUILD_TESTS=OFF",
+                            "-DEXEMPLAR_BUILD_BENCH=OFF", "-DEXEMPLAR_PYTHON=ON",
+                            f"-DEXEMPLAR_PYTHON_EXECUTABLE={sys.executable}"],
+                           check=True, stdout=sys.stderr)
+        jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", "2")
+        subprocess.run(["cmake", "--build", str(build), "--target", "exemplar_python", "-j",
+                        jobs], check=True, stdout=sys.stderr)
+    except BaseException:
+        if temporary:
+            shutil.rmtree(build, ignore_errors=True)
+        raise
+    return build, temporary, build / "python" / _NAME
 
 
 def _record_line(name, data):
@@ -87,8 +95,30 @@ def get_requires_for_build_sdist(config_settings=None):
     return []
 
 
+def prepare_metadata_for_build_wheel(metadata_directory, config_settings=None):
+    """The dist-info folder without building (pip asks for it before the wheel)."""
+    info = pathlib.Path(metadata_directory) / f"{_NAME}-{_version()}.dist-info"
+    info.mkdir(parents=True, exist_ok=True)
+    (info / "METADATA").write_text(_metadata())
+    (info / "WHEEL").write_text(_wheel_text())
+    return info.name
+
+
+def _wheel_text():
+    return (f"Wheel-Version: 1.0\nGenerator: exemplar_backend\nRoot-Is-Purelib: false\n"
+            f"Tag: {_tag()}\n")
+
+
 def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
-    package = _build_package(config_settings)
+    build, temporary, package = _build_package(config_settings)
+    try:
+        return _zip_wheel(wheel_directory, package)
+    finally:
+        if temporary:  # a whole build of the library: do not leave it in /tmp
+            shutil.rmtree(build, ignore_errors=True)
+
+
+def _zip_wheel(wheel_directory, package):
     suffix = sysconfig.get_config_var("EXT_SUFFIX")
     if not (package / f"_exemplar{suffix}").exists():
         raise RuntimeError(f"exemplar: the build made no _exemplar{suffix} in {package} (built "
@@ -99,8 +129,7 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
             files[f"{_NAME}/{path.name}"] = path.read_bytes()
     info = f"{_NAME}-{_version()}.dist-info"
     files[f"{info}/METADATA"] = _metadata().encode()
-    files[f"{info}/WHEEL"] = (f"Wheel-Version: 1.0\nGenerator: exemplar_backend\n"
-                              f"Root-Is-Purelib: false\nTag: {_tag()}\n").encode()
+    files[f"{info}/WHEEL"] = _wheel_text().encode()
     files[f"{info}/top_level.txt"] = f"{_NAME}\n".encode()
     record = [_record_line(name, data) for name, data in files.items()] + [f"{info}/RECORD,,"]
     files[f"{info}/RECORD"] = ("\n".join(record) + "\n").encode()
