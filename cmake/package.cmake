@@ -62,4 +62,10 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+# The Python module is built for one Python version (its ABI) and imports numpy; dpkg-shlibdeps
+# sees neither (the extension does not link libpython).
+if(EXEMPLAR_PYTHON)
+  math(EXPR next_minor "${EXEMPLAR_PYTHON_VERSION_MINOR} + 1")
+  set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3 (>= ${EXEMPLAR_PYTHON_VERSION_MAJOR}.${EXEMPLAR_PYTHON_VERSION_MINOR}), python3 (<< ${EXEMPLAR_PYTHON_VERSION_MAJOR}.${next_minor}), python3-numpy")
+endif()
 include(CPack)

@@ -16,6 +16,8 @@ packages=(
   libgtest-dev libbenchmark-dev          # tests and benchmarks
   libpoppler-cpp-dev zlib1g-dev          # tests: the PDF sheet read back
   clang-format ccache                   # formatting; compilations cached across clones
+  python3-dev pybind11-dev python3-numpy  # the Python module (python/)
+  python3-pytest python3-pip python3-venv   # its tests; pip install . without an index
 )
 
 missing=()

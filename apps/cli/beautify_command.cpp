@@ -53,25 +53,6 @@ std::string stroke_name(const Drawing& d, std::size_t i) {
     return name;
 }
 
-// A stroke made only of straight pieces (3 or more: pen samples) refitted as a smooth path.
-Path smoothed(const Path& path, double tolerance) {
-    if (path.segments.size() < 3) return path;
-    std::vector<sketch::Vec2> samples{path.start()};
-    for (const sketch::Cubic& c : path.segments) {
-        const sketch::Cubic line = sketch::line_cubic(c.p0, c.p3);
-        if (sketch::distance(c.c1, line.c1) > 1e-9 || sketch::distance(c.c2, line.c2) > 1e-9) {
-            return path;  // already has curves
-        }
-        samples.push_back(c.p3);
-    }
-    sketch::FitOptions fit;
-    fit.tolerance = tolerance;
-    Path smooth = sketch::fit_path(samples, fit);
-    if (smooth.empty()) return path;
-    smooth.closed = smooth.closed || path.closed;
-    return smooth;
-}
-
 // The drawing's canvas: its viewBox, or its strokes' bounds.
 std::array<double, 4> bounds_of(const Drawing& d) {
     return sketch::canvas_bounds(d, {SvgLayer{d.paths, {}, "black", 1.0, 1.0, ""}});
@@ -188,7 +169,9 @@ Status BeautifyCommand::run(const Streams& streams) const {
         }
     }
     if (fit_px_ > 0.0) {
-        for (Path& p : drawing->paths) p = smoothed(p, fit_px_ / drawing->pixels_per_unit);
+        for (Path& p : drawing->paths) {
+            p = sketch::refit_polyline(p, fit_px_ / drawing->pixels_per_unit);
+        }
     }
     auto result = sketch::replay(drawing->paths, drawing->pixels_per_unit, options);
     if (!result.ok())

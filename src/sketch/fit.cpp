@@ -187,4 +187,23 @@ Path fit_path(const std::vector<Vec2>& samples, const FitOptions& options) {
     return path;
 }
 
+// `exemplar beautify --fit` and the Python module refit with this one function.
+Path refit_polyline(const Path& path, double tolerance) {
+    if (path.segments.size() < 3) return path;
+    std::vector<Vec2> samples{path.start()};
+    for (const Cubic& c : path.segments) {
+        const Cubic line = line_cubic(c.p0, c.p3);
+        if (distance(c.c1, line.c1) > 1e-9 || distance(c.c2, line.c2) > 1e-9) {
+            return path;  // already has curves
+        }
+        samples.push_back(c.p3);
+    }
+    FitOptions fit;
+    fit.tolerance = tolerance;
+    Path smooth = fit_path(samples, fit);
+    if (smooth.empty()) return path;
+    smooth.closed = smooth.closed || path.closed;
+    return smooth;
+}
+
 }  // namespace exemplar::sketch

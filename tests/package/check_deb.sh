@@ -41,6 +41,27 @@ if command -v apt-get > /dev/null; then
     exit 1
   }
 fi
+# The Python package, when built (EXEMPLAR_PYTHON): in Debian's dist-packages, with numpy and
+# the Python it was built for among the Depends.
+if grep -q '^EXEMPLAR_PYTHON:BOOL=ON' "$build/CMakeCache.txt"; then
+  for file in ./usr/lib/python3/dist-packages/exemplar/__init__.py \
+    ./usr/lib/python3/dist-packages/exemplar/__init__.pyi; do
+    if ! grep -qF " $file" <<< "$contents"; then
+      echo "check_deb: $deb has no $file" >&2
+      exit 1
+    fi
+  done
+  if ! grep -q ' ./usr/lib/python3/dist-packages/exemplar/_exemplar\.cpython-.*\.so' <<< "$contents"; then
+    echo "check_deb: $deb has no Python extension module" >&2
+    exit 1
+  fi
+  for package in python3-numpy "python3 (>= "; do
+    if [[ $depends != *"$package"* ]]; then
+      echo "check_deb: Depends lacks $package: $depends" >&2
+      exit 1
+    fi
+  done
+fi
 dpkg-deb -x "$deb" "$work/root"
 "$work/root/usr/bin/exemplar" --version
 echo "deb: $(basename "$deb"), Depends: $depends"

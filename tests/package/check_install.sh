@@ -36,4 +36,22 @@ libdir=$(PKG_CONFIG_PATH=$pc_dir pkg-config --variable=libdir exemplar)
 # shellcheck disable=SC2086
 g++ "$source/tests/package/consumer/main.cpp" $flags -Wl,-rpath,"$libdir" -o "$work/pc"
 "$work/pc" "$work/pc.png"
+
+# The Python package (when built: EXEMPLAR_PYTHON), in Debian's dist-packages under the prefix:
+# it imports from there, not from the build tree, and runs.
+if grep -q '^EXEMPLAR_PYTHON:BOOL=ON' "$build/CMakeCache.txt"; then
+  python=$(sed -n 's/^EXEMPLAR_PYTHON_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt")
+  site=$prefix/lib/python3/dist-packages
+  test -f "$site/exemplar/__init__.pyi" && test -f "$site/exemplar/py.typed"
+  (cd "$work" && PYTHONPATH=$site "$python" -c '
+import pathlib, sys
+import numpy as np
+import exemplar
+assert pathlib.Path(exemplar.__file__).parent == pathlib.Path(sys.argv[1]).resolve(), exemplar.__file__
+style = (np.arange(20 * 24 * 3) % 251).astype(np.uint8).reshape(20, 24, 3)
+result = exemplar.stylize(style, size=(30, 26), patch_size=3)
+assert result.image.shape == (26, 30, 3) and result.image.dtype == np.uint8
+' "$site/exemplar")
+  echo "package: import exemplar works from $site"
+fi
 echo "package: CMake and pkg-config consumers built and ran against $prefix"

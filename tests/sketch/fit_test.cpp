@@ -58,5 +58,27 @@ TEST(SketchFit, ClosedLoopAndDegenerateInput) {
     EXPECT_TRUE(fit_path({}).empty());
 }
 
+// Pen samples stored as a polyline become a few smooth cubics within the tolerance; paths
+// with curves, short polylines and closed loops keep what they are.
+TEST(SketchFit, RefitPolylineOnlyRefitsPenSamples) {
+    std::vector<Vec2> samples;
+    for (int i = 0; i <= 60; ++i) samples.push_back({2.0 * i, 15 * std::sin(i / 10.0)});
+    const Path pen = polyline_path(samples);
+    const Path smooth = refit_polyline(pen, 0.5);
+    EXPECT_LT(smooth.segments.size(), 10u);
+    EXPECT_LE(max_distance_to(smooth, samples), 0.5 + 1e-6);
+
+    EXPECT_EQ(refit_polyline(smooth, 0.5).segments.size(), smooth.segments.size());
+    const Path two = polyline_path({{0, 0}, {10, 0}, {10, 10}});
+    EXPECT_EQ(refit_polyline(two, 0.5).segments.size(), two.segments.size());
+
+    std::vector<Vec2> ring;
+    for (int i = 0; i < 40; ++i) {
+        const double a = 2 * std::numbers::pi * i / 40;
+        ring.push_back({20 * std::cos(a), 20 * std::sin(a)});
+    }
+    EXPECT_TRUE(refit_polyline(polyline_path(ring, /*closed=*/true), 0.5).closed);
+}
+
 }  // namespace
 }  // namespace exemplar::sketch

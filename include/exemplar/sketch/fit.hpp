@@ -28,4 +28,10 @@ struct FitOptions {
 /// the tolerance) gives a closed path.
 Path fit_path(const std::vector<Vec2>& samples, const FitOptions& options = {});
 
+/// A stroke drawn as pen samples (a path of 3 or more straight pieces, as SVG polylines store
+/// them) refitted by `fit_path` within `tolerance` drawing units (> 0); it stays closed if it
+/// was. Any other path (one with curves, or fewer pieces) is returned unchanged, and so is a
+/// stroke the fit cannot represent (fewer than two distinct samples).
+Path refit_polyline(const Path& path, double tolerance);
+
 }  // namespace exemplar::sketch

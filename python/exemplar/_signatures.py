@@ -1,0 +1,400 @@
+"""Signatures and docstrings of exemplar's functions, generated from one description.
+
+The synthesis keywords (patch_size, em_iterations, ...) come from the library's option table
+(``_exemplar.option_specs()``, the table the CLI's flags, the job-file keys and docs/cli.md come
+from); the other parameters are described once below. The same description gives each function
+its ``inspect.signature``, its docstring and its entry in ``__init__.pyi``:
+
+    PYTHONPATH=build/release/python /usr/bin/python3 python/tools/make_stubs.py
+
+regenerates the stubs (with the built module on PYTHONPATH); a test keeps them equal.
+"""
+
+from __future__ import annotations
+
+import inspect
+import textwrap
+from typing import Any, Callable, NamedTuple
+
+from . import _exemplar
+
+_REQUIRED = inspect.Parameter.empty
+
+
+class Param(NamedTuple):
+    name: str
+    annotation: str
+    doc: str
+    default: Any = _REQUIRED
+    positional: bool = False
+
+
+_IMAGE = "Image"
+_SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option table
+_RUN = [
+    Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
+    Param("progress", "Callable[[Progress], bool | None] | None",
+          "Called (with the GIL) with an exemplar.Progress as the run advances; returning False "
+          "or raising cancels the run (the exception is re-raised, False raises "
+          "exemplar.Cancelled).", None),
+    Param("cancel", "CancelToken | None",
+          "A CancelToken another thread may set to stop the run (exemplar.Cancelled); a "
+          "progress callback that returns False sets it too.", None),
+]
+_WORDS = [
+    Param("quality", "str",
+          "Search effort: 'fast' (previews, about 2x faster), 'default' or 'best' (closer to the "
+          "exemplar, about 1.7x the time); applied first, so explicit options below win.",
+          "default"),
+    Param("usage", "str",
+          "Patch-usage strategy: 'none', 'uniform', 'error-budget' or 'occurrence'.",
+          "error-budget"),
+    Param("vote", "str", "Voting: 'average' or 'weighted' (weights 1/(0.01 + e/mean e)).",
+          "weighted"),
+]
+
+_VERBS: dict[str, tuple[str, list[Any], str]] = {
+    "stylize": (
+        "Guided patch-based synthesis (image analogies A : A' :: B : B'): transfers the style "
+        "exemplar onto the target the guides describe. The CLI's `exemplar stylize`, with "
+        "arrays where it reads files.",
+        [
+            Param("style", _IMAGE, "Style exemplar A' (HxWxC; alpha is just another channel).",
+                  positional=True),
+            Param("guides", "Sequence[Guide]",
+                  "Guide pairs (source, target[, weight[, weight_map]]) or dicts with those "
+                  "keys: source on the style's grid (A_i), target on the target grid (B_i), "
+                  "equal channel counts; weight >= 0 (default 1); weight_map an HxW per-pixel "
+                  "multiplier on the target grid.", (), positional=True),
+            Param("style_weights", "Sequence[float] | None",
+                  "Weights of the style channels, one per channel, >= 0 (default 1 each).", None),
+            Param("target_mask", "Image | None",
+                  "Grey HxW: synthesize only where > 0.5; elsewhere keep init (needs init).",
+                  None),
+            Param("source_mask", "Image | None",
+                  "Grey HxW on the style's grid: use only patches entirely inside (> 0.5).", None),
+            Param("source_labels", "Image | None",
+                  "Label map on the style's grid (HxW or HxWxC; each distinct value is one "
+                  "label); with target_labels.", None),
+            Param("target_labels", "Image | None",
+                  "Label map on the target grid: a pixel takes only patches of its label.", None),
+            Param("source_orientation", "Image | None",
+                  "Angle field of the style (HxW float32, radians); with target_orientation.",
+                  None),
+            Param("target_orientation", "Image | None",
+                  "Angle field of the target: patches are compared rotated by the difference.",
+                  None),
+            Param("init", "Image | None", "Initial target (the style's channels, target size).",
+                  None),
+            Param("init_nnf", "Image | None",
+                  "Initial NNF (HxWx4 float32, as StylizeResult.nnf).", None),
+            Param("size", "tuple[int, int] | None",
+                  "Target size (width, height) for unguided texture synthesis; with guides or "
+                  "init it must equal theirs.", None),
+            _SYNTHESIS,
+            *_RUN,
+        ],
+        "StylizeResult",
+    ),
+    "apply_nnf": (
+        "Re-applies a correspondence field to another image on the style's grid (a 16-bit or "
+        "extra-channel version of the style), voting as the synthesis did. The CLI's "
+        "`exemplar apply-nnf`. Returns an array of the source's channels and dtype.",
+        [
+            Param("nnf", _IMAGE, "The field, HxWx4 (or x, y, angle: HxWx3) float32, as "
+                  "StylizeResult.nnf.", positional=True),
+            Param("source", _IMAGE, "Image to copy from, on the style's grid.", positional=True),
+            Param("patch_size", "int", "Patch size the field was made with "
+                  "(StylizeResult.nnf_patch_size)."),
+            Param("vote_size", "int", "Central part of each patch that votes, as the run's "
+                  "final_vote_size (StylizeResult.vote_size); 0 = whole patches.", 3),
+            Param("vote", "str", "'average' or 'weighted', as the run.", "weighted"),
+            Param("vote_coherence", "float", "Coherence weighting of the weighted vote, as the "
+                  "run's vote_coherence.", 0.0),
+            _RUN[0],
+        ],
+        "numpy.ndarray",
+    ),
+    "stylit": (
+        "StyLit: transfers a painting of an exemplar render onto a new render through both "
+        "renders' light-path buffers (full render, direct diffuse, direct specular, indirect, "
+        "in that order). The CLI's `exemplar stylit`; every synthesis option is accepted.",
+        [
+            Param("exemplar", _IMAGE, "The artist's painting, aligned to the exemplar render "
+                  "(A').", positional=True),
+            Param("source", "Sequence[Image] | Sequence[str] | str",
+                  "Buffers of the exemplar render: arrays in guide order, or as on the CLI file "
+                  "paths, one multi-layer EXR or one folder (named by preset or layers).",
+                  positional=True),
+            Param("target", "Sequence[Image] | Sequence[str] | str",
+                  "Buffers of the target render, in the same order.", positional=True),
+            Param("guidance_weight", "float",
+                  "Total weight of the buffers, split equally among them (mu of Eq. 8.1), "
+                  "0..100.", 2.0),
+            Param("preview", "bool",
+                  "Half resolution on PCA-compressed buffers (output at half size).", False),
+            Param("preset", "str", "EXR layer or folder file names: 'exemplar', 'cycles' or "
+                  "'arnold' (paths only).", "exemplar"),
+            Param("layers", "str | None", "Comma-separated layer names instead of preset "
+                  "(paths only).", None),
+            _SYNTHESIS,
+            *_RUN,
+        ],
+        "StylizeResult",
+    ),
+    "render": (
+        "Path-traces a scene into light-path buffers (StyLit's guides). The CLI's "
+        "`exemplar render`; returns the buffers as a dict of HxWxC float32 arrays (linear "
+        "values, as its EXR files hold them): fullgi, direct_diffuse, direct_specular, "
+        "indirect_diffuse, diffuse_bounces, diffuse_interreflection, normal, depth, object_id, "
+        "material_id, alpha, orientation, lines; with frame also forward_flow, backward_flow, "
+        "occlusion, disocclusion.",
+        [
+            Param("scene", "str", "A scene JSON file, or a built-in scene "
+                  "(exemplar.builtin_scenes).", positional=True),
+            Param("width", "int", "Image width in pixels, 1..16384.", 600),
+            Param("height", "int", "Image height in pixels, 1..16384.", 456),
+            Param("spp", "int", "Samples (paths) per pixel, 1..65536.", 64),
+            Param("max_bounces", "int", "Surface reflections per path, 1..64.", 6),
+            Param("seed", "int", "Seed of the random numbers.", 1),
+            Param("frame", "int | None",
+                  "Animation frame to render, with its motion vectors and occlusion masks "
+                  "(required for an animated scene; one frame per call).", None),
+            *_RUN,
+        ],
+        "dict[str, numpy.ndarray]",
+    ),
+    "animate": (
+        "Stylized animation by example (TCIA, Benard et al. 2013): the analogy style_input : "
+        "style_output :: frame t : output t, with the texture following the motion; painted "
+        "keyframes are reproduced exactly. The CLI's `exemplar animate` for one layer, with "
+        "the job file's keys as keywords (its weights as <name>_weight); returns the stylized "
+        "frames, the style output's channels and dtype.",
+        [
+            Param("style_input", _IMAGE, "S: the style's input (the frames' channels).",
+                  positional=True),
+            Param("style_output", _IMAGE, "S-hat: the stylized style (any channels).",
+                  positional=True),
+            Param("frames", "Sequence[Image]", "The animation's frames, all of one size.",
+                  positional=True),
+            Param("flows", "Sequence[tuple[Image, Image]] | None",
+                  "Per consecutive pair of frames, (forward flow of t, backward flow of t+1), "
+                  "HxWx2 float32 in pixels (docs/video.md); None = estimate with DIS.", None),
+            Param("keyframes", "Sequence[tuple[int, Image] | tuple[int, Image, Image]]",
+                  "Painted keyframes (frame, image[, mask]): the style output's channels, the "
+                  "frames' size; mask HxW coverage in 0..1 for a partial key.", ()),
+            Param("lines", "tuple[Image, Sequence[Image]] | None",
+                  "Line drawings for the line term: (on the style's grid, one per frame), dark "
+                  "lines on a light background.", None),
+            Param("output_weight", "float", "w_out: the style term.", 1.0),
+            Param("input_weight", "float", "w_in: the guide (style input, frame).", 2.0),
+            Param("temporal_weight", "float",
+                  "w_tc: the previous output warped along the motion.", 1.0),
+            Param("input_derivative_weight", "float",
+                  "w_din: the input's change along the motion, with keyframes; 0 = use "
+                  "temporal_weight there too.", 1.0),
+            Param("keyframe_weight", "float",
+                  "Weight of a keyframe's painted pixels when its offsets are fitted.", 4.0),
+            Param("line_weight", "float", "w_dt: the line term (with lines).", 2.0),
+            Param("line_max_distance", "float", "d_max of the line term, px.", 10.0),
+            Param("levels", "int", "Pyramid levels of the coarse-to-fine loop, 1..8.", 4),
+            Param("sweeps", "int", "Forward-backward sweep pairs per level.", 1),
+            Param("backward_em_iterations", "int", "EM iterations of a backward-sweep call.", 1),
+            Param("occlusion_tolerance", "float",
+                  "Occlusion test tolerance, px^2; 0 = automatic (2 given flows, 8 estimated).",
+                  0.0),
+            Param("orientation", "bool", "Rotate patches by the structure-tensor orientation.",
+                  False),
+            Param("ribbons", "bool", "With keyframes, offer the keys' offsets along the motion.",
+                  True),
+            Param("flow_preset", "str", "DIS preset when flows are estimated: 'ultrafast', "
+                  "'fast' or 'medium'.", "medium"),
+            _SYNTHESIS,
+            *_RUN,
+        ],
+        "list[numpy.ndarray]",
+    ),
+    "flow": (
+        "Optical flow between two frames (DIS), and on request the backward flow and the "
+        "occlusion mask of the first frame. The CLI's `exemplar flow`; returns a dict with "
+        "'forward' (HxWx2 float32, pixels: x of from_frame maps to x + f(x) in to_frame), "
+        "and 'backward' and 'occlusion' (HxW float32, 1 = fails the forward-backward test) "
+        "when asked for.",
+        [
+            Param("from_frame", _IMAGE, "Frame t.", positional=True),
+            Param("to_frame", _IMAGE, "Frame t+1 (same size).", positional=True),
+            Param("backward", "bool", "Also return the backward flow t+1 -> t.", False),
+            Param("occlusion", "bool", "Also return the occlusion mask of frame t.", False),
+            Param("epsilon", "float", "Tolerance of the occlusion test in px^2 (squared "
+                  "round-trip distance); 2 (Benard et al. 2013), 4..10 suit estimated flow.",
+                  2.0),
+            Param("preset", "str", "DIS preset: 'ultrafast', 'fast' or 'medium'.", "medium"),
+        ],
+        "dict[str, numpy.ndarray]",
+    ),
+    "beautify": (
+        "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
+        "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
+        "before it, keeping the most likely suggestion. The CLI's `exemplar beautify`; returns "
+        "the beautified SVG, the report and the last stroke's suggestions.",
+        [
+            Param("drawing", "str | Sequence[numpy.ndarray]",
+                  "SVG text, the path of an .svg file, or strokes as Nx2 arrays of points "
+                  "(polylines, in view pixels), in drawing order.", positional=True),
+            Param("max_suggestions", "int", "Suggestions per stroke, 1..100 (the paper's N).",
+                  10),
+            Param("fit", "float",
+                  "Refit strokes drawn as polylines (3 or more straight pieces) as smooth "
+                  "Bezier paths within this many view px before beautifying, 0..100; 0 keeps "
+                  "them as drawn.", 0.0),
+        ],
+        "BeautifyResult",
+    ),
+}
+
+
+def _table_params(verb: str) -> list[Param]:
+    # animate starts from its own engine defaults and owns `levels` (the solver's).
+    defaults = _exemplar._animate_defaults() if verb == "animate" else {}
+    params = []
+    for spec in _exemplar.option_specs():
+        if verb == "animate" and spec["name"] == "levels":
+            continue
+        unit = f" {spec['unit']}" if spec["unit"] else ""
+        doc = f"{spec['doc']} Range {spec['min']}..{spec['max']}{unit}."
+        params.append(Param(spec["name"], spec["type"], doc,
+                            defaults.get(spec["name"], spec["default"])))
+    return params
+
+
+def _words(verb: str) -> list[Param]:
+    if verb == "animate":  # its job file has no vote key
+        usage = _exemplar._animate_defaults()["usage"]
+        return [_WORDS[0], _WORDS[1]._replace(default=usage)]
+    return _WORDS
+
+
+def _params(verb: str) -> list[Param]:
+    params = []
+    for param in _VERBS[verb][1]:
+        if param == _SYNTHESIS:
+            params += _words(verb) + _table_params(verb)
+        else:
+            params.append(param)
+    return params
+
+
+def signature(verb: str) -> inspect.Signature:
+    """The Python signature of `verb`: positional parameters, then keyword-only ones."""
+    return inspect.Signature(
+        [inspect.Parameter(p.name,
+                           inspect.Parameter.POSITIONAL_OR_KEYWORD if p.positional
+                           else inspect.Parameter.KEYWORD_ONLY,
+                           default=p.default, annotation=p.annotation)
+         for p in _params(verb)],
+        return_annotation=_VERBS[verb][2])
+
+
+def docstring(verb: str) -> str:
+    """The docstring of `verb`: its summary, then one entry per parameter."""
+    lines = textwrap.wrap(_VERBS[verb][0], 88) + ["", "Parameters:"]
+    for p in _params(verb):
+        default = "" if p.default is _REQUIRED else f", default {p.default!r}"
+        lines.append(f"  {p.name} ({p.annotation}{default})")
+        lines += textwrap.wrap(p.doc, 88, initial_indent="      ", subsequent_indent="      ")
+    lines += ["", f"Returns {_VERBS[verb][2]}. Errors raise exemplar.Error subclasses with the "
+              "library's one-line message."]
+    return "\n".join(lines)
+
+
+def decorate(function: Callable[..., Any]) -> Callable[..., Any]:
+    """Gives a verb's wrapper its generated signature and docstring."""
+    function.__signature__ = signature(function.__name__)  # type: ignore[attr-defined]
+    function.__doc__ = docstring(function.__name__)
+    return function
+
+
+_STUB_HEAD = '''\
+# Generated by python/tools/make_stubs.py from the library's option table; do not edit.
+from typing import Any, Callable, Sequence, TypedDict, Union
+
+import numpy
+import numpy.typing
+
+Image = numpy.typing.NDArray[Union[numpy.float32, numpy.uint8]]
+Guide = Union[tuple[Image, Image], tuple[Image, Image, float], tuple[Image, Image, float, Image],
+              dict[str, Any]]
+
+__version__: str
+
+class Error(Exception): ...
+class InvalidArgumentError(Error, ValueError): ...
+class IoError(Error, OSError): ...
+class UnsupportedError(Error, ValueError): ...
+class Cancelled(Error): ...
+class InternalError(Error, RuntimeError): ...
+
+class Progress:
+    stage: str
+    level: int
+    levels: int
+    iteration: int
+    iterations: int
+    fraction: float
+
+class CancelToken:
+    def __init__(self) -> None: ...
+    def cancel(self) -> None: ...
+    @property
+    def cancelled(self) -> bool: ...
+
+class StylizeResult:
+    image: numpy.ndarray
+    nnf: numpy.ndarray
+    error: numpy.ndarray
+    nnf_patch_size: int
+    vote_size: int
+    guide_channels: int
+    explained_variance: float
+
+class BeautifyResult:
+    svg: str
+    paths: list[str]
+    strokes: list[dict[str, Any]]
+    relation_counts: dict[str, int]
+    suggestions: list[dict[str, Any]]
+
+class OptionSpec(TypedDict):
+    name: str
+    doc: str
+    unit: str
+    type: str
+    min: float
+    max: float
+    default: float
+
+builtin_scenes: tuple[str, ...]
+
+def option_specs() -> list[OptionSpec]: ...
+def load_image(path: str) -> numpy.ndarray: ...
+def save_image(image: Image, path: str) -> None: ...
+'''
+
+
+def stubs() -> str:
+    """The text of __init__.pyi."""
+    out = [_STUB_HEAD]
+    for verb in _VERBS:
+        params = _params(verb)
+        out.append(f"def {verb}(")
+        star = False
+        for p in params:
+            if not p.positional and not star:
+                out.append("    *,")
+                star = True
+            default = "" if p.default is _REQUIRED else f" = {p.default!r}"
+            out.append(f"    {p.name}: {p.annotation}{default},")
+        out.append(f") -> {_VERBS[verb][2]}:")
+        body = textwrap.indent(docstring(verb), "    ")
+        out.append(f'    """{body.lstrip()}\n    """\n')
+    return "\n".join(out)

@@ -1,0 +1,25 @@
+#pragma once
+// The parts of the extension module exemplar._exemplar; module.cpp calls each once.
+
+#include <pybind11/pybind11.h>
+
+namespace exemplar::python {
+
+namespace py = pybind11;
+
+/// stylize, apply_nnf, stylit and their result type (synthesis.cpp).
+void register_synthesis(py::module_& module);
+
+/// render (render.cpp).
+void register_render(py::module_& module);
+
+/// beautify and its result type (sketch.cpp).
+void register_sketch(py::module_& module);
+
+/// animate (animate.cpp).
+void register_animate(py::module_& module);
+
+/// flow (flow.cpp).
+void register_flow(py::module_& module);
+
+}  // namespace exemplar::python

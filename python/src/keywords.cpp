@@ -1,0 +1,129 @@
+#include "keywords.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include "errors.hpp"
+
+namespace exemplar::python {
+
+namespace {
+
+std::string python_name(std::string_view name) {
+    std::string text(name);
+    std::replace(text.begin(), text.end(), '-', '_');
+    return text;
+}
+
+std::string type_name(const py::handle& value) {
+    return py::str(py::type::of(value).attr("__name__"));
+}
+
+// The shortest decimal that reads back as `value` (0.95, not 0.949999988079071): the default as
+// the table states it, for signatures and docs.
+double shortest_float(float value) {
+    for (int digits = 1; digits < 9; ++digits) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+        if (std::strtof(text, nullptr) == value) return std::strtod(text, nullptr);
+    }
+    return value;
+}
+
+}  // namespace
+
+py::object pop(py::dict& kwargs, const char* name) {
+    if (!kwargs.contains(name)) return py::none();
+    return kwargs.attr("pop")(name);
+}
+
+std::string text(const py::handle& value, const std::string& name) {
+    if (!py::isinstance<py::str>(value)) {
+        throw py::type_error(name + ": must be a str (got " + type_name(value) + ")");
+    }
+    return value.cast<std::string>();
+}
+
+int integer(const py::handle& value, const std::string& name) {
+    if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr())) {
+        throw py::type_error(name + ": must be an int (got " + type_name(value) + ")");
+    }
+    const long long v = py::int_(py::reinterpret_borrow<py::object>(value)).cast<long long>();
+    return static_cast<int>(
+        std::clamp<long long>(v, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
+}
+
+double number(const py::handle& value, const std::string& name) {
+    // bool is an int in Python; `patch_size=True` is a mistake, not 1.
+    if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) ||
+        !PyNumber_Check(value.ptr())) {
+        throw py::type_error(name + ": must be a number (got " + type_name(value) + ")");
+    }
+    return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+}
+
+SynthesisOptions pop_synthesis_options(py::dict& kwargs) {
+    SynthesisOptions options;
+    // The quality preset first, so that explicit options override it (as on the CLI).
+    if (const py::object quality = pop(kwargs, "quality"); !quality.is_none()) {
+        options = SynthesisOptions::preset(take(parse_quality(text(quality, "quality"))));
+    }
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        const std::string name = python_name(spec.name);
+        const py::object value = pop(kwargs, name.c_str());
+        if (!value.is_none()) check(set_option(options, spec, number(value, name)));
+    }
+    if (const py::object usage = pop(kwargs, "usage"); !usage.is_none()) {
+        options.usage = take(parse_usage_strategy(text(usage, "usage")));
+    }
+    if (const py::object vote = pop(kwargs, "vote"); !vote.is_none()) {
+        options.vote = take(parse_vote_mode(text(vote, "vote")));
+    }
+    return options;
+}
+
+void reject_unknown(const py::dict& kwargs, const char* function) {
+    for (const auto& item : kwargs) {
+        throw py::type_error(std::string(function) + "() got an unexpected keyword argument '" +
+                             std::string(py::str(item.first)) + "'");
+    }
+}
+
+std::string python_option_name(const OptionSpec& spec) {
+    return python_name(spec.name);
+}
+
+py::object python_option_value(const OptionSpec& spec, double value) {
+    if (!std::holds_alternative<float SynthesisOptions::*>(spec.field)) {
+        return py::int_(static_cast<long long>(value));
+    }
+    return py::float_(shortest_float(static_cast<float>(value)));
+}
+
+py::list option_specs_for_python() {
+    py::list specs;
+    const SynthesisOptions defaults;
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        const bool integer = !std::holds_alternative<float SynthesisOptions::*>(spec.field);
+        const double value = get_option(defaults, spec);
+        py::dict entry;
+        entry["name"] = python_name(spec.name);
+        entry["doc"] = std::string(spec.doc);
+        entry["unit"] = std::string(spec.unit);
+        entry["type"] = integer ? "int" : "float";
+        if (integer) {
+            entry["min"] = static_cast<long long>(spec.min);
+            entry["max"] = static_cast<long long>(spec.max);
+        } else {
+            entry["min"] = spec.min;
+            entry["max"] = spec.max;
+        }
+        entry["default"] = python_option_value(spec, value);
+        specs.append(entry);
+    }
+    return specs;
+}
+
+}  // namespace exemplar::python
