@@ -54,12 +54,12 @@ inline Image medium(int width, int height, std::uint64_t key = 1) {
 }
 
 // Flat-coloured cel: paper background with a pigment disc of radius `radius` at (cx, cy) and a
-// pigment bar along the bottom.
+// pigment band along the bottom (the lowest 3/10 of the height).
 inline Image cel(int width, int height, double cx, double cy, double radius) {
     Image image(width, height, 3);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const bool inside = std::hypot(x - cx, y - cy) <= radius || y >= height * 7 / 8;
+            const bool inside = std::hypot(x - cx, y - cy) <= radius || y >= height * 7 / 10;
             for (int c = 0; c < 3; ++c) image.at(x, y, c) = inside ? kPigment[c] : kPaper[c];
         }
     }
