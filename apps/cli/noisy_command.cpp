@@ -52,8 +52,9 @@ NoisyCommand::NoisyCommand(CLI::App& app) {
         std::string value = std::to_string(noisy::get_option(defaults, spec));
         while (value.back() == '0') value.pop_back();
         if (value.back() == '.') value.pop_back();
+        // --noise has no default on the command line: the noise level is the user's choice.
         doc += " [" + (spec.unit.empty() ? std::string() : std::string(spec.unit) + ", ") +
-               "default " + value + "]";
+               (spec.name == "noise" ? std::string("required") : "default " + value) + "]";
         numeric_flags_[std::string(spec.name)] = app_->add_option(
             "--" + std::string(spec.name), numeric_values_[std::string(spec.name)], doc);
     }
