@@ -211,7 +211,7 @@ Status NoisyCommand::run(const Streams& streams) {
                                     std::to_string(image->height()) + " but " + first_name +
                                     " is " + std::to_string(width) + "x" + std::to_string(height));
         }
-        noisy::NoisyFrame frame{std::move(*image), fixed_map};
+        noisy::NoisyFrame frame{std::move(*image), fixed_map, {}};
         std::string map_name = noise_map_;
         if (map_is_pattern) {
             auto path = video::format_frame_path(noise_map_, number);

@@ -11,6 +11,7 @@
 
 #include "exemplar/noisy/mls.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -21,26 +22,38 @@
 namespace exemplar::noisy {
 
 Point mls_rigid(const ControlPoints& points, Point v, double smoothing_px) {
+    return mls_rigid_sample(points, v, smoothing_px).position;
+}
+
+MlsSample mls_rigid_sample(const ControlPoints& points, Point v, double smoothing_px) {
     EXEMPLAR_CHECK_EQ(points.from.size(), points.to.size());
     EXEMPLAR_CHECK(!points.from.empty());
     EXEMPLAR_CHECK(smoothing_px >= 0.0);
     const std::size_t n = points.from.size();
     const double smoothing2 = smoothing_px * smoothing_px;
 
-    // Weighted centroids p* and q* (w_i = 1 / (|p_i - v|^2 + smoothing^2)); without smoothing
-    // a control point hit exactly maps to its target.
+    // Weighted centroids p* and q* (w_i = 1 / (|p_i - v|^2 + smoothing^2)). Without smoothing
+    // a control point hit exactly maps to its target; its rotation, direction-dependent there,
+    // is taken as that of the other points' fit.
+    std::size_t hit = n;
+    for (std::size_t i = 0; i < n && smoothing2 == 0.0; ++i) {
+        if (points.from[i].x == v.x && points.from[i].y == v.y) hit = i;
+    }
+    auto weight = [&](std::size_t i) {
+        if (hit != n) return i == hit ? 0.0 : 1.0;
+        const double dx = points.from[i].x - v.x, dy = points.from[i].y - v.y;
+        return 1.0 / (dx * dx + dy * dy + smoothing2);
+    };
     double weight_sum = 0.0, px = 0.0, py = 0.0, qx = 0.0, qy = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const double dx = points.from[i].x - v.x, dy = points.from[i].y - v.y;
-        const double d2 = dx * dx + dy * dy + smoothing2;
-        if (d2 == 0.0) return points.to[i];
-        const double w = 1.0 / d2;
+        const double w = weight(i);
         weight_sum += w;
         px += w * points.from[i].x;
         py += w * points.from[i].y;
         qx += w * points.to[i].x;
         qy += w * points.to[i].y;
     }
+    if (weight_sum == 0.0) return {points.to[hit], 0.0};  // the only point
     px /= weight_sum;
     py /= weight_sum;
     qx /= weight_sum;
@@ -50,8 +63,7 @@ Point mls_rigid(const ControlPoints& points, Point v, double smoothing_px) {
     // products of the centred point pairs.
     double dot = 0.0, cross = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const double dx = points.from[i].x - v.x, dy = points.from[i].y - v.y;
-        const double w = 1.0 / (dx * dx + dy * dy + smoothing2);
+        const double w = weight(i);
         const double ax = points.from[i].x - px, ay = points.from[i].y - py;
         const double bx = points.to[i].x - qx, by = points.to[i].y - qy;
         dot += w * (ax * bx + ay * by);
@@ -61,7 +73,8 @@ Point mls_rigid(const ControlPoints& points, Point v, double smoothing_px) {
     const double c = norm > 0.0 ? dot / norm : 1.0;
     const double s = norm > 0.0 ? cross / norm : 0.0;
     const double ux = v.x - px, uy = v.y - py;
-    return {qx + c * ux - s * uy, qy + s * ux + c * uy};
+    if (hit != n) return {points.to[hit], std::atan2(s, c)};
+    return {{qx + c * ux - s * uy, qy + s * ux + c * uy}, std::atan2(s, c)};
 }
 
 ControlPoints jittered_lattice(int width, int height, double spacing_px, double min_offset_px,
@@ -136,6 +149,25 @@ Image deform_rigid(const Image& image, const ControlPoints& points, double smoot
                 const float bottom = image.at(x0, y1, c) * (1 - fx) + image.at(x1, y1, c) * fx;
                 out.at(x, y, c) = top * (1 - fy) + bottom * fy;
             }
+        }
+    });
+    return out;
+}
+
+Image deform_rigid_angles(const Image& angles, const ControlPoints& points, double smoothing_px,
+                          int threads) {
+    EXEMPLAR_CHECK_EQ(angles.channels(), 1);
+    // The backward map g rotates by ψ locally; the forward deformation by about -ψ.
+    const ControlPoints inverse{points.to, points.from};
+    const int w = angles.width(), h = angles.height();
+    Image out(w, h, 1);
+    parallel_for(0, h, threads, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const MlsSample g = mls_rigid_sample(
+                inverse, {static_cast<double>(x), static_cast<double>(y)}, smoothing_px);
+            const int sx = std::min(static_cast<int>(std::lround(mirror(g.position.x, w))), w - 1);
+            const int sy = std::min(static_cast<int>(std::lround(mirror(g.position.y, h))), h - 1);
+            out.at(x, y, 0) = static_cast<float>(angles.at(sx, sy, 0) - g.angle_rad);
         }
     });
     return out;

@@ -10,8 +10,8 @@
 // - the solution is carried between levels as an image (Lanczos-3 upsampling), not as a
 //   nearest-neighbour field: PatchMatch starts from a random field on every level, which only
 //   adds to the randomness the method wants;
-// - patches are not rotated or reflected (the chapter allows both; orientation fields are a
-//   later increment).
+// - patches are rotated only by orientation fields (§4.3.3), never reflected, and there is no
+//   free rotation search (the chapter allows rotations and reflections in eq. 4.1).
 
 #include "exemplar/noisy/noisy.hpp"
 
@@ -200,6 +200,12 @@ Image low_pass(const Image& image, double strength, LowPassFilter filter, int th
 Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
                                const NoisyOptions& options, std::int64_t frame_index,
                                const RunContext& context) {
+    return synthesize_frame(source, Image(), frame, options, frame_index, context);
+}
+
+Result<Image> synthesize_frame(const Image& source, const Image& source_orientation,
+                               const NoisyFrame& frame, const NoisyOptions& options,
+                               std::int64_t frame_index, const RunContext& context) {
     // Check the inputs.
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
     if (source.empty()) return invalid_argument("source: is empty");
@@ -230,26 +236,58 @@ Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
             }
         }
     }
+    const bool oriented = !source_orientation.empty();
+    if (oriented != !frame.orientation.empty()) {
+        return invalid_argument(
+            "orientation: give both the source's and the frame's orientation field, or neither");
+    }
+    if (oriented) {
+        if (source_orientation.channels() != 1 || !source_orientation.same_size(source)) {
+            return invalid_argument("source orientation: is " + size_str(source_orientation) +
+                                    " with " + std::to_string(source_orientation.channels()) +
+                                    " channels (must be 1 channel, " + size_str(source) +
+                                    " like the source)");
+        }
+        if (frame.orientation.channels() != 1 || !frame.orientation.same_size(reference)) {
+            return invalid_argument("frame orientation: is " + size_str(frame.orientation) +
+                                    " with " + std::to_string(frame.orientation.channels()) +
+                                    " channels (must be 1 channel, " + size_str(reference) +
+                                    " like the reference)");
+        }
+        if (!all_finite(source_orientation) || !all_finite(frame.orientation)) {
+            return invalid_argument("orientation: contains NaN or infinity");
+        }
+    }
     const std::vector<double> strengths = level_strengths(options.noise, options.level_ratio);
     const int min_side = std::min({width, height, source.width(), source.height()});
-    if (scaled_size(min_side, strengths.front()) < options.patch_size) {
-        return invalid_argument(
-            "noise: " + format_number(options.noise) + " is too strong for the " +
-            size_str(reference) + " reference and the " + size_str(source) +
-            " source with patch-size " + std::to_string(options.patch_size) + " (at most " +
-            format_number(std::floor(100.0 * min_side / options.patch_size) / 100.0) + ")");
+    // The coarsest level must hold a (rotated) patch's footprint.
+    const int radius = options.patch_size / 2;
+    const int need = oriented ? 2 * static_cast<int>(std::ceil(radius * std::sqrt(2.0))) + 1
+                              : options.patch_size;
+    if (scaled_size(min_side, strengths.front()) < need) {
+        return invalid_argument("noise: " + format_number(options.noise) +
+                                " is too strong for the " + size_str(reference) +
+                                " reference and the " + size_str(source) +
+                                " source with patch-size " + std::to_string(options.patch_size) +
+                                (oriented ? " and rotated patches" : "") + " (at most " +
+                                format_number(std::floor(100.0 * min_side / need) / 100.0) + ")");
     }
 
     // Randomly pre-deform the source (§4.3.2) so features do not fuse between frames.
     const int threads = context.threads;
     const auto index = static_cast<std::uint64_t>(frame_index);
     Image deformed = source;
+    Image deformed_orientation = source_orientation;
     if (options.max_offset_px > 0.0f) {
         const ControlPoints lattice = jittered_lattice(
             source.width(), source.height(), options.lattice_spacing_px, options.min_offset_px,
             options.max_offset_px, hash_keys(options.seed, index, 1));
-        deformed = deform_rigid(source, lattice, lattice_smoothing_px(options.lattice_spacing_px),
-                                threads);
+        const double smoothing = lattice_smoothing_px(options.lattice_spacing_px);
+        deformed = deform_rigid(source, lattice, smoothing, threads);
+        if (oriented) {
+            deformed_orientation =
+                deform_rigid_angles(source_orientation, lattice, smoothing, threads);
+        }
     }
 
     SynthesisOptions engine;
@@ -311,6 +349,12 @@ Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
         input.target_height = th;
         input.initial_target = std::move(start);
         if (!all_active) input.target_mask = std::move(active);
+        if (oriented) {
+            input.source_orientation = resize(deformed_orientation, input.style.width(),
+                                              input.style.height(), ResampleFilter::Nearest, 1);
+            input.target_orientation =
+                resize(frame.orientation, tw, th, ResampleFilter::Nearest, 1);
+        }
         // The engine's seeds are exact in a double (its option table): 53 bits.
         engine.seed = hash_keys(options.seed, index, 2, static_cast<std::uint64_t>(k)) >> 11;
         Result<SynthesisResult> result = synthesize(std::move(input), engine, inner);

@@ -75,7 +75,7 @@ TEST(NoisyOptions, DefaultsAreTheChaptersAndRangesAreChecked) {
 
 struct Fixture {
     Image source = testing::medium(128, 128);
-    NoisyFrame frame{testing::cel(64, 64, 30, 28, 16), {}};
+    NoisyFrame frame{testing::cel(64, 64, 30, 28, 16), {}, {}};
 };
 
 bool identical(const Image& a, const Image& b) {
@@ -140,9 +140,40 @@ TEST(NoisyFrame, GreyAndRgbaReferencesAreConverted) {
     NoisyOptions options;
     options.noise = 2.0f;
     Image grey(64, 64, 1, 0.6f);
-    const Result<Image> out = synthesize_frame(in.source, NoisyFrame{grey, {}}, options, 0, {});
+    const Result<Image> out = synthesize_frame(in.source, NoisyFrame{grey, {}, {}}, options, 0, {});
     ASSERT_TRUE(out.ok()) << out.status().message();
     EXPECT_EQ(out.value().channels(), 3);
+}
+
+TEST(NoisyFrame, OrientationFieldsRotatePatchesDeterministically) {
+    const Fixture in;
+    NoisyOptions options;
+    options.noise = 3.0f;
+    NoisyFrame oriented = in.frame;
+    oriented.orientation = Image(64, 64, 1, 1.5707964f);  // strokes turned by 90 degrees
+    const Image source_orientation(128, 128, 1, 0.0f);
+    const Result<Image> one =
+        synthesize_frame(in.source, source_orientation, oriented, options, 2, RunContext(1));
+    ASSERT_TRUE(one.ok()) << one.status().message();
+    const Result<Image> many =
+        synthesize_frame(in.source, source_orientation, oriented, options, 2, RunContext(2));
+    ASSERT_TRUE(many.ok());
+    EXPECT_TRUE(identical(one.value(), many.value()));
+    const Result<Image> plain = synthesize_frame(in.source, in.frame, options, 2, RunContext(2));
+    ASSERT_TRUE(plain.ok());
+    EXPECT_FALSE(identical(one.value(), plain.value()));
+
+    EXPECT_EQ(synthesize_frame(in.source, oriented, options, 0).status().message(),
+              "orientation: give both the source's and the frame's orientation field, or neither");
+    EXPECT_EQ(
+        synthesize_frame(in.source, Image(64, 64, 1), oriented, options, 0).status().message(),
+        "source orientation: is 64x64 with 1 channels (must be 1 channel, 128x128 like the "
+        "source)");
+    options.noise = 6.5f;
+    EXPECT_EQ(
+        synthesize_frame(in.source, source_orientation, oriented, options, 0).status().message(),
+        "noise: 6.5 is too strong for the 64x64 reference and the 128x128 source with "
+        "patch-size 7 and rotated patches (at most 5.81)");
 }
 
 }  // namespace

@@ -38,6 +38,16 @@ struct ControlPoints {
 /// equal lengths and smoothing ≥ 0 (checked).
 Point mls_rigid(const ControlPoints& points, Point v, double smoothing_px = 0.0);
 
+/// A point of the deformation and its local rotation: f(v) = rotation (v - p*) + q*, the
+/// rotation by `angle_rad` (x towards y, in image coordinates).
+struct MlsSample {
+    Point position;
+    double angle_rad = 0.0;
+};
+
+/// mls_rigid with its rotation angle.
+MlsSample mls_rigid_sample(const ControlPoints& points, Point v, double smoothing_px = 0.0);
+
 /// Smoothing (in pixels) that the random pre-deformation uses for a lattice of spacing
 /// `spacing_px`: 0.4 × spacing. At the chapter's values (spacing 50, offsets 15..25 px) the
 /// paper's unsmoothed map folds over in nearly every draw while this one stays fold-free
@@ -67,5 +77,12 @@ Image mls_rigid_map(const ControlPoints& points, int width, int height, double s
 /// smeared edge pixels). Same size and channels as `image`; bit-identical for any `threads`.
 Image deform_rigid(const Image& image, const ControlPoints& points, double smoothing_px,
                    int threads = 0);
+
+/// An orientation field (1 channel, angles in radians) deformed like deform_rigid deforms the
+/// image it belongs to: output pixel v takes the nearest sample at the same position and adds
+/// the deformation's local rotation there, so the angles keep following the deformed strokes.
+/// Same size; bit-identical for any `threads`.
+Image deform_rigid_angles(const Image& angles, const ControlPoints& points, double smoothing_px,
+                          int threads = 0);
 
 }  // namespace exemplar::noisy

@@ -111,6 +111,10 @@ struct NoisyFrame {
     /// the coarsest level whose strength is ≤ f_p (the finest level when f_p ≤ 1); before
     /// that it holds the reference low-passed at that level's strength.
     Image noise_map;
+    /// Optional orientation field of the frame (§4.3.3, O_R): 1 channel on the reference's
+    /// grid, angles in radians (e.g. filters::orientation_field of the frame, or painted).
+    /// Needs the source's orientation too; patches are then rotated by the difference.
+    Image orientation;
 };
 
 /// Synthesizes frame `frame_index` from `source` (the scanned drawing medium S, 1..4
@@ -125,5 +129,14 @@ struct NoisyFrame {
 Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
                                const NoisyOptions& options, std::int64_t frame_index,
                                const RunContext& context = {});
+
+/// The same with the source's orientation field (§4.3.3, O_S: 1 channel on the source's grid,
+/// angles in radians), deformed along with the source. Give both it and the frame's
+/// orientation, or neither (InvalidArgument otherwise). With orientations every patch is
+/// rotated to compensate the difference, which needs sides of 2·ceil(r·√2)+1 pixels on the
+/// coarsest level (r = patch-size / 2) instead of patch-size.
+Result<Image> synthesize_frame(const Image& source, const Image& source_orientation,
+                               const NoisyFrame& frame, const NoisyOptions& options,
+                               std::int64_t frame_index, const RunContext& context = {});
 
 }  // namespace exemplar::noisy
