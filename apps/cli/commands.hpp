@@ -218,6 +218,7 @@ private:
     Status apply_config();
     CLI::App* app_ = nullptr;
     std::string exemplar_, frames_, output_, noise_map_, mp4_, filter_ = "box", config_;
+    std::string exemplar_orientation_, frame_orientation_;
     int first_ = 0, last_ = 0;
     bool first_given_ = false, last_given_ = false;
     double fps_ = 24.0;

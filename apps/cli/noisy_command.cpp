@@ -36,6 +36,12 @@ NoisyCommand::NoisyCommand(CLI::App& app) {
     app_->add_option("--noise-map", noise_map_,
                      "Per-pixel noise strength in [0, 1] scaling --noise: one image, or a "
                      "frame pattern with the reference's numbers");
+    app_->add_option("--exemplar-orientation", exemplar_orientation_,
+                     "Orientation field of the medium: angles in radians, EXR or float TIFF "
+                     "(needs --frame-orientation)");
+    app_->add_option("--frame-orientation", frame_orientation_,
+                     "Orientation fields of the frames: one file, or a frame pattern with the "
+                     "reference's numbers (needs --exemplar-orientation)");
     app_->add_option("--mp4", mp4_, "Also write the range as an MP4 file");
     app_->add_option("--fps", fps_, "Frame rate of --mp4 (default 24)");
     app_->add_option("--filter", filter_, "Low-pass filter: box (default) or lanczos3");
@@ -107,6 +113,10 @@ Status NoisyCommand::apply_config() {
             output_ = value.get<std::string>();
         } else if (key == "noise-map") {
             noise_map_ = value.get<std::string>();
+        } else if (key == "exemplar-orientation") {
+            exemplar_orientation_ = value.get<std::string>();
+        } else if (key == "frame-orientation") {
+            frame_orientation_ = value.get<std::string>();
         } else if (key == "mp4") {
             mp4_ = value.get<std::string>();
         } else if (key == "filter") {
@@ -169,6 +179,40 @@ Status NoisyCommand::run(const Streams& streams) {
                                 std::to_string(hi) + " is invalid (the video has frames 0.." +
                                 std::to_string(sequence->size() - 1) + ")");
     }
+    if (exemplar_orientation_.empty() != frame_orientation_.empty()) {
+        return invalid_argument(
+            "--exemplar-orientation and --frame-orientation: give both, or neither");
+    }
+    // Angles in radians need a float format (an 8-bit PNG stores only 0..1).
+    auto load_angles = [](const std::string& flag, const std::string& path) -> Result<Image> {
+        const std::string ext = lowercase_extension(path);
+        if (ext != ".exr" && ext != ".tif" && ext != ".tiff") {
+            return invalid_argument(flag + " " + path +
+                                    ": an orientation field holds angles in radians and needs "
+                                    "a float format (EXR or float TIFF)");
+        }
+        auto image = load_image(path);
+        if (!image.ok()) return image.status();
+        if (image->channels() == 1) return image;
+        Image first(image->width(), image->height(), 1);
+        for (int y = 0; y < first.height(); ++y) {
+            for (int x = 0; x < first.width(); ++x) first.at(x, y, 0) = image->at(x, y, 0);
+        }
+        return first;
+    };
+    Image source_orientation;
+    if (!exemplar_orientation_.empty()) {
+        auto angles = load_angles("--exemplar-orientation", exemplar_orientation_);
+        if (!angles.ok()) return angles.status();
+        source_orientation = std::move(*angles);
+    }
+    const bool orientation_is_pattern = frame_orientation_.find('%') != std::string::npos;
+    Image fixed_orientation;
+    if (!frame_orientation_.empty() && !orientation_is_pattern) {
+        auto angles = load_angles("--frame-orientation", frame_orientation_);
+        if (!angles.ok()) return angles.status();
+        fixed_orientation = std::move(*angles);
+    }
     const bool map_is_pattern = noise_map_.find('%') != std::string::npos;
     Image fixed_map;
     if (!noise_map_.empty() && !map_is_pattern) {
@@ -211,7 +255,14 @@ Status NoisyCommand::run(const Streams& streams) {
                                     std::to_string(image->height()) + " but " + first_name +
                                     " is " + std::to_string(width) + "x" + std::to_string(height));
         }
-        noisy::NoisyFrame frame{std::move(*image), fixed_map, {}};
+        noisy::NoisyFrame frame{std::move(*image), fixed_map, fixed_orientation};
+        if (orientation_is_pattern) {
+            auto path = video::format_frame_path(frame_orientation_, number);
+            if (!path.ok()) return path.status();
+            auto angles = load_angles("--frame-orientation", *path);
+            if (!angles.ok()) return angles.status();
+            frame.orientation = std::move(*angles);
+        }
         std::string map_name = noise_map_;
         if (map_is_pattern) {
             auto path = video::format_frame_path(noise_map_, number);
@@ -260,8 +311,9 @@ Status NoisyCommand::run(const Streams& streams) {
         const int inner = batch > 1 ? 1 : threads_;
         parallel_for(0, static_cast<int>(inputs.size()), batch > 1 ? threads : 1, [&](int i) {
             const int number = todo[start + static_cast<std::size_t>(i)];
-            auto image = noisy::synthesize_frame(*source, inputs[static_cast<std::size_t>(i)],
-                                                 options, number, RunContext(inner));
+            auto image = noisy::synthesize_frame(*source, source_orientation,
+                                                 inputs[static_cast<std::size_t>(i)], options,
+                                                 number, RunContext(inner));
             if (!image.ok()) {
                 statuses[static_cast<std::size_t>(i)] =
                     Status(image.status().code(),

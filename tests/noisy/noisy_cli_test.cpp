@@ -179,5 +179,34 @@ TEST_F(NoisyCli, BadInputsGiveOneLineErrors) {
                          path("R/%04d.png", 1) + " is 32x32\n");
 }
 
+TEST_F(NoisyCli, TakesOrientationFields) {
+    ASSERT_TRUE(save_image(Image(64, 64, 1, 0.0f), path("OS.exr")).ok());
+    fs::create_directories(dir_ / "O");
+    for (int n = 1; n <= 2; ++n) {
+        ASSERT_TRUE(save_image(Image(32, 32, 1, 0.5f * n), path("O/%04d.exr", n)).ok());
+    }
+    std::vector<std::string> a = args("T/%04d.png", "2");
+    a[7] = "2";
+    a.insert(a.end(),
+             {"--exemplar-orientation", path("OS.exr"), "--frame-orientation", path("O/%04d.exr")});
+    const CliRun oriented = run(a);
+    ASSERT_EQ(oriented.code, 0) << oriented.err;
+    EXPECT_TRUE(fs::exists(path("T/%04d.png", 2)));
+
+    a.resize(a.size() - 2);  // no --frame-orientation
+    CliRun r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err,
+              "exemplar: --exemplar-orientation and --frame-orientation: give both, or neither\n");
+    ASSERT_TRUE(save_image(Image(64, 64, 1, 0.0f), path("OS.png")).ok());
+    a[a.size() - 1] = path("OS.png");
+    a.insert(a.end(), {"--frame-orientation", path("O/%04d.exr")});
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --exemplar-orientation " + path("OS.png") +
+                         ": an orientation field holds angles in radians and needs a float "
+                         "format (EXR or float TIFF)\n");
+}
+
 }  // namespace
 }  // namespace exemplar::noisy
