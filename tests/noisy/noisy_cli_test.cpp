@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 #include "procedural.hpp"
 
 namespace exemplar::noisy {
@@ -206,6 +207,31 @@ TEST_F(NoisyCli, TakesOrientationFields) {
     EXPECT_EQ(r.err, "exemplar: --exemplar-orientation " + path("OS.png") +
                          ": an orientation field holds angles in radians and needs a float "
                          "format (EXR or float TIFF)\n");
+}
+
+TEST_F(NoisyCli, ReadsAVideo) {
+    if (!video::mp4_writing_supported()) GTEST_SKIP() << "no MP4 codec in this OpenCV build";
+    {
+        auto writer = video::Mp4Writer::open(path("clip.mp4"), 32, 32, 24.0);
+        ASSERT_TRUE(writer.ok()) << writer.status().message();
+        for (int n = 0; n < 3; ++n)
+            ASSERT_TRUE(writer->write(testing::cel(32, 32, 12 + n, 14, 9)).ok());
+        ASSERT_TRUE(writer->finish().ok());
+    }
+    std::vector<std::string> a = args("V/%04d.png", "2");
+    a[3] = path("clip.mp4");
+    a[5] = "0";
+    a[7] = "1";
+    const CliRun r = run(a);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("V/%04d.png", 0)));
+    EXPECT_TRUE(fs::exists(path("V/%04d.png", 1)));
+    EXPECT_FALSE(fs::exists(path("V/%04d.png", 2)));
+    a[7] = "5";
+    const CliRun beyond = run(a);
+    EXPECT_EQ(beyond.code, 1);
+    EXPECT_EQ(beyond.err,
+              "exemplar: --first/--last: 0..5 is invalid (the video has frames 0..2)\n");
 }
 
 }  // namespace
