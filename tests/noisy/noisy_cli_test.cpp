@@ -160,6 +160,24 @@ TEST_F(NoisyCli, BadInputsGiveOneLineErrors) {
                          "source with patch-size 5 (at most 6.4)\n");
 
     a = args("E/%04d.png", "1");
+    a.insert(a.end(), {"--filter", "gauss"});
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: filter: 'gauss' is invalid (must be one of box, lanczos3)\n");
+
+    a = args("E/%04d.png", "-1");
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --threads: -1 is invalid (must be >= 0)\n");
+
+    a = args("E/%04d.png", "1");
+    a.erase(a.begin() + 4, a.begin() + 8);  // no --first, --last
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --frames " + path("R/%04d.png") +
+                         ": a frame pattern needs --first and --last\n");
+
+    a = args("E/%04d.png", "1");
     a.erase(a.begin() + 8, a.begin() + 10);  // no --noise
     r = run(a);
     EXPECT_EQ(r.code, 1);
