@@ -9,12 +9,14 @@
 #include <map>
 #include <optional>
 #include <ostream>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "exemplar/core/status.hpp"
 #include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/noisy/noisy.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
 #include "stylize_job.hpp"
@@ -239,6 +241,35 @@ private:
     int width_ = 256;
     int height_ = 256;
     int frames_ = 0;
+};
+
+/// `exemplar noisy`: Color Me Noisy over a frame range (docs/noisy.md).
+class NoisyCommand {
+public:
+    /// Adds the `noisy` subcommand and its flags to `app`.
+    explicit NoisyCommand(CLI::App& app);
+    NoisyCommand(const NoisyCommand&) = delete;
+    NoisyCommand& operator=(const NoisyCommand&) = delete;
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams);
+
+private:
+    using NoisyOptions = noisy::NoisyOptions;
+    Status apply_config();
+    CLI::App* app_ = nullptr;
+    std::string exemplar_, frames_, output_, noise_map_, mp4_, filter_ = "box", config_;
+    std::string exemplar_orientation_, frame_orientation_;
+    int first_ = 0, last_ = 0;
+    bool first_given_ = false, last_given_ = false;
+    double fps_ = 24.0;
+    std::uint64_t seed_ = 1;
+    int threads_ = 0;
+    bool resume_ = true;
+    bool quiet_ = false;
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
+    std::set<std::string> numeric_from_config_;
 };
 
 }  // namespace exemplar::cli

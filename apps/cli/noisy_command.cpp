@@ -1,0 +1,353 @@
+// `exemplar noisy`: Color Me Noisy (Fišer et al. 2014) over a frame range. Frames are
+// independent, so a range runs frames in parallel (one thread each) when there are at least as
+// many frames left as threads, else one frame at a time with the threads inside it; either way
+// every frame is the same bytes. Finished frames are skipped (resume), each output is written
+// atomically, and --mp4 collects the range once every frame exists.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "exemplar/core/parallel.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/noisy/noisy.hpp"
+#include "exemplar/video/frame_sequence.hpp"
+#include "json_file.hpp"
+#include "output_files.hpp"
+#include "progress_bar.hpp"
+
+namespace exemplar::cli {
+
+namespace fs = std::filesystem;
+using noisy::NoisyOptions;
+
+NoisyCommand::NoisyCommand(CLI::App& app) {
+    app_ = app.add_subcommand(
+        "noisy",
+        "Color Me Noisy: re-synthesize a coherent reference animation from a drawing medium "
+        "with controlled temporal noise (docs/noisy.md)");
+    app_->add_option("--exemplar", exemplar_, "Scan of the drawing medium (S)");
+    app_->add_option("--frames", frames_,
+                     "Reference animation: frame pattern (\"R/%04d.png\") or video file");
+    app_->add_option("--first", first_, "First frame number (pattern: required)");
+    app_->add_option("--last", last_, "Last frame number (pattern: required)");
+    app_->add_option("--output,-o", output_, "Output frame pattern (\"T/%04d.png\")");
+    app_->add_option("--noise-map", noise_map_,
+                     "Per-pixel noise strength in [0, 1] scaling --noise: one image, or a "
+                     "frame pattern with the reference's numbers");
+    app_->add_option("--exemplar-orientation", exemplar_orientation_,
+                     "Orientation field of the medium: angles in radians, EXR or float TIFF "
+                     "(needs --frame-orientation)");
+    app_->add_option("--frame-orientation", frame_orientation_,
+                     "Orientation fields of the frames: one file, or a frame pattern with the "
+                     "reference's numbers (needs --exemplar-orientation)");
+    app_->add_option("--mp4", mp4_, "Also write the range as an MP4 file");
+    app_->add_option("--fps", fps_, "Frame rate of --mp4 (default 24)");
+    app_->add_option("--filter", filter_, "Low-pass filter: box (default) or lanczos3");
+    app_->add_option("--seed", seed_, "Random seed: frame i depends only on (seed, i)");
+    app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
+    app_->add_option("--config", config_,
+                     "JSON job file with the same keys as the flags (flags win)");
+    app_->add_flag("--resume,!--no-resume", resume_,
+                   "Skip frames whose output exists (default on)");
+    app_->add_flag("--quiet,-q", quiet_, "No progress bar and no output paths");
+    for (const noisy::NoisyOptionSpec& spec : noisy::noisy_option_specs()) {
+        const NoisyOptions defaults;
+        std::string doc(spec.doc);
+        std::string value = std::to_string(noisy::get_option(defaults, spec));
+        while (value.back() == '0') value.pop_back();
+        if (value.back() == '.') value.pop_back();
+        // --noise has no default on the command line: the noise level is the user's choice.
+        doc += " [" + (spec.unit.empty() ? std::string() : std::string(spec.unit) + ", ") +
+               (spec.name == "noise" ? std::string("required") : "default " + value) + "]";
+        numeric_flags_[std::string(spec.name)] = app_->add_option(
+            "--" + std::string(spec.name), numeric_values_[std::string(spec.name)], doc);
+    }
+}
+
+Status NoisyCommand::apply_config() {
+    if (config_.empty()) return Status::ok();
+    auto json = read_json_object(config_);
+    if (!json.ok()) return json.status();
+    for (const auto& [raw_key, value] : json->items()) {
+        const std::string key = canonical_key(raw_key);
+        CLI::Option* flag = app_->get_option_no_throw("--" + key);
+        if (flag == nullptr || key == "config") {
+            return invalid_argument(config_ + ": unknown key '" + raw_key + "'");
+        }
+        if (flag->count() > 0) continue;  // the command line wins
+        const bool numeric = numeric_flags_.count(key) > 0;
+        if (numeric || key == "first" || key == "last" || key == "seed" || key == "threads" ||
+            key == "fps") {
+            if (!value.is_number()) return type_error(config_, raw_key, "a number");
+        } else if (key == "resume" || key == "quiet") {
+            if (!value.is_boolean()) return type_error(config_, raw_key, "true or false");
+        } else if (!value.is_string()) {
+            return type_error(config_, raw_key, "a string");
+        }
+        if (numeric) {
+            numeric_values_[key] = value.get<double>();
+            numeric_from_config_.insert(key);
+        } else if (key == "first") {
+            first_ = value.get<int>();
+            first_given_ = true;
+        } else if (key == "last") {
+            last_ = value.get<int>();
+            last_given_ = true;
+        } else if (key == "seed") {
+            seed_ = value.get<std::uint64_t>();
+        } else if (key == "threads") {
+            threads_ = value.get<int>();
+        } else if (key == "fps") {
+            fps_ = value.get<double>();
+        } else if (key == "resume") {
+            resume_ = value.get<bool>();
+        } else if (key == "quiet") {
+            quiet_ = value.get<bool>();
+        } else if (key == "exemplar") {
+            exemplar_ = value.get<std::string>();
+        } else if (key == "frames") {
+            frames_ = value.get<std::string>();
+        } else if (key == "output") {
+            output_ = value.get<std::string>();
+        } else if (key == "noise-map") {
+            noise_map_ = value.get<std::string>();
+        } else if (key == "exemplar-orientation") {
+            exemplar_orientation_ = value.get<std::string>();
+        } else if (key == "frame-orientation") {
+            frame_orientation_ = value.get<std::string>();
+        } else if (key == "mp4") {
+            mp4_ = value.get<std::string>();
+        } else if (key == "filter") {
+            filter_ = value.get<std::string>();
+        }
+    }
+    return Status::ok();
+}
+
+Status NoisyCommand::run(const Streams& streams) {
+    first_given_ = app_->get_option("--first")->count() > 0;
+    last_given_ = app_->get_option("--last")->count() > 0;
+    EXEMPLAR_RETURN_IF_ERROR(apply_config());
+    for (const auto& [flag, value] : std::vector<std::pair<const char*, const std::string*>>{
+             {"--exemplar", &exemplar_}, {"--frames", &frames_}, {"--output", &output_}}) {
+        if (value->empty()) return invalid_argument(std::string(flag) + ": is required");
+    }
+    if (numeric_flags_.at("noise")->count() == 0 && numeric_from_config_.count("noise") == 0) {
+        return invalid_argument("--noise: is required (the low-pass strength f in pixels)");
+    }
+
+    // Options, each checked against its range.
+    noisy::NoisyOptions options;
+    for (const noisy::NoisyOptionSpec& spec : noisy::noisy_option_specs()) {
+        const std::string name(spec.name);
+        if (numeric_flags_.at(name)->count() == 0 && numeric_from_config_.count(name) == 0) {
+            continue;
+        }
+        EXEMPLAR_RETURN_IF_ERROR(noisy::set_option(options, spec, numeric_values_.at(name)));
+    }
+    options.seed = seed_;
+    auto filter = noisy::parse_low_pass_filter(filter_);
+    if (!filter.ok()) return filter.status();
+    options.filter = *filter;
+    EXEMPLAR_RETURN_IF_ERROR(noisy::validate(options));
+    if (threads_ < 0)
+        return invalid_argument("--threads: " + std::to_string(threads_) +
+                                " is invalid (must be >= 0)");
+
+    // Inputs: the medium, the reference frames (a missing one is reported now), the map.
+    auto source = load_image(exemplar_);
+    if (!source.ok()) return source.status();
+    const bool is_pattern = frames_.find('%') != std::string::npos;
+    Result<video::FrameSequence> sequence = invalid_argument("--frames: unset");
+    if (is_pattern) {
+        if (!first_given_ || !last_given_) {
+            return invalid_argument("--frames " + frames_ +
+                                    ": a frame pattern needs --first and --last");
+        }
+        sequence = video::FrameSequence::from_pattern(frames_, first_, last_);
+    } else {
+        sequence = video::FrameSequence::from_video(frames_);
+    }
+    if (!sequence.ok()) return sequence.status();
+    const int base = sequence->first_number();
+    const int lo = is_pattern ? first_ : (first_given_ ? first_ : 0);
+    const int hi = is_pattern ? last_ : (last_given_ ? last_ : sequence->size() - 1);
+    if (lo < 0 || hi >= base + sequence->size() || hi < lo) {
+        return invalid_argument("--first/--last: " + std::to_string(lo) + ".." +
+                                std::to_string(hi) + " is invalid (the video has frames 0.." +
+                                std::to_string(sequence->size() - 1) + ")");
+    }
+    if (exemplar_orientation_.empty() != frame_orientation_.empty()) {
+        return invalid_argument(
+            "--exemplar-orientation and --frame-orientation: give both, or neither");
+    }
+    // Angles in radians need a float format (an 8-bit PNG stores only 0..1).
+    auto load_angles = [](const std::string& flag, const std::string& path) -> Result<Image> {
+        const std::string ext = lowercase_extension(path);
+        if (ext != ".exr" && ext != ".tif" && ext != ".tiff") {
+            return invalid_argument(flag + " " + path +
+                                    ": an orientation field holds angles in radians and needs "
+                                    "a float format (EXR or float TIFF)");
+        }
+        auto image = load_image(path);
+        if (!image.ok()) return image.status();
+        if (image->channels() == 1) return image;
+        Image first(image->width(), image->height(), 1);
+        for (int y = 0; y < first.height(); ++y) {
+            for (int x = 0; x < first.width(); ++x) first.at(x, y, 0) = image->at(x, y, 0);
+        }
+        return first;
+    };
+    Image source_orientation;
+    if (!exemplar_orientation_.empty()) {
+        auto angles = load_angles("--exemplar-orientation", exemplar_orientation_);
+        if (!angles.ok()) return angles.status();
+        source_orientation = std::move(*angles);
+    }
+    const bool orientation_is_pattern = frame_orientation_.find('%') != std::string::npos;
+    Image fixed_orientation;
+    if (!frame_orientation_.empty() && !orientation_is_pattern) {
+        auto angles = load_angles("--frame-orientation", frame_orientation_);
+        if (!angles.ok()) return angles.status();
+        fixed_orientation = std::move(*angles);
+    }
+    const bool map_is_pattern = noise_map_.find('%') != std::string::npos;
+    Image fixed_map;
+    if (!noise_map_.empty() && !map_is_pattern) {
+        auto map = load_image(noise_map_);
+        if (!map.ok()) return map.status();
+        fixed_map = std::move(*map);
+    }
+    auto output_path = [&](int number) { return video::format_frame_path(output_, number); };
+    {
+        auto probe = output_path(lo);
+        if (!probe.ok()) return probe.status();
+        EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", *probe));
+        EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", *probe, *source,
+                                                     output_options(*source, exemplar_, *probe)));
+    }
+    if (!mp4_.empty()) EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(mp4_));
+
+    // The frames to make.
+    std::vector<int> todo;
+    for (int n = lo; n <= hi; ++n) {
+        std::error_code ec;
+        if (resume_ && fs::exists(*output_path(n), ec)) continue;
+        todo.push_back(n);
+    }
+    if (todo.empty() && !quiet_) streams.err << "exemplar noisy: every frame of the range exists\n";
+
+    // Reads frame `number` and its noise map; the size of the first frame read is the range's.
+    int width = 0, height = 0;
+    std::string first_name;
+    auto read_frame = [&](int number) -> Result<noisy::NoisyFrame> {
+        auto image = sequence->read(number - base);
+        if (!image.ok()) return image.status();
+        const std::string name = sequence->frame_name(number - base);
+        if (width == 0) {
+            width = image->width();
+            height = image->height();
+            first_name = name;
+        } else if (image->width() != width || image->height() != height) {
+            return invalid_argument(name + ": is " + std::to_string(image->width()) + "x" +
+                                    std::to_string(image->height()) + " but " + first_name +
+                                    " is " + std::to_string(width) + "x" + std::to_string(height));
+        }
+        noisy::NoisyFrame frame{std::move(*image), fixed_map, fixed_orientation};
+        if (orientation_is_pattern) {
+            auto path = video::format_frame_path(frame_orientation_, number);
+            if (!path.ok()) return path.status();
+            auto angles = load_angles("--frame-orientation", *path);
+            if (!angles.ok()) return angles.status();
+            frame.orientation = std::move(*angles);
+        }
+        std::string map_name = noise_map_;
+        if (map_is_pattern) {
+            auto path = video::format_frame_path(noise_map_, number);
+            if (!path.ok()) return path.status();
+            auto map = load_image(*path);
+            if (!map.ok()) return map.status();
+            frame.noise_map = std::move(*map);
+            map_name = *path;
+        }
+        if (!frame.noise_map.empty()) {
+            if (frame.noise_map.channels() > 1) {
+                // A grey image saved as RGB(A): its first channel.
+                Image grey(frame.noise_map.width(), frame.noise_map.height(), 1);
+                for (int y = 0; y < grey.height(); ++y) {
+                    for (int x = 0; x < grey.width(); ++x) {
+                        grey.at(x, y, 0) = frame.noise_map.at(x, y, 0);
+                    }
+                }
+                frame.noise_map = std::move(grey);
+            }
+            if (!frame.noise_map.same_size(frame.reference)) {
+                return invalid_argument(map_name + ": is " +
+                                        std::to_string(frame.noise_map.width()) + "x" +
+                                        std::to_string(frame.noise_map.height()) + " but " + name +
+                                        " is " + std::to_string(frame.reference.width()) + "x" +
+                                        std::to_string(frame.reference.height()));
+            }
+        }
+        return frame;
+    };
+
+    // Batches of frames in parallel (one thread each), or one frame with all threads.
+    const int threads = resolve_threads(threads_);
+    const int batch = static_cast<int>(todo.size()) >= threads ? threads : 1;
+    const SaveOptions save = output_options(*source, exemplar_, *output_path(lo));
+    ProgressBar bar(streams.err, "noisy", streams.err_is_terminal && !quiet_);
+    for (std::size_t start = 0; start < todo.size(); start += static_cast<std::size_t>(batch)) {
+        const std::size_t end = std::min(todo.size(), start + static_cast<std::size_t>(batch));
+        std::vector<noisy::NoisyFrame> inputs;
+        for (std::size_t i = start; i < end; ++i) {
+            auto frame = read_frame(todo[i]);
+            if (!frame.ok()) return frame.status();
+            inputs.push_back(std::move(*frame));
+        }
+        std::vector<Status> statuses(inputs.size());
+        const int inner = batch > 1 ? 1 : threads_;
+        parallel_for(0, static_cast<int>(inputs.size()), batch > 1 ? threads : 1, [&](int i) {
+            const int number = todo[start + static_cast<std::size_t>(i)];
+            auto image = noisy::synthesize_frame(*source, source_orientation,
+                                                 inputs[static_cast<std::size_t>(i)], options,
+                                                 number, RunContext(inner));
+            if (!image.ok()) {
+                statuses[static_cast<std::size_t>(i)] =
+                    Status(image.status().code(),
+                           sequence->frame_name(number - base) + ": " + image.status().message());
+                return;
+            }
+            statuses[static_cast<std::size_t>(i)] =
+                video::write_frame(*image, output_, number, save);
+        });
+        for (const Status& status : statuses) EXEMPLAR_RETURN_IF_ERROR(status);
+        bar.update(static_cast<double>(end) / static_cast<double>(todo.size()),
+                   "frame " + std::to_string(todo[end - 1]));
+    }
+    bar.finish();
+    if (!quiet_ && !todo.empty()) {
+        streams.out << output_ << " (" << todo.size() << " frame" << (todo.size() == 1 ? "" : "s")
+                    << ")\n";
+    }
+
+    if (!mp4_.empty()) {
+        Result<video::Mp4Writer> writer = invalid_argument("--mp4: unset");
+        for (int n = lo; n <= hi; ++n) {
+            auto image = load_image(*output_path(n));
+            if (!image.ok()) return image.status();
+            if (n == lo) {
+                writer = video::Mp4Writer::open(mp4_, image->width(), image->height(), fps_);
+                if (!writer.ok()) return writer.status();
+            }
+            EXEMPLAR_RETURN_IF_ERROR(writer->write(*image));
+        }
+        EXEMPLAR_RETURN_IF_ERROR(writer->finish());
+        if (!quiet_) streams.out << mp4_ << '\n';
+    }
+    return Status::ok();
+}
+
+}  // namespace exemplar::cli

@@ -1,0 +1,368 @@
+// Color Me Noisy (Fišer et al. 2014; thesis chapter 4): per-frame synthesis with a low-passed
+// source pyramid, the target's coarsest level taken from the low-passed reference frame, a
+// random rigid-MLS pre-deformation of the source and a PatchMatch seed per frame.
+//
+// Built on the engine's public API: one synthesize() call per pyramid level (levels = 1), each
+// with its own low-passed source and an initial target upsampled from the level before, so the
+// engine is untouched. Deviations from the chapter:
+// - the M-step is the engine's weighted average whose last vote per level uses the central 3x3
+//   of each patch (SynthesisOptions defaults), not Wexler's mode;
+// - the solution is carried between levels as an image (Lanczos-3 upsampling), not as a
+//   nearest-neighbour field: PatchMatch starts from a random field on every level, which only
+//   adds to the randomness the method wants;
+// - patches are rotated only by orientation fields (§4.3.3), never reflected, and there is no
+//   free rotation search (the chapter allows rotations and reflections in eq. 4.1).
+
+#include "exemplar/noisy/noisy.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "exemplar/core/rng.hpp"
+#include "exemplar/filters/resample.hpp"
+#include "exemplar/noisy/mls.hpp"
+#include "exemplar/synth/synthesize.hpp"
+
+namespace exemplar::noisy {
+
+namespace {
+
+using O = NoisyOptions;
+
+const std::array<NoisyOptionSpec, 8> kSpecs{{
+    {"noise",
+     "Low-pass strength f: width of the box separating the reference's low frequencies (kept) "
+     "from the details (re-synthesized at random in every frame). Larger = more temporal "
+     "noise; <= 1 = the least (finest level only). At most min side / patch-size.",
+     "px", 0, 256, &O::noise},
+    {"level-ratio",
+     "Ratio of the sampling rates of consecutive pyramid levels between strength f and 1 "
+     "(chapter: 0.85).",
+     "", 0.5, 0.95, &O::level_ratio},
+    {"patch-size", "Patch width; odd (chapter: 7).", "px", 3, 31, &O::patch_size},
+    {"em-iterations", "Search+vote iterations per pyramid level (chapter: 4).", "iterations", 1,
+     100, &O::em_iterations},
+    {"search-iterations", "PatchMatch iterations per nearest-neighbour search (chapter: 8).",
+     "iterations", 1, 100, &O::search_iterations},
+    {"lattice-spacing",
+     "Spacing of the control lattice of the random rigid-MLS pre-deformation of the source, "
+     "in source pixels (chapter: 50).",
+     "px", 4, 10000, &O::lattice_spacing_px},
+    {"min-offset",
+     "Shortest random move of a lattice point (chapter: 15); 0 with max-offset 0 turns the "
+     "pre-deformation off.",
+     "px", 0, 1000, &O::min_offset_px},
+    {"max-offset", "Longest random move of a lattice point (chapter: 25).", "px", 0, 1000,
+     &O::max_offset_px},
+}};
+
+bool same_name(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const char x = a[i] == '_' ? '-' : a[i], y = b[i] == '_' ? '-' : b[i];
+        if (x != y) return false;
+    }
+    return true;
+}
+
+std::string format_number(double value) {
+    std::string s = std::to_string(value);
+    if (s.find('.') != std::string::npos) {
+        while (!s.empty() && s.back() == '0') s.pop_back();
+        if (!s.empty() && s.back() == '.') s.pop_back();
+    }
+    return s;
+}
+
+std::string size_str(const Image& image) {
+    return std::to_string(image.width()) + "x" + std::to_string(image.height());
+}
+
+int scaled_size(int size, double strength) {
+    return std::max(1, static_cast<int>(std::lround(size / strength)));
+}
+
+// The reference in the source's channel count: grey replicated, alpha dropped or added as 1.
+Result<Image> to_channels(const Image& image, int channels) {
+    const int have = image.channels();
+    if (have == channels) return image;
+    const int colour_have = have == 2 || have == 4 ? have - 1 : have;
+    const int colour_want = channels == 2 || channels == 4 ? channels - 1 : channels;
+    if (colour_have != colour_want && colour_have != 1) {
+        return invalid_argument("reference: has " + std::to_string(have) +
+                                " channels but the source has " + std::to_string(channels) +
+                                " (give grey, RGB or RGBA frames for an RGB or RGBA source)");
+    }
+    Image out(image.width(), image.height(), channels);
+    for (int y = 0; y < image.height(); ++y) {
+        for (int x = 0; x < image.width(); ++x) {
+            const float* in = image.pixel(x, y);
+            float* o = out.pixel(x, y);
+            for (int c = 0; c < colour_want; ++c) o[c] = in[colour_have == 1 ? 0 : c];
+            if (colour_want != channels) o[channels - 1] = colour_have != have ? in[have - 1] : 1;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string_view to_string(LowPassFilter filter) {
+    return filter == LowPassFilter::Box ? "box" : "lanczos3";
+}
+
+Result<LowPassFilter> parse_low_pass_filter(std::string_view name) {
+    if (name == "box") return LowPassFilter::Box;
+    if (name == "lanczos3") return LowPassFilter::Lanczos3;
+    return invalid_argument("filter: '" + std::string(name) +
+                            "' is invalid (must be one of box, lanczos3)");
+}
+
+std::span<const NoisyOptionSpec> noisy_option_specs() {
+    return kSpecs;
+}
+
+const NoisyOptionSpec* find_noisy_option(std::string_view name) {
+    for (const NoisyOptionSpec& spec : kSpecs) {
+        if (same_name(spec.name, name)) return &spec;
+    }
+    return nullptr;
+}
+
+double get_option(const NoisyOptions& options, const NoisyOptionSpec& spec) {
+    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+}
+
+Status set_option(NoisyOptions& options, const NoisyOptionSpec& spec, double value) {
+    const bool integral = !std::holds_alternative<float NoisyOptions::*>(spec.field);
+    const bool odd_rule = spec.name == "patch-size";
+    const bool bad = !std::isfinite(value) || value < spec.min || value > spec.max ||
+                     (integral && value != std::floor(value)) ||
+                     (odd_rule && static_cast<long long>(value) % 2 == 0);
+    if (bad) {
+        std::string message(spec.name);
+        message.append(": ").append(format_number(value)).append(" is invalid (must be ");
+        if (odd_rule) message.append("odd, ");
+        if (integral && !odd_rule) message.append("an integer, ");
+        message.append(format_number(spec.min)).append("..").append(format_number(spec.max));
+        message.append(")");
+        return invalid_argument(std::move(message));
+    }
+    std::visit(
+        [&](auto field) {
+            using T = std::remove_reference_t<decltype(options.*field)>;
+            options.*field = static_cast<T>(value);
+        },
+        spec.field);
+    return Status::ok();
+}
+
+Status validate(const NoisyOptions& options) {
+    for (const NoisyOptionSpec& spec : kSpecs) {
+        if (std::holds_alternative<std::uint64_t NoisyOptions::*>(spec.field)) continue;
+        NoisyOptions copy = options;
+        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
+    }
+    if (options.min_offset_px > options.max_offset_px) {
+        return invalid_argument("min-offset: " + format_number(options.min_offset_px) +
+                                " is invalid (must be at most max-offset, " +
+                                format_number(options.max_offset_px) + ")");
+    }
+    if (options.filter != LowPassFilter::Box && options.filter != LowPassFilter::Lanczos3) {
+        return invalid_argument("filter: is invalid (must be one of box, lanczos3)");
+    }
+    return Status::ok();
+}
+
+std::vector<double> level_strengths(double noise, double level_ratio) {
+    if (!(noise > 1.0)) return {1.0};
+    // The fewest steps from f to 1 whose ratio is at least level_ratio.
+    const int steps =
+        std::max(1, static_cast<int>(std::ceil(std::log(noise) / -std::log(level_ratio) - 1e-9)));
+    std::vector<double> strengths(static_cast<std::size_t>(steps) + 1);
+    for (int k = 0; k <= steps; ++k) {
+        strengths[static_cast<std::size_t>(k)] =
+            k == steps ? 1.0 : std::pow(noise, static_cast<double>(steps - k) / steps);
+    }
+    return strengths;
+}
+
+Image low_pass(const Image& image, double strength, LowPassFilter filter, int threads) {
+    if (strength <= 1.0) return image;
+    return resize(
+        image, scaled_size(image.width(), strength), scaled_size(image.height(), strength),
+        filter == LowPassFilter::Box ? ResampleFilter::Box : ResampleFilter::Lanczos3, threads);
+}
+
+Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
+                               const NoisyOptions& options, std::int64_t frame_index,
+                               const RunContext& context) {
+    return synthesize_frame(source, Image(), frame, options, frame_index, context);
+}
+
+Result<Image> synthesize_frame(const Image& source, const Image& source_orientation,
+                               const NoisyFrame& frame, const NoisyOptions& options,
+                               std::int64_t frame_index, const RunContext& context) {
+    // Check the inputs.
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    if (source.empty()) return invalid_argument("source: is empty");
+    if (source.channels() > 4) {
+        return invalid_argument("source: has " + std::to_string(source.channels()) +
+                                " channels (must be 1..4)");
+    }
+    if (!all_finite(source)) return invalid_argument("source: contains NaN or infinity");
+    if (frame.reference.empty()) return invalid_argument("reference: is empty");
+    if (!all_finite(frame.reference)) {
+        return invalid_argument("reference: contains NaN or infinity");
+    }
+    Result<Image> converted = to_channels(frame.reference, source.channels());
+    if (!converted.ok()) return converted.status();
+    const Image& reference = converted.value();
+    const int width = reference.width(), height = reference.height();
+    if (!frame.noise_map.empty()) {
+        if (frame.noise_map.channels() != 1 || !frame.noise_map.same_size(reference)) {
+            return invalid_argument("noise map: is " + size_str(frame.noise_map) + " with " +
+                                    std::to_string(frame.noise_map.channels()) +
+                                    " channels (must be 1 channel, " + size_str(reference) +
+                                    " like the reference)");
+        }
+        for (float v : frame.noise_map.data()) {
+            if (!(v >= 0.0f && v <= 1.0f)) {
+                return invalid_argument("noise map: value " + format_number(v) +
+                                        " is invalid (must be 0..1)");
+            }
+        }
+    }
+    const bool oriented = !source_orientation.empty();
+    if (oriented != !frame.orientation.empty()) {
+        return invalid_argument(
+            "orientation: give both the source's and the frame's orientation field, or neither");
+    }
+    if (oriented) {
+        if (source_orientation.channels() != 1 || !source_orientation.same_size(source)) {
+            return invalid_argument("source orientation: is " + size_str(source_orientation) +
+                                    " with " + std::to_string(source_orientation.channels()) +
+                                    " channels (must be 1 channel, " + size_str(source) +
+                                    " like the source)");
+        }
+        if (frame.orientation.channels() != 1 || !frame.orientation.same_size(reference)) {
+            return invalid_argument("frame orientation: is " + size_str(frame.orientation) +
+                                    " with " + std::to_string(frame.orientation.channels()) +
+                                    " channels (must be 1 channel, " + size_str(reference) +
+                                    " like the reference)");
+        }
+        if (!all_finite(source_orientation) || !all_finite(frame.orientation)) {
+            return invalid_argument("orientation: contains NaN or infinity");
+        }
+    }
+    const std::vector<double> strengths = level_strengths(options.noise, options.level_ratio);
+    const int min_side = std::min({width, height, source.width(), source.height()});
+    // The coarsest level must hold a (rotated) patch's footprint.
+    const int radius = options.patch_size / 2;
+    const int need = oriented ? 2 * static_cast<int>(std::ceil(radius * std::sqrt(2.0))) + 1
+                              : options.patch_size;
+    if (scaled_size(min_side, strengths.front()) < need) {
+        return invalid_argument("noise: " + format_number(options.noise) +
+                                " is too strong for the " + size_str(reference) +
+                                " reference and the " + size_str(source) +
+                                " source with patch-size " + std::to_string(options.patch_size) +
+                                (oriented ? " and rotated patches" : "") + " (at most " +
+                                format_number(std::floor(100.0 * min_side / need) / 100.0) + ")");
+    }
+
+    // Randomly pre-deform the source (§4.3.2) so features do not fuse between frames.
+    const int threads = context.threads;
+    const auto index = static_cast<std::uint64_t>(frame_index);
+    Image deformed = source;
+    Image deformed_orientation = source_orientation;
+    if (options.max_offset_px > 0.0f) {
+        const ControlPoints lattice = jittered_lattice(
+            source.width(), source.height(), options.lattice_spacing_px, options.min_offset_px,
+            options.max_offset_px, hash_keys(options.seed, index, 1));
+        const double smoothing = lattice_smoothing_px(options.lattice_spacing_px);
+        deformed = deform_rigid(source, lattice, smoothing, threads);
+        if (oriented) {
+            deformed_orientation =
+                deform_rigid_angles(source_orientation, lattice, smoothing, threads);
+        }
+    }
+
+    SynthesisOptions engine;
+    engine.patch_size = options.patch_size;
+    engine.levels = 1;
+    engine.em_iterations = engine.finest_em_iterations = options.em_iterations;
+    engine.second_finest_em_iterations = options.em_iterations;
+    engine.search_iterations = engine.warm_search_iterations = options.search_iterations;
+    engine.finest_first_round_iterations = options.search_iterations;
+    engine.usage = UsageStrategy::None;
+    RunContext inner(threads);
+    inner.cancel = context.cancel;
+
+    // Coarse to fine; the coarsest target level is the low-passed reference (eq. 4.2).
+    const int levels = static_cast<int>(strengths.size());
+    Image current;
+    Image previous_active;
+    for (int k = 0; k < levels; ++k) {
+        if (context.cancelled()) return cancelled();
+        const double strength = strengths[static_cast<std::size_t>(k)];
+        const int tw = scaled_size(width, strength), th = scaled_size(height, strength);
+        Image start = low_pass(reference, strength, options.filter, threads);
+
+        // Pixels whose own strength f_p reaches this level's are synthesized (§4.3.3); the
+        // others hold the low-passed reference until their level comes.
+        Image active;
+        bool all_active = true, none_active = true;
+        if (!frame.noise_map.empty()) {
+            active = resize(frame.noise_map, tw, th, ResampleFilter::Box, threads);
+            for (float& v : active.data()) {
+                v = (k + 1 == levels || options.noise * v >= strength * (1.0 - 1e-6)) ? 1.0f : 0.0f;
+                all_active = all_active && v > 0.5f;
+                none_active = none_active && v < 0.5f;
+            }
+        } else {
+            none_active = false;
+        }
+        if (k > 0) {
+            const Image up = resize(current, tw, th, ResampleFilter::Lanczos3, threads);
+            const Image was = previous_active.empty()
+                                  ? Image()
+                                  : resize(previous_active, tw, th, ResampleFilter::Nearest, 1);
+            for (int y = 0; y < th; ++y) {
+                for (int x = 0; x < tw; ++x) {
+                    if (!was.empty() && was.at(x, y, 0) < 0.5f) continue;
+                    std::copy_n(up.pixel(x, y), up.channels(), start.pixel(x, y));
+                }
+            }
+        }
+        previous_active = active;
+        if (none_active) {
+            current = std::move(start);
+            continue;
+        }
+
+        SynthesisInput input;
+        input.style = low_pass(deformed, strength, options.filter, threads);
+        input.target_width = tw;
+        input.target_height = th;
+        input.initial_target = std::move(start);
+        if (!all_active) input.target_mask = std::move(active);
+        if (oriented) {
+            input.source_orientation = resize(deformed_orientation, input.style.width(),
+                                              input.style.height(), ResampleFilter::Nearest, 1);
+            input.target_orientation =
+                resize(frame.orientation, tw, th, ResampleFilter::Nearest, 1);
+        }
+        // The engine's seeds are exact in a double (its option table): 53 bits.
+        engine.seed = hash_keys(options.seed, index, 2, static_cast<std::uint64_t>(k)) >> 11;
+        Result<SynthesisResult> result = synthesize(std::move(input), engine, inner);
+        if (!result.ok()) return result.status();
+        current = std::move(result.value().image);
+        context.report(ProgressEvent{"level", k, levels, 0, 0, (k + 1.0) / levels});
+    }
+    return current;
+}
+
+}  // namespace exemplar::noisy

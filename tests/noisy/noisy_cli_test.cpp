@@ -1,0 +1,256 @@
+// `exemplar noisy` run in-process: outputs, resume, thread independence, job files, errors.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/video/frame_sequence.hpp"
+#include "procedural.hpp"
+
+namespace exemplar::noisy {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int code = 0;
+    std::string out, err;
+};
+
+CliRun run(std::vector<std::string> args) {
+    args.insert(args.begin(), {"exemplar", "noisy"});
+    std::vector<const char*> argv;
+    for (const std::string& a : args) argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    const int code = cli::run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+    return {code, out.str(), err.str()};
+}
+
+std::string bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+class NoisyCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("exemplar_noisy_cli_" +
+                std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "R");
+        ASSERT_TRUE(save_image(testing::medium(64, 64), (dir_ / "S.png").string()).ok());
+        for (int n = 1; n <= 4; ++n) {
+            const Image cel = testing::cel(32, 32, 12 + n, 14, 9);
+            ASSERT_TRUE(save_image(cel, path("R/%04d.png", n)).ok());
+        }
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string path(const std::string& pattern, int n = -1) const {
+        if (n < 0) return (dir_ / pattern).string();
+        char name[64];
+        std::snprintf(name, sizeof name, pattern.c_str(), n);
+        return (dir_ / name).string();
+    }
+    // A quick run: small patches and few iterations keep the test fast.
+    std::vector<std::string> args(const std::string& output, const std::string& threads) const {
+        return {"--exemplar",
+                path("S.png"),
+                "--frames",
+                path("R/%04d.png"),
+                "--first",
+                "1",
+                "--last",
+                "4",
+                "--noise",
+                "3",
+                "--output",
+                path(output),
+                "--patch-size",
+                "5",
+                "--em-iterations",
+                "2",
+                "--search-iterations",
+                "3",
+                "-j",
+                threads,
+                "-q"};
+    }
+    fs::path dir_;
+};
+
+TEST_F(NoisyCli, WritesEveryFrameIdenticallyForAnyThreadCount) {
+    const CliRun one = run(args("A/%04d.png", "1"));
+    ASSERT_EQ(one.code, 0) << one.err;
+    const CliRun two = run(args("B/%04d.png", "2"));
+    ASSERT_EQ(two.code, 0) << two.err;
+    for (int n = 1; n <= 4; ++n) {
+        const std::string a = bytes(path("A/%04d.png", n)), b = bytes(path("B/%04d.png", n));
+        EXPECT_FALSE(a.empty());
+        EXPECT_EQ(a, b) << "frame " << n;
+    }
+    EXPECT_NE(bytes(path("A/%04d.png", 1)), bytes(path("A/%04d.png", 2)));
+}
+
+TEST_F(NoisyCli, ResumesAndSplitsRangesWithoutChangingAFrame) {
+    ASSERT_EQ(run(args("A/%04d.png", "2")).code, 0);
+    // Frames 2..3 alone, into another folder: the same bytes as in the whole range.
+    std::vector<std::string> part = args("B/%04d.png", "1");
+    part[5] = "2";
+    part[7] = "3";
+    ASSERT_EQ(run(part).code, 0);
+    EXPECT_EQ(bytes(path("B/%04d.png", 2)), bytes(path("A/%04d.png", 2)));
+    EXPECT_FALSE(fs::exists(path("B/%04d.png", 1)));
+    // Resume: an existing frame is kept as it is.
+    { std::ofstream(path("A/%04d.png", 3), std::ios::binary) << "kept"; }
+    std::vector<std::string> again = args("A/%04d.png", "2");
+    again.pop_back();  // not quiet
+    const CliRun resumed = run(again);
+    ASSERT_EQ(resumed.code, 0) << resumed.err;
+    EXPECT_EQ(bytes(path("A/%04d.png", 3)), "kept");
+}
+
+TEST_F(NoisyCli, ReadsAJobFileAndFlagsWin) {
+    {
+        std::ofstream job(path("job.json"));
+        job << "{\"exemplar\": \"" << path("S.png") << "\", \"frames\": \"" << path("R/%04d.png")
+            << "\", \"first\": 1, \"last\": 2, \"noise\": 3, \"output\": \"" << path("J/%04d.png")
+            << "\", \"patch_size\": 5, \"em-iterations\": 2, \"search-iterations\": 3}";
+    }
+    const CliRun from_job = run({"--config", path("job.json"), "--last", "1", "-q"});
+    ASSERT_EQ(from_job.code, 0) << from_job.err;
+    EXPECT_TRUE(fs::exists(path("J/%04d.png", 1)));
+    EXPECT_FALSE(fs::exists(path("J/%04d.png", 2)));
+    {
+        std::ofstream job(path("bad.json"));
+        job << "{\"noise\": 3, \"colour\": 1}";
+    }
+    const CliRun bad = run({"--config", path("bad.json")});
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_EQ(bad.err, "exemplar: " + path("bad.json") + ": unknown key 'colour'\n");
+}
+
+TEST_F(NoisyCli, BadInputsGiveOneLineErrors) {
+    std::vector<std::string> a = args("E/%04d.png", "1");
+    a[7] = "5";  // --last 5: R/0005.png is missing
+    CliRun r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("R/%04d.png", 5) + ": no such file (frame 5 of 1..5)\n");
+
+    a = args("E/%04d.png", "1");
+    a[9] = "-2";
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: noise: -2 is invalid (must be 0..256)\n");
+
+    a = args("E/%04d.png", "1");
+    a[9] = "9";
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("R/%04d.png", 1) +
+                         ": noise: 9 is too strong for the 32x32 reference and the 64x64 "
+                         "source with patch-size 5 (at most 6.4)\n");
+
+    a = args("E/%04d.png", "1");
+    a.insert(a.end(), {"--filter", "gauss"});
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: filter: 'gauss' is invalid (must be one of box, lanczos3)\n");
+
+    a = args("E/%04d.png", "-1");
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --threads: -1 is invalid (must be >= 0)\n");
+
+    a = args("E/%04d.png", "1");
+    a.erase(a.begin() + 4, a.begin() + 8);  // no --first, --last
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --frames " + path("R/%04d.png") +
+                         ": a frame pattern needs --first and --last\n");
+
+    a = args("E/%04d.png", "1");
+    a.erase(a.begin() + 8, a.begin() + 10);  // no --noise
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --noise: is required (the low-pass strength f in pixels)\n");
+
+    ASSERT_TRUE(save_image(Image(16, 16, 1, 0.5f), path("map.png")).ok());
+    a = args("E/%04d.png", "1");
+    a.insert(a.end(), {"--noise-map", path("map.png")});
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("map.png") + ": is 16x16 but " + path("R/%04d.png", 1) +
+                         " is 32x32\n");
+
+    ASSERT_TRUE(save_image(testing::cel(40, 32, 12, 14, 9), path("R/%04d.png", 3)).ok());
+    r = run(args("E/%04d.png", "1"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("R/%04d.png", 3) + ": is 40x32 but " +
+                         path("R/%04d.png", 1) + " is 32x32\n");
+}
+
+TEST_F(NoisyCli, TakesOrientationFields) {
+    ASSERT_TRUE(save_image(Image(64, 64, 1, 0.0f), path("OS.exr")).ok());
+    fs::create_directories(dir_ / "O");
+    for (int n = 1; n <= 2; ++n) {
+        ASSERT_TRUE(save_image(Image(32, 32, 1, 0.5f * n), path("O/%04d.exr", n)).ok());
+    }
+    std::vector<std::string> a = args("T/%04d.png", "2");
+    a[7] = "2";
+    a.insert(a.end(),
+             {"--exemplar-orientation", path("OS.exr"), "--frame-orientation", path("O/%04d.exr")});
+    const CliRun oriented = run(a);
+    ASSERT_EQ(oriented.code, 0) << oriented.err;
+    EXPECT_TRUE(fs::exists(path("T/%04d.png", 2)));
+
+    a.resize(a.size() - 2);  // no --frame-orientation
+    CliRun r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err,
+              "exemplar: --exemplar-orientation and --frame-orientation: give both, or neither\n");
+    ASSERT_TRUE(save_image(Image(64, 64, 1, 0.0f), path("OS.png")).ok());
+    a[a.size() - 1] = path("OS.png");
+    a.insert(a.end(), {"--frame-orientation", path("O/%04d.exr")});
+    r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: --exemplar-orientation " + path("OS.png") +
+                         ": an orientation field holds angles in radians and needs a float "
+                         "format (EXR or float TIFF)\n");
+}
+
+TEST_F(NoisyCli, ReadsAVideo) {
+    if (!video::mp4_writing_supported()) GTEST_SKIP() << "no MP4 codec in this OpenCV build";
+    {
+        auto writer = video::Mp4Writer::open(path("clip.mp4"), 32, 32, 24.0);
+        ASSERT_TRUE(writer.ok()) << writer.status().message();
+        for (int n = 0; n < 3; ++n)
+            ASSERT_TRUE(writer->write(testing::cel(32, 32, 12 + n, 14, 9)).ok());
+        ASSERT_TRUE(writer->finish().ok());
+    }
+    std::vector<std::string> a = args("V/%04d.png", "2");
+    a[3] = path("clip.mp4");
+    a[5] = "0";
+    a[7] = "1";
+    const CliRun r = run(a);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("V/%04d.png", 0)));
+    EXPECT_TRUE(fs::exists(path("V/%04d.png", 1)));
+    EXPECT_FALSE(fs::exists(path("V/%04d.png", 2)));
+    a[7] = "5";
+    const CliRun beyond = run(a);
+    EXPECT_EQ(beyond.code, 1);
+    EXPECT_EQ(beyond.err,
+              "exemplar: --first/--last: 0..5 is invalid (the video has frames 0..2)\n");
+}
+
+}  // namespace
+}  // namespace exemplar::noisy
