@@ -59,6 +59,7 @@ struct CommandLine {
     FlowCommand flow{app};
     BeautifyCommand beautify{app};
     AnimateCommand animate{app};
+    DirectionsCommand directions{app};
 };
 
 // roff text: a backslash as \e, a hyphen as \- (so flags copy and search as typed), and a
@@ -169,6 +170,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.beautify.run(streams);
         } else if (cli.animate.parsed()) {
             status = cli.animate.run(streams);
+        } else if (cli.directions.parsed()) {
+            status = cli.directions.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "exemplar/core/status.hpp"
+#include "exemplar/paint/directions.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
 #include "stylize_job.hpp"
@@ -154,6 +155,26 @@ private:
     CLI::App* app_ = nullptr;
     std::string from_, to_, output_, backward_, occlusion_, preset_ = "medium";
     float epsilon_ = 2.0f;
+    bool quiet_ = false;
+};
+
+/// `exemplar directions`: the signed direction field of an exemplar and its preview.
+class DirectionsCommand {
+public:
+    /// Adds the `directions` subcommand and its flags to `app`.
+    explicit DirectionsCommand(CLI::App& app);
+    DirectionsCommand(const DirectionsCommand&) = delete;
+    DirectionsCommand& operator=(const DirectionsCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string input_, output_, preview_;
+    paint::DirectionAnalysisOptions options_;
+    int threads_ = 0;
     bool quiet_ = false;
 };
 
