@@ -14,6 +14,7 @@
 
 #include "exemplar/core/status.hpp"
 #include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/paint.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
 #include "stylize_job.hpp"
@@ -174,6 +175,29 @@ private:
     CLI::App* app_ = nullptr;
     std::string input_, output_, preview_;
     paint::DirectionAnalysisOptions options_;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
+/// `exemplar paint`: Brushables texture painting along strokes from a JSON or SVG file.
+class PaintCommand {
+public:
+    /// Adds the `paint` subcommand and its flags to `app`.
+    explicit PaintCommand(CLI::App& app);
+    PaintCommand(const PaintCommand&) = delete;
+    PaintCommand& operator=(const PaintCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string source_, source_mask_, source_directions_, strokes_, output_, canvas_;
+    std::string save_directions_;
+    int width_ = 0;
+    int height_ = 0;
+    paint::PaintOptions options_;
     int threads_ = 0;
     bool quiet_ = false;
 };
