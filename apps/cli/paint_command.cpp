@@ -140,6 +140,14 @@ PaintCommand::PaintCommand(CLI::App& parent) {
     app_->add_option("--height", height_, "Canvas height in px (or from --canvas)");
     app_->add_option("--output,-o", output_, "Result: RGBA image (PNG, TIFF, EXR)")->required();
     app_->add_option("--canvas", canvas_, "Background to paint over (RGB or RGBA)");
+    app_->add_option("--shape-weight", options_.shape_weight,
+                     "Weight lambda of the Shape Hint against the colour distance (0 = off, "
+                     "..1000); default 25");
+    app_->add_option("--edge-extent", options_.edge_extent_px,
+                     "How deep boundary effects reach into the texture, in px: the Shape Hint's "
+                     "radius (1..256); default 16");
+    app_->add_option("--shape-bins", options_.shape_bins,
+                     "Bins on the Shape Hint's ring (4..32); default 8");
     app_->add_option("--alpha-weight", options_.alpha_weight,
                      "Weight of alpha against each colour channel (0..100); default 3");
     app_->add_option("--vote-coherence", options_.vote_coherence,

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/shape_hint.hpp"
 #include "exemplar/synth/synthesize.hpp"
 
 namespace exemplar::paint {
@@ -168,6 +169,18 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     in.source_orientation = std::move(exemplar->angles);
     in.target_orientation = direction_angles(canvas.directions());
 
+    if (options.shape_weight > 0.0f) {
+        const ShapeHintOptions hint{options.edge_extent_px, options.shape_bins};
+        const float area = static_cast<float>(options.patch_size * options.patch_size);
+        in.guides.push_back(
+            {"shape hint",
+             shape_hint(shape_edges(exemplar->mask), in.source_orientation, hint, context.threads),
+             shape_hint(shape_edges(canvas.coverage()), in.target_orientation, hint,
+                        context.threads),
+             options.shape_weight / area,
+             {}});
+    }
+
     SynthesisOptions so;
     so.patch_size = options.patch_size;
     so.seed = options.seed;
@@ -198,6 +211,11 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
 }  // namespace
 
 Status validate(const PaintOptions& o) {
+    if (!(o.shape_weight >= 0.0f && o.shape_weight <= 1000.0f)) {
+        return invalid_argument("shape-weight: " + std::to_string(o.shape_weight) +
+                                " is invalid (must be 0..1000)");
+    }
+    EXEMPLAR_RETURN_IF_ERROR(validate(ShapeHintOptions{o.edge_extent_px, o.shape_bins}));
     if (!(o.alpha_weight >= 0.0f && o.alpha_weight <= 100.0f)) {
         return invalid_argument("alpha-weight: " + std::to_string(o.alpha_weight) +
                                 " is invalid (must be 0..100)");

@@ -175,7 +175,9 @@ double mean_coherent_region(const Nnf& nnf, const Image& coverage) {
 
 TEST(Paint, CoherenceWeightGivesLargerCoherentRegions) {
     // Brushables Fig. 7: with rotations (a curved stroke) the coherence-weighted vote lets
-    // larger coherently mapped areas form.
+    // larger coherently mapped areas form. Measured with the Shape Hint off: with it on (the
+    // default) the regions are larger either way and the coherence weight made no measurable
+    // difference (17.8 against 18.1 px on these seeds).
     const PaintSource source = striped_blob(64, 30);
     PaintCanvas canvas(96, 96);
     ASSERT_TRUE(canvas.add_stroke(stroke({{10, 80}, {30, 30}, {70, 15}, {88, 60}}, 30)).ok());
@@ -183,6 +185,7 @@ TEST(Paint, CoherenceWeightGivesLargerCoherentRegions) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
         PaintOptions options;
         options.seed = seed;
+        options.shape_weight = 0.0f;
         const auto a = paint(source, canvas, options, RunContext(2));
         options.vote_coherence = 0.0f;
         const auto b = paint(source, canvas, options, RunContext(2));

@@ -9,6 +9,10 @@
 /// - alpha as a synthesized channel with weight `alpha_weight` (3 in the paper); the colours are
 ///   synthesized premultiplied by alpha, so fully transparent pixels compare equal whatever RGB
 ///   the file stores there, and un-premultiplied in the output;
+/// - edge awareness: Shape Hints (shape_hint.hpp) of the exemplar's mask and of the painted
+///   region, each in its own direction's frame, as a guide weighted λ / patch_size² (the guide's
+///   squared differences are summed over the patch, ≈ patch_size² times the centre's, so the
+///   total is ≈ λ·D_shape of eq. 4);
 /// - the coherence-weighted vote (eq. 8, σ_c² = `vote_coherence`);
 /// - only exemplar patches centred on the exemplar's shape (alpha > 0 or the given mask) are used.
 /// The output is RGBA, transparent outside the painted region.
@@ -37,6 +41,14 @@ struct PaintSource {
 
 /// Options of `paint`. Defaults are the paper's (§3.3-3.4) unless noted.
 struct PaintOptions {
+    /// λ of eq. 4: weight of the Shape Hint distance against the colour patch distance. Default
+    /// 25 (the paper: the number of pixels in a patch); 0 turns the Shape Hint off; 0..1000.
+    float shape_weight = 25.0f;
+    /// Edge extent in pixels: the Shape Hint's ring radius, how deep boundary effects reach
+    /// into the texture (the paper leaves it to the user). Default 16; 1..256.
+    float edge_extent_px = 16.0f;
+    /// Bins on the Shape Hint's ring. Default 8; 4..32.
+    int shape_bins = 8;
     /// Weight of the alpha channel's squared differences relative to each colour channel.
     /// Default 3 (the paper); range 0..100.
     float alpha_weight = 3.0f;
