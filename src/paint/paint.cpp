@@ -29,6 +29,7 @@ struct Exemplar {
     Image style;
     Image mask;
     Image angles;
+    bool has_boundary = false;  // some pixel outside the shape (else nothing to learn there)
 };
 
 Result<Exemplar> prepare(const PaintSource& source, int threads) {
@@ -68,7 +69,10 @@ Result<Exemplar> prepare(const PaintSource& source, int threads) {
         }
     }
     bool any = false;
-    for (float v : e.mask.data()) any = any || v > 0.5f;
+    for (float v : e.mask.data()) {
+        any = any || v > 0.5f;
+        e.has_boundary = e.has_boundary || v <= 0.5f;
+    }
     if (!any) return invalid_argument("source mask: empty (no pixel with alpha > 0 or mask > 0.5)");
 
     if (!source.directions.empty()) {
@@ -138,7 +142,12 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     }
 
     // The region to synthesize: the painted pixels (within the changed rectangle on a repaint).
-    Image region = canvas.coverage();
+    // An exemplar without a boundary (opaque, or a mask covering it) has no boundary effects to
+    // transfer, and transparent surroundings would pull the region's rim towards its darkest
+    // patches (the closest to premultiplied transparent black, at every pyramid level), so the
+    // whole canvas (on a repaint, the whole changed rectangle) is synthesized and cut to the
+    // strokes after.
+    Image region = exemplar->has_boundary ? canvas.coverage() : Image(w, h, 1, 1.0f);
     if (changed != nullptr) {
         const int grow_px = options.patch_size;
         for (int y = 0; y < h; ++y) {
@@ -169,7 +178,7 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     in.source_orientation = std::move(exemplar->angles);
     in.target_orientation = direction_angles(canvas.directions());
 
-    if (options.shape_weight > 0.0f) {
+    if (options.shape_weight > 0.0f && exemplar->has_boundary) {
         const ShapeHintOptions hint{options.edge_extent_px, options.shape_bins};
         const float area = static_cast<float>(options.patch_size * options.patch_size);
         in.guides.push_back(

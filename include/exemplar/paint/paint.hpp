@@ -15,6 +15,9 @@
 ///   total is ≈ λ·D_shape of eq. 4);
 /// - the coherence-weighted vote (eq. 8, σ_c² = `vote_coherence`);
 /// - only exemplar patches centred on the exemplar's shape (alpha > 0 or the given mask) are used.
+/// An exemplar without a boundary (RGB, opaque, or a mask covering all of it) has no boundary
+/// effects to transfer: the whole canvas (on a repaint, the whole changed rectangle) is then
+/// synthesized and cut to the strokes, and the Shape Hint is off.
 /// The output is RGBA, transparent outside the painted region.
 
 #include <cstdint>
