@@ -61,6 +61,8 @@ struct CommandLine {
     AnimateCommand animate{app};
     FluidCommand fluid{app};
     NoisyCommand noisy{app};
+    DirectionsCommand directions{app};
+    PaintCommand paint{app};
 };
 
 // roff text: a backslash as \e, a hyphen as \- (so flags copy and search as typed), and a
@@ -175,6 +177,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.fluid.run(streams);
         } else if (cli.noisy.parsed()) {
             status = cli.noisy.run(streams);
+        } else if (cli.directions.parsed()) {
+            status = cli.directions.run(streams);
+        } else if (cli.paint.parsed()) {
+            status = cli.paint.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

@@ -17,6 +17,8 @@
 #include "exemplar/core/status.hpp"
 #include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/paint.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
 #include "stylize_job.hpp"
@@ -158,6 +160,49 @@ private:
     CLI::App* app_ = nullptr;
     std::string from_, to_, output_, backward_, occlusion_, preset_ = "medium";
     float epsilon_ = 2.0f;
+    bool quiet_ = false;
+};
+
+/// `exemplar directions`: the signed direction field of an exemplar and its preview.
+class DirectionsCommand {
+public:
+    /// Adds the `directions` subcommand and its flags to `app`.
+    explicit DirectionsCommand(CLI::App& app);
+    DirectionsCommand(const DirectionsCommand&) = delete;
+    DirectionsCommand& operator=(const DirectionsCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string input_, output_, preview_;
+    paint::DirectionAnalysisOptions options_;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
+/// `exemplar paint`: Brushables texture painting along strokes from a JSON or SVG file.
+class PaintCommand {
+public:
+    /// Adds the `paint` subcommand and its flags to `app`.
+    explicit PaintCommand(CLI::App& app);
+    PaintCommand(const PaintCommand&) = delete;
+    PaintCommand& operator=(const PaintCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string source_, source_mask_, source_directions_, strokes_, output_, canvas_;
+    std::string save_directions_;
+    int width_ = 0;
+    int height_ = 0;
+    paint::PaintOptions options_;
+    int threads_ = 0;
     bool quiet_ = false;
 };
 

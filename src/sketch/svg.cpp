@@ -416,8 +416,27 @@ std::string element_paths(const tinyxml2::XMLElement* e, std::vector<Path>& out)
     return ok ? "" : "malformed number attribute";
 }
 
+// The element's own stroke-width (attribute or `style` property, in user units), or `inherited`.
+double stroke_width_of(const tinyxml2::XMLElement* e, double inherited) {
+    std::string text;
+    if (const char* style = e->Attribute("style")) {
+        const std::string css = style;
+        const auto at = css.find("stroke-width");
+        if (at != std::string::npos) {
+            const auto colon = css.find(':', at);
+            if (colon != std::string::npos) text = css.substr(colon + 1);
+        }
+    }
+    if (text.empty() && e->Attribute("stroke-width") != nullptr)
+        text = e->Attribute("stroke-width");
+    if (text.empty()) return inherited;
+    char* end = nullptr;
+    const double width = std::strtod(text.c_str(), &end);
+    return end != text.c_str() && std::isfinite(width) && width >= 0.0 ? width : inherited;
+}
+
 std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transform,
-                 Drawing& drawing) {
+                 double parent_stroke_width, Drawing& drawing) {
     for (const tinyxml2::XMLElement* e = parent->FirstChildElement(); e != nullptr;
          e = e->NextSiblingElement()) {
         const std::string name = e->Name();
@@ -428,6 +447,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
             if (!error.empty()) return describe(e) + ": " + error;
         }
         const Affine m = compose(parent_transform, local);
+        const double stroke_width = stroke_width_of(e, parent_stroke_width);
         if (name == "g" || name == "a" || name == "svg" || name == "switch") {
             Affine inner = m;
             if (name == "svg") {  // a nested viewport: its x/y offset
@@ -435,7 +455,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
                 inner = compose(
                     m, Affine::translation({attribute(e, "x", 0, &ok), attribute(e, "y", 0, &ok)}));
             }
-            const std::string error = walk(e, inner, drawing);
+            const std::string error = walk(e, inner, stroke_width, drawing);
             if (!error.empty()) return error;
             continue;
         }
@@ -446,6 +466,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
         for (std::size_t k = 0; k < paths.size(); ++k) {
             drawing.paths.push_back(transformed(paths[k], m));
             drawing.ids.push_back(k == 0 ? id : id + std::string("#") + std::to_string(k));
+            drawing.stroke_widths.push_back(stroke_width * std::sqrt(std::abs(m.determinant())));
         }
     }
     return "";
@@ -507,7 +528,7 @@ Result<Drawing> parse_svg(const std::string& text, const std::string& name) {
         }
     }
     Affine identity;
-    const std::string error = walk(root, identity, drawing);
+    const std::string error = walk(root, identity, stroke_width_of(root, 1.0), drawing);
     if (!error.empty()) return invalid_argument(name + ": " + error);
     return drawing;
 }

@@ -22,6 +22,18 @@ void expect_near(Vec2 a, Vec2 b, double tol = 1e-9) {
     EXPECT_NEAR(a.y, b.y, tol);
 }
 
+TEST(SketchSvg, StrokeWidthsFromAttributesStylesAncestorsAndTransforms) {
+    const Drawing d = parse_ok(
+        R"svg(<path d="M0 0 L1 1"/>)svg"
+        R"svg(<g stroke-width="4"><path d="M0 0 L1 1"/><path style="fill:none;stroke-width:6px" d="M0 0 L1 1"/></g>)svg"
+        R"svg(<g transform="scale(3)"><line stroke-width="2" x1="0" y1="0" x2="1" y2="0"/></g>)svg");
+    ASSERT_EQ(d.stroke_widths.size(), 4u);
+    EXPECT_DOUBLE_EQ(d.stroke_widths[0], 1.0);  // SVG's default
+    EXPECT_DOUBLE_EQ(d.stroke_widths[1], 4.0);  // inherited from the group
+    EXPECT_DOUBLE_EQ(d.stroke_widths[2], 6.0);  // the style property wins
+    EXPECT_DOUBLE_EQ(d.stroke_widths[3], 6.0);  // 2 user units scaled by 3
+}
+
 TEST(SketchSvg, AbsoluteAndRelativeCommands) {
     const Drawing d = parse_ok(
         R"svg(<path id="p" d="M10 10 L20 10 h5 v5 H40 V0 l-5-5 c1 1 2 2 3 3 S10 10 12 12 Q20 20 30 20 t10 0 Z"/>)svg");

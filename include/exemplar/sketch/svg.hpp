@@ -28,6 +28,10 @@ struct Drawing {
     /// Per path: the id of the element it came from ("" if none), with "#k" appended for the
     /// k-th subpath (k ≥ 1) of an element holding several.
     std::vector<std::string> ids;
+    /// Per path: its stroke-width (the element's `stroke-width` attribute or `style` property,
+    /// else its ancestors', else 1, SVG's default) in root user units: scaled by the square root
+    /// of the transform's determinant.
+    std::vector<double> stroke_widths;
 };
 
 /// Parses SVG text. `name` is used in messages. Errors (InvalidArgument): not XML, no `<svg>`

@@ -1,0 +1,268 @@
+// `exemplar paint`: Brushables texture painting (docs/paint.md): strokes from a JSON or SVG file
+// paint a region and its direction field on a canvas, which is filled with the exemplar's texture.
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/paint.hpp"
+#include "exemplar/sketch/svg.hpp"
+#include "output_files.hpp"
+
+namespace exemplar::cli {
+
+namespace {
+
+using nlohmann::json;
+
+bool has_extension(const std::string& path, const std::string& ext) {
+    if (path.size() < ext.size()) return false;
+    std::string tail = path.substr(path.size() - ext.size());
+    for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return tail == ext;
+}
+
+// `[{"points": [[x, y], ...], "width": 40, "comb": false}, ...]`, coordinates in canvas pixels.
+Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& path) {
+    std::ifstream file(path);
+    if (!file) return io_error("--strokes " + path + ": cannot be read");
+    std::stringstream text;
+    text << file.rdbuf();
+    const json doc = json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+    if (doc.is_discarded()) return invalid_argument("--strokes " + path + ": not valid JSON");
+    if (!doc.is_array()) {
+        return invalid_argument("--strokes " + path + ": must be an array of strokes");
+    }
+    std::vector<paint::Stroke> strokes;
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+        const json& s = doc[i];
+        const std::string where = "--strokes " + path + ": stroke " + std::to_string(i) + ": ";
+        if (!s.is_object()) return invalid_argument(where + "must be an object");
+        for (const auto& [key, value] : s.items()) {
+            if (key != "points" && key != "width" && key != "comb") {
+                return invalid_argument(where + "unknown key '" + key +
+                                        "' (known: points, width, comb)");
+            }
+        }
+        paint::Stroke stroke;
+        if (!s.contains("points") || !s["points"].is_array()) {
+            return invalid_argument(where + "'points' must be an array of [x, y]");
+        }
+        for (const json& p : s["points"]) {
+            if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+                return invalid_argument(where + "'points' must be an array of [x, y]");
+            }
+            stroke.points.push_back({p[0].get<float>(), p[1].get<float>()});
+        }
+        if (s.contains("width")) {
+            if (!s["width"].is_number())
+                return invalid_argument(where + "'width' must be a number");
+            stroke.width_px = s["width"].get<float>();
+        }
+        if (s.contains("comb")) {
+            if (!s["comb"].is_boolean())
+                return invalid_argument(where + "'comb' must be true or false");
+            stroke.comb = s["comb"].get<bool>();
+        }
+        if (Status st = paint::validate(stroke); !st.is_ok()) {
+            return invalid_argument(where + st.message());
+        }
+        strokes.push_back(std::move(stroke));
+    }
+    return strokes;
+}
+
+// Every SVG path is a painting stroke: its centre line sampled every ~1 px and its stroke-width,
+// the viewBox (if any) mapped onto the canvas.
+Result<std::vector<paint::Stroke>> read_svg_strokes(const std::string& path, int width,
+                                                    int height) {
+    auto drawing = sketch::load_svg(path);
+    if (!drawing.ok()) return drawing.status();
+    double sx = 1.0, sy = 1.0, ox = 0.0, oy = 0.0;
+    if (drawing->view_width > 0.0 && drawing->view_height > 0.0) {
+        sx = width / drawing->view_width;
+        sy = height / drawing->view_height;
+        ox = drawing->view_x;
+        oy = drawing->view_y;
+    }
+    std::vector<paint::Stroke> strokes;
+    for (std::size_t i = 0; i < drawing->paths.size(); ++i) {
+        const sketch::Path& p = drawing->paths[i];
+        if (p.empty()) continue;
+        paint::Stroke stroke;
+        stroke.width_px =
+            static_cast<float>(drawing->stroke_widths[i] * std::sqrt(std::abs(sx * sy)));
+        auto add = [&](sketch::Vec2 v) {
+            stroke.points.push_back(
+                {static_cast<float>((v.x - ox) * sx), static_cast<float>((v.y - oy) * sy)});
+        };
+        add(p.start());
+        for (const sketch::Cubic& c : p.segments) {
+            const double length = sketch::distance(c.p0, c.c1) + sketch::distance(c.c1, c.c2) +
+                                  sketch::distance(c.c2, c.p3);
+            const int steps = std::clamp(static_cast<int>(std::ceil(length * sx)), 1, 4096);
+            for (int k = 1; k <= steps; ++k) add(c.point(static_cast<double>(k) / steps));
+        }
+        if (Status st = paint::validate(stroke); !st.is_ok()) {
+            return invalid_argument("--strokes " + path + ": path " + std::to_string(i) + ": " +
+                                    st.message());
+        }
+        strokes.push_back(std::move(stroke));
+    }
+    return strokes;
+}
+
+}  // namespace
+
+PaintCommand::PaintCommand(CLI::App& parent) {
+    app_ = parent.add_subcommand(
+        "paint", "Paint with an exemplar's texture along strokes (Brushables, docs/paint.md)");
+    app_->footer(
+        "Strokes JSON: [{\"points\": [[x, y], ...], \"width\": 40, \"comb\": false}, ...] in "
+        "canvas "
+        "pixels;\nSVG: every path is a painting stroke (centre line and stroke-width).\n"
+        "Example: exemplar paint --source grass.png --strokes strokes.json --width 512 --height "
+        "256 -o out.png");
+    app_->add_option("--source", source_, "Exemplar: RGBA (alpha = its shape) or RGB")->required();
+    app_->add_option("--source-mask", source_mask_,
+                     "Shape of the exemplar (white = inside); default alpha > 0");
+    app_->add_option("--source-directions", source_directions_,
+                     "Direction field of the exemplar (.exr from `exemplar directions`); default: "
+                     "analysed with radius 10");
+    app_->add_option("--strokes", strokes_, "Strokes: .json or .svg")->required();
+    app_->add_option("--width", width_, "Canvas width in px (or from --canvas)");
+    app_->add_option("--height", height_, "Canvas height in px (or from --canvas)");
+    app_->add_option("--output,-o", output_, "Result: RGBA image (PNG, TIFF, EXR)")->required();
+    app_->add_option("--canvas", canvas_, "Background to paint over (RGB or RGBA)");
+    app_->add_option("--shape-weight", options_.shape_weight,
+                     "Weight lambda of the Shape Hint against the colour distance (0 = off, "
+                     "..1000); default 25");
+    app_->add_option("--edge-extent", options_.edge_extent_px,
+                     "How deep boundary effects reach into the texture, in px: the Shape Hint's "
+                     "radius (1..256); default 16");
+    app_->add_option("--shape-bins", options_.shape_bins,
+                     "Bins on the Shape Hint's ring (4..32); default 8");
+    app_->add_option("--alpha-weight", options_.alpha_weight,
+                     "Weight of alpha against each colour channel (0..100); default 3");
+    app_->add_option("--vote-coherence", options_.vote_coherence,
+                     "Coherence range sigma_c^2 of the vote in px^2 (0 = off, ..100); default 2");
+    app_->add_option("--patch-size", options_.patch_size,
+                     "Patch width in px (odd, 3..15); default 5");
+    app_->add_option("--seed", options_.seed, "Random seed; default 1");
+    app_->add_option("--save-directions", save_directions_,
+                     "Also write the canvas' direction field in direction-wheel colours");
+    app_->add_option("--threads", threads_, "Threads (0 = all cores); the result is the same");
+    app_->add_flag("--quiet,-q", quiet_, "Do not print the output paths");
+}
+
+Status PaintCommand::run(const Streams& streams) const {
+    // Checks that need no file.
+    if (Status s = paint::validate(options_); !s.is_ok())
+        return invalid_argument("--" + s.message());
+    if (threads_ < 0) {
+        return invalid_argument("--threads: " + std::to_string(threads_) +
+                                " is invalid (must be >= 0)");
+    }
+    const bool json_strokes = has_extension(strokes_, ".json");
+    if (!json_strokes && !has_extension(strokes_, ".svg")) {
+        return invalid_argument("--strokes " + strokes_ + ": must be a .json or .svg file");
+    }
+    if (canvas_.empty() && (width_ <= 0 || height_ <= 0)) {
+        return invalid_argument("--width/--height: " + std::to_string(width_) + "x" +
+                                std::to_string(height_) +
+                                " is invalid (both must be > 0, or give --canvas)");
+    }
+    if (width_ > 32768 || height_ > 32768) {
+        return invalid_argument("--width/--height: at most 32768 px");
+    }
+    EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", output_));
+    EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, Image(1, 1, 4), {}));
+    if (!save_directions_.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_output_path("--save-directions", save_directions_));
+    }
+
+    // Inputs.
+    paint::PaintSource source;
+    auto image = load_image(source_);
+    if (!image.ok()) return image.status();
+    source.image = std::move(image).value();
+    if (source.image.channels() != 3 && source.image.channels() != 4) {
+        return invalid_argument("--source " + source_ + ": has " +
+                                std::to_string(source.image.channels()) +
+                                " channels (must be RGB or RGBA)");
+    }
+    if (!source_mask_.empty()) {
+        auto mask = load_image(source_mask_);
+        if (!mask.ok()) return mask.status();
+        if (!mask->same_size(source.image)) {
+            return invalid_argument(
+                "--source-mask " + source_mask_ + ": is " + std::to_string(mask->width()) + "x" +
+                std::to_string(mask->height()) + " but --source is " +
+                std::to_string(source.image.width()) + "x" + std::to_string(source.image.height()));
+        }
+        source.mask = extract_channels(*mask, 0, 1);
+    }
+    if (!source_directions_.empty()) {
+        auto field = load_image(source_directions_);
+        if (!field.ok()) return field.status();
+        const int angle = find_channel(*field, "angle");
+        if (angle < 0 && field->channels() != 1) {
+            return invalid_argument("--source-directions " + source_directions_ +
+                                    ": needs one channel \"angle\" (exemplar directions)");
+        }
+        if (!field->same_size(source.image)) {
+            return invalid_argument("--source-directions " + source_directions_ +
+                                    ": is not the size of --source");
+        }
+        source.directions = extract_channels(*field, std::max(angle, 0), 1);
+    }
+    Image background;
+    int width = width_, height = height_;
+    if (!canvas_.empty()) {
+        auto bg = load_image(canvas_);
+        if (!bg.ok()) return bg.status();
+        if (bg->channels() != 3 && bg->channels() != 4) {
+            return invalid_argument("--canvas " + canvas_ + ": must be RGB or RGBA");
+        }
+        if ((width > 0 && width != bg->width()) || (height > 0 && height != bg->height())) {
+            return invalid_argument("--canvas " + canvas_ + ": is " + std::to_string(bg->width()) +
+                                    "x" + std::to_string(bg->height()) + " but --width/--height " +
+                                    std::to_string(width) + "x" + std::to_string(height));
+        }
+        width = bg->width();
+        height = bg->height();
+        background = std::move(bg).value();
+    }
+    auto strokes =
+        json_strokes ? read_json_strokes(strokes_) : read_svg_strokes(strokes_, width, height);
+    if (!strokes.ok()) return strokes.status();
+
+    // Strokes one after the other (painting, then combing refines), then the synthesis.
+    paint::PaintCanvas canvas(width, height);
+    for (const paint::Stroke& stroke : *strokes) {
+        auto changed = canvas.add_stroke(stroke);
+        if (!changed.ok()) return changed.status();
+    }
+    auto result = paint::paint(source, canvas, options_, RunContext(threads_));
+    if (!result.ok()) return result.status();
+    Image out = background.empty() ? std::move(result->image)
+                                   : paint::composite_over(result->image, background);
+
+    // Outputs, each atomic.
+    EXEMPLAR_RETURN_IF_ERROR(save_image(out, output_));
+    if (!quiet_) streams.out << output_ << '\n';
+    if (!save_directions_.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(
+            save_image(paint::direction_wheel(canvas.directions()), save_directions_));
+        if (!quiet_) streams.out << save_directions_ << '\n';
+    }
+    return Status::ok();
+}
+
+}  // namespace exemplar::cli

@@ -1,0 +1,274 @@
+// Brushables synthesis (Lukáč et al. 2015 §3.3) on the engine's public API.
+//
+// Where this deviates from the paper: the colours are synthesized premultiplied by alpha (the
+// paper does not say; premultiplying makes every fully transparent pixel the same colour, so the
+// transparent surroundings of a boundary patch compare equal in the exemplar and on the canvas);
+// the exemplar patches are those centred on the shape mask (the engine's source mask is the
+// mask grown by the patch radius, so a boundary patch may reach into the transparent outside).
+
+#include "exemplar/paint/paint.hpp"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+#include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/shape_hint.hpp"
+#include "exemplar/synth/synthesize.hpp"
+
+namespace exemplar::paint {
+
+namespace {
+
+std::string size_of(const Image& image) {
+    return std::to_string(image.width()) + "x" + std::to_string(image.height());
+}
+
+// The exemplar as the engine sees it: premultiplied RGBA, its shape mask and its angles.
+struct Exemplar {
+    Image style;
+    Image mask;
+    Image angles;
+    bool has_boundary = false;  // some pixel outside the shape (else nothing to learn there)
+};
+
+Result<Exemplar> prepare(const PaintSource& source, int threads) {
+    const Image& in = source.image;
+    if (in.empty()) return invalid_argument("source: the exemplar is empty");
+    if (in.channels() != 3 && in.channels() != 4) {
+        return invalid_argument("source: the exemplar has " + std::to_string(in.channels()) +
+                                " channels (must be 3, RGB, or 4, RGBA)");
+    }
+    Exemplar e;
+    e.style = Image(in.width(), in.height(), 4);
+    e.style.set_channel_names({"R", "G", "B", "A"});
+    for (int y = 0; y < in.height(); ++y) {
+        for (int x = 0; x < in.width(); ++x) {
+            const float* p = in.pixel(x, y);
+            const float a = in.channels() == 4 ? std::clamp(p[3], 0.0f, 1.0f) : 1.0f;
+            float* o = e.style.pixel(x, y);
+            for (int c = 0; c < 3; ++c) o[c] = p[c] * a;
+            o[3] = a;
+        }
+    }
+
+    if (!source.mask.empty()) {
+        if (!source.mask.same_size(in) || source.mask.channels() != 1) {
+            return invalid_argument("source mask: " + size_of(source.mask) + " with " +
+                                    std::to_string(source.mask.channels()) +
+                                    " channels (must be 1 channel, " + size_of(in) +
+                                    " like the exemplar)");
+        }
+        e.mask = source.mask;
+    } else {
+        e.mask = Image(in.width(), in.height(), 1);
+        for (int y = 0; y < in.height(); ++y) {
+            for (int x = 0; x < in.width(); ++x) {
+                e.mask.at(x, y, 0) = e.style.at(x, y, 3) > 0.0f ? 1.0f : 0.0f;
+            }
+        }
+    }
+    bool any = false;
+    for (float v : e.mask.data()) {
+        any = any || v > 0.5f;
+        e.has_boundary = e.has_boundary || v <= 0.5f;
+    }
+    if (!any) return invalid_argument("source mask: empty (no pixel with alpha > 0 or mask > 0.5)");
+
+    if (!source.directions.empty()) {
+        if (!source.directions.same_size(in) || source.directions.channels() != 1) {
+            return invalid_argument("source directions: " + size_of(source.directions) + " with " +
+                                    std::to_string(source.directions.channels()) +
+                                    " channels (must be 1 channel of angles, " + size_of(in) +
+                                    " like the exemplar)");
+        }
+        e.angles = source.directions;
+    } else {
+        auto field = analyze_directions(in, {}, threads);
+        if (!field.ok()) return field.status();
+        e.angles = direction_angles(*field);
+    }
+    return e;
+}
+
+// Binary mask grown by `radius` pixels (square structuring element).
+Image grow(const Image& mask, int radius) {
+    const int w = mask.width(), h = mask.height();
+    Image rows(w, h, 1), out(w, h, 1);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            bool on = false;
+            for (int u = std::max(x - radius, 0); u <= std::min(x + radius, w - 1) && !on; ++u) {
+                on = mask.at(u, y, 0) > 0.5f;
+            }
+            rows.at(x, y, 0) = on ? 1.0f : 0.0f;
+        }
+    }
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            bool on = false;
+            for (int v = std::max(y - radius, 0); v <= std::min(y + radius, h - 1) && !on; ++v) {
+                on = rows.at(x, v, 0) > 0.5f;
+            }
+            out.at(x, y, 0) = on ? 1.0f : 0.0f;
+        }
+    }
+    return out;
+}
+
+Image premultiplied(const Image& rgba) {
+    Image out = rgba;
+    for (int y = 0; y < out.height(); ++y) {
+        for (int x = 0; x < out.width(); ++x) {
+            float* p = out.pixel(x, y);
+            for (int c = 0; c < 3; ++c) p[c] *= p[3];
+        }
+    }
+    return out;
+}
+
+Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
+                        const PaintOptions& options, const RunContext& context,
+                        const Image* previous, const PixelRect* changed) {
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    auto exemplar = prepare(source, context.threads);
+    if (!exemplar.ok()) return exemplar.status();
+    const int w = canvas.width(), h = canvas.height();
+    if (previous != nullptr &&
+        (previous->width() != w || previous->height() != h || previous->channels() != 4)) {
+        return invalid_argument("previous: " + size_of(*previous) + " with " +
+                                std::to_string(previous->channels()) +
+                                " channels (must be RGBA, the canvas' size)");
+    }
+
+    // The region to synthesize: the painted pixels (within the changed rectangle on a repaint).
+    // An exemplar without a boundary (opaque, or a mask covering it) has no boundary effects to
+    // transfer, and transparent surroundings would pull the region's rim towards its darkest
+    // patches (the closest to premultiplied transparent black, at every pyramid level), so the
+    // whole canvas (on a repaint, the whole changed rectangle) is synthesized and cut to the
+    // strokes after.
+    Image region = exemplar->has_boundary ? canvas.coverage() : Image(w, h, 1, 1.0f);
+    if (changed != nullptr) {
+        const int grow_px = options.patch_size;
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const bool near = x >= changed->x0 - grow_px && x < changed->x1 + grow_px &&
+                                  y >= changed->y0 - grow_px && y < changed->y1 + grow_px;
+                if (!near) region.at(x, y, 0) = 0.0f;
+            }
+        }
+    }
+    bool any = false;
+    for (float v : region.data()) any = any || v > 0.5f;
+    PaintResult result;
+    if (!any) {
+        result.image = previous != nullptr ? *previous : Image(w, h, 4);
+        return result;
+    }
+
+    // The engine's input: premultiplied RGBA with alpha weighted, orientations, masks.
+    SynthesisInput in;
+    in.style = std::move(exemplar->style);
+    in.style_channel_weights = {1.0f, 1.0f, 1.0f, options.alpha_weight};
+    in.target_width = w;
+    in.target_height = h;
+    in.source_mask = grow(exemplar->mask, options.patch_size / 2);
+    in.target_mask = std::move(region);
+    in.initial_target = previous != nullptr ? premultiplied(*previous) : Image(w, h, 4);
+    in.source_orientation = std::move(exemplar->angles);
+    in.target_orientation = direction_angles(canvas.directions());
+
+    if (options.shape_weight > 0.0f && exemplar->has_boundary) {
+        const ShapeHintOptions hint{options.edge_extent_px, options.shape_bins};
+        const float area = static_cast<float>(options.patch_size * options.patch_size);
+        in.guides.push_back(
+            {"shape hint",
+             shape_hint(shape_edges(exemplar->mask), in.source_orientation, hint, context.threads),
+             shape_hint(shape_edges(canvas.coverage()), in.target_orientation, hint,
+                        context.threads),
+             options.shape_weight / area,
+             {}});
+    }
+
+    SynthesisOptions so;
+    so.patch_size = options.patch_size;
+    so.seed = options.seed;
+    so.vote_coherence = options.vote_coherence;
+    so.usage = UsageStrategy::None;  // Wexler et al.'s EM, as in the paper
+    auto synthesized = synthesize(std::move(in), so, context);
+    if (!synthesized.ok()) return synthesized.status();
+
+    // Back to straight alpha; nothing outside the painted region.
+    result.image = std::move(synthesized->image);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            float* p = result.image.pixel(x, y);
+            const float a = std::clamp(p[3], 0.0f, 1.0f);
+            if (canvas.coverage().at(x, y, 0) == 0.0f || a <= 0.0f) {
+                p[0] = p[1] = p[2] = p[3] = 0.0f;
+                continue;
+            }
+            for (int c = 0; c < 3; ++c) p[c] = std::clamp(p[c] / a, 0.0f, 1.0f);
+            p[3] = a;
+        }
+    }
+    result.image.set_channel_names({"R", "G", "B", "A"});
+    result.nnf = std::move(synthesized->nnf);
+    return result;
+}
+
+}  // namespace
+
+Status validate(const PaintOptions& o) {
+    if (!(o.shape_weight >= 0.0f && o.shape_weight <= 1000.0f)) {
+        return invalid_argument("shape-weight: " + std::to_string(o.shape_weight) +
+                                " is invalid (must be 0..1000)");
+    }
+    EXEMPLAR_RETURN_IF_ERROR(validate(ShapeHintOptions{o.edge_extent_px, o.shape_bins}));
+    if (!(o.alpha_weight >= 0.0f && o.alpha_weight <= 100.0f)) {
+        return invalid_argument("alpha-weight: " + std::to_string(o.alpha_weight) +
+                                " is invalid (must be 0..100)");
+    }
+    if (!(o.vote_coherence >= 0.0f && o.vote_coherence <= 100.0f)) {
+        return invalid_argument("vote-coherence: " + std::to_string(o.vote_coherence) +
+                                " is invalid (must be 0..100 px^2)");
+    }
+    if (o.patch_size < 3 || o.patch_size > 15 || o.patch_size % 2 == 0) {
+        return invalid_argument("patch-size: " + std::to_string(o.patch_size) +
+                                " is invalid (must be odd, 3..15)");
+    }
+    return Status::ok();
+}
+
+Result<PaintResult> paint(const PaintSource& source, const PaintCanvas& canvas,
+                          const PaintOptions& options, const RunContext& context) {
+    return run(source, canvas, options, context, nullptr, nullptr);
+}
+
+Result<PaintResult> repaint(const PaintSource& source, const PaintCanvas& canvas,
+                            const Image& previous, const PixelRect& changed,
+                            const PaintOptions& options, const RunContext& context) {
+    return run(source, canvas, options, context, &previous, &changed);
+}
+
+Image composite_over(const Image& painting, const Image& background) {
+    Image out(painting.width(), painting.height(), 4);
+    out.set_channel_names({"R", "G", "B", "A"});
+    for (int y = 0; y < painting.height(); ++y) {
+        for (int x = 0; x < painting.width(); ++x) {
+            const float* f = painting.pixel(x, y);
+            const float* b = background.pixel(x, y);
+            const float fa = f[3];
+            const float ba = background.channels() == 4 ? b[3] : 1.0f;
+            const float a = fa + ba * (1.0f - fa);
+            float* o = out.pixel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                o[c] = a > 0.0f ? (f[c] * fa + b[c] * ba * (1.0f - fa)) / a : 0.0f;
+            }
+            o[3] = a;
+        }
+    }
+    return out;
+}
+
+}  // namespace exemplar::paint

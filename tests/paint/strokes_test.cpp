@@ -1,0 +1,188 @@
+// Direction diffusion from strokes (Brushables §3.2, eq. 1-3): the closed-form polyline integral
+// against numerical integration, locality, blending and combing.
+
+#include "exemplar/paint/strokes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <vector>
+
+namespace exemplar::paint {
+namespace {
+
+// Eq. 1-2 by dense sampling of the centre line (the oracle of the closed form).
+std::array<double, 3> numeric_diffusion(const std::vector<Stroke>& strokes, double px, double py) {
+    double nx = 0.0, ny = 0.0, rel = 0.0;
+    for (const Stroke& s : strokes) {
+        const double sigma = 0.5 * s.width_px, support = 2.0 * sigma;
+        const double cut = std::exp(-0.5 * support * support / (sigma * sigma));
+        const double step = 1e-3;
+        double line = 0.0;
+        for (double t = -support; t <= support; t += step) {
+            line += std::max(0.0, std::exp(-0.5 * t * t / (sigma * sigma)) - cut) * step;
+        }
+        for (std::size_t i = 1; i < s.points.size(); ++i) {
+            const double ax = s.points[i - 1].x, ay = s.points[i - 1].y;
+            const double dx = s.points[i].x - ax, dy = s.points[i].y - ay;
+            const double len = std::hypot(dx, dy);
+            for (double t = 0.5 * step; t < len; t += step) {
+                const double kx = ax + dx * t / len, ky = ay + dy * t / len;
+                const double d2 = (px - kx) * (px - kx) + (py - ky) * (py - ky);
+                if (d2 >= support * support) continue;
+                const double g = std::exp(-0.5 * d2 / (sigma * sigma)) - cut;
+                nx += g * step * dx / len;
+                ny += g * step * dy / len;
+                rel += g * step / line;
+            }
+        }
+    }
+    const double n = std::hypot(nx, ny);
+    return {n > 0 ? nx / n : 0.0, n > 0 ? ny / n : 0.0, std::min(1.0, rel)};
+}
+
+Stroke stroke(std::vector<StrokePoint> points, float width, bool comb = false) {
+    Stroke s;
+    s.points = std::move(points);
+    s.width_px = width;
+    s.comb = comb;
+    return s;
+}
+
+TEST(Strokes, ClosedFormEqualsNumericalIntegration) {
+    const std::vector<Stroke> strokes = {
+        stroke({{10, 30}, {40, 22}, {60, 40}, {62, 70}}, 20),
+        stroke({{20, 60}, {50, 58}}, 12),
+    };
+    const Image d = diffuse_strokes(strokes, 80, 80);
+    int checked = 0;
+    for (int y = 2; y < 80; y += 7) {
+        for (int x = 3; x < 80; x += 7) {
+            const auto ref = numeric_diffusion(strokes, x + 0.5, y + 0.5);
+            const float* v = d.pixel(x, y);
+            EXPECT_NEAR(v[2], ref[2], 2e-3) << x << "," << y;
+            if (ref[2] > 1e-3) {
+                EXPECT_NEAR(v[0], ref[0], 2e-3) << x << "," << y;
+                EXPECT_NEAR(v[1], ref[1], 2e-3) << x << "," << y;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 30);
+}
+
+TEST(Strokes, StraightStrokeGivesItsDirectionAndFullWeightOnItsCentreLine) {
+    PaintCanvas canvas(100, 60);
+    ASSERT_TRUE(canvas.add_stroke(stroke({{10, 30}, {90, 30}}, 20)).ok());
+    // Painted: the swept disc of radius 10 around the centre line y = 30.
+    EXPECT_EQ(canvas.coverage().at(50, 29, 0), 1.0f);
+    EXPECT_EQ(canvas.coverage().at(50, 38, 0), 1.0f);
+    EXPECT_EQ(canvas.coverage().at(50, 41, 0), 0.0f);
+    EXPECT_EQ(canvas.coverage().at(2, 30, 0), 1.0f);  // the round cap
+    EXPECT_NEAR(canvas.directions().at(50, 35, 0), 1.0f, 1e-6f);
+    const Image d = diffuse_strokes(std::vector<Stroke>{stroke({{10, 30}, {90, 30}}, 20)}, 100, 60);
+    EXPECT_NEAR(d.at(50, 29, 2), 1.0f, 2e-3f);  // 0.5 px from the centre line: w_s ~ 1
+    EXPECT_GT(d.at(50, 40, 2), 0.3f);           // at the brush's edge (10.5 px)
+    EXPECT_LT(d.at(50, 49, 2), 0.01f);          // 19.5 px: fading out towards the support
+    EXPECT_EQ(d.at(50, 50, 2), 0.0f);           // 20.5 px, beyond the 20 px support: nothing
+}
+
+TEST(Strokes, PaintingIsStrictlyLocal) {
+    PaintCanvas canvas(160, 120);
+    ASSERT_TRUE(canvas.add_stroke(stroke({{20, 20}, {140, 30}, {150, 100}}, 30)).ok());
+    const Image coverage = canvas.coverage(), directions = canvas.directions();
+    const Stroke added = stroke({{30, 90}, {80, 70}}, 16);
+    const auto changed = canvas.add_stroke(added);
+    ASSERT_TRUE(changed.ok());
+    int unchanged_far = 0, changed_near = 0;
+    for (int y = 0; y < 120; ++y) {
+        for (int x = 0; x < 160; ++x) {
+            // Distance to the new stroke's segment.
+            const double ax = 30, ay = 90, dx = 50, dy = -20;
+            const double px = x + 0.5, py = y + 0.5;
+            double t = ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy);
+            t = std::clamp(t, 0.0, 1.0);
+            const double dist = std::hypot(px - ax - t * dx, py - ay - t * dy);
+            const bool same = std::memcmp(directions.pixel(x, y), canvas.directions().pixel(x, y),
+                                          2 * sizeof(float)) == 0 &&
+                              coverage.at(x, y, 0) == canvas.coverage().at(x, y, 0);
+            if (dist > added.width_px) {
+                EXPECT_TRUE(same) << x << "," << y;
+                unchanged_far += same ? 1 : 0;
+            } else if (!same) {
+                ++changed_near;
+            }
+            const bool in_rect =
+                x >= changed->x0 && x < changed->x1 && y >= changed->y0 && y < changed->y1;
+            if (!in_rect) {
+                EXPECT_TRUE(same) << "outside the returned rectangle: " << x << "," << y;
+            }
+        }
+    }
+    EXPECT_GT(unchanged_far, 10000);
+    EXPECT_GT(changed_near, 1000);
+}
+
+TEST(Strokes, CombingTurnsOnlyPaintedPixelsAndPaintsNothing) {
+    PaintCanvas canvas(120, 80);
+    ASSERT_TRUE(canvas.add_stroke(stroke({{10, 40}, {110, 40}}, 30)).ok());  // rightwards
+    const Image coverage = canvas.coverage(), before = canvas.directions();
+    // Comb upwards across the middle, wider than the painted band.
+    ASSERT_TRUE(canvas.add_stroke(stroke({{60, 79}, {60, 1}}, 20, /*comb=*/true)).ok());
+    EXPECT_EQ(std::memcmp(coverage.data().data(), canvas.coverage().data().data(),
+                          coverage.size() * sizeof(float)),
+              0);
+    // On the comb's centre line the painted direction now points up (y down on screen).
+    EXPECT_NEAR(canvas.directions().at(59, 40, 1), -1.0f, 1e-3f);
+    // Halfway out of the comb's support it is a blend of right and up.
+    const float* blend = canvas.directions().pixel(69, 40);
+    EXPECT_GT(blend[0], 0.2f);
+    EXPECT_LT(blend[1], -0.2f);
+    // Unpainted pixels under the comb keep their (painting-kernel) directions.
+    for (int y = 0; y < 80; ++y) {
+        for (int x = 40; x < 80; ++x) {
+            if (coverage.at(x, y, 0) != 0.0f) continue;
+            EXPECT_EQ(
+                std::memcmp(before.pixel(x, y), canvas.directions().pixel(x, y), 2 * sizeof(float)),
+                0)
+                << x << "," << y;
+        }
+    }
+}
+
+TEST(Strokes, SimultaneousStrokesAreSummedBeforeTheBlend) {
+    // A rightward and a downward stroke crossing: at the crossing the sum points diagonally.
+    const std::vector<Stroke> both = {stroke({{10, 50}, {90, 50}}, 30),
+                                      stroke({{50, 10}, {50, 90}}, 30)};
+    const Image d = diffuse_strokes(both, 100, 100);
+    EXPECT_NEAR(d.at(49, 49, 0), std::numbers::sqrt2_v<float> / 2, 2e-2f);
+    EXPECT_NEAR(d.at(49, 49, 1), std::numbers::sqrt2_v<float> / 2, 2e-2f);
+    PaintCanvas canvas(100, 100);
+    ASSERT_TRUE(canvas.add_strokes(both).ok());
+    EXPECT_NEAR(canvas.directions().at(49, 49, 0), d.at(49, 49, 0), 1e-6f);
+}
+
+TEST(Strokes, InvalidStrokesAreRejectedByField) {
+    PaintCanvas canvas(10, 10);
+    auto r = canvas.add_stroke(stroke({}, 10));
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.status().message().find("points"), std::string::npos);
+    r = canvas.add_stroke(stroke({{1, 1}}, 0));
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.status().message().find("width"), std::string::npos);
+    r = canvas.add_stroke(stroke({{1, NAN}}, 3));
+    EXPECT_FALSE(r.ok());
+    const std::vector<Stroke> mixed = {stroke({{1, 1}}, 3), stroke({{2, 2}}, 3, true)};
+    EXPECT_FALSE(canvas.add_strokes(mixed).ok());
+    // A single dab paints a disc and gives no direction.
+    ASSERT_TRUE(canvas.add_stroke(stroke({{5, 5}}, 4)).ok());
+    EXPECT_EQ(canvas.coverage().at(5, 5, 0), 1.0f);
+    EXPECT_EQ(canvas.directions().at(5, 5, 0), 0.0f);
+}
+
+}  // namespace
+}  // namespace exemplar::paint
