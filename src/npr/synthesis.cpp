@@ -484,6 +484,54 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
     return state;
 }
 
+Image pack_state(const FrameState& state) {
+    if (state.coords.empty()) return {};
+    const int levels = static_cast<int>(state.coords.size());
+    Image packed(state.coords[0].width(), state.coords[0].height(), 2 * levels);
+    std::vector<std::string> names;
+    for (int l = 0; l < levels; ++l) {
+        const Image& coords = state.coords[static_cast<std::size_t>(l)];
+        for (int y = 0; y < coords.height(); ++y)
+            for (int x = 0; x < coords.width(); ++x)
+                for (int c = 0; c < 2; ++c) packed.at(x, y, 2 * l + c) = coords.at(x, y, c);
+        // insert, not "x" + ...: GCC 12 warns (-Wrestrict) on that concatenation
+        names.push_back(std::to_string(l).insert(0, 1, 'x'));
+        names.push_back(std::to_string(l).insert(0, 1, 'y'));
+    }
+    packed.set_channel_names(names);
+    return packed;
+}
+
+Result<FrameState> unpack_state(const Pattern& pattern, const Image& packed) {
+    const int levels = static_cast<int>(pattern.stack.size());
+    if (packed.channels() != 2 * levels)
+        return invalid_argument("state: " + std::to_string(packed.channels()) +
+                                " channels, but the pattern has " + std::to_string(levels) +
+                                " levels (needs " + std::to_string(2 * levels) + ")");
+    FrameState state;
+    for (int l = 0; l < levels; ++l) {
+        const int spacing = 1 << l;
+        const int width = (packed.width() + spacing - 1) / spacing;
+        const int height = (packed.height() + spacing - 1) / spacing;
+        Field field{width, height, std::vector<int>(2 * static_cast<std::size_t>(width) * height)};
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                for (int c = 0; c < 2; ++c) {
+                    const float v = packed.at(x, y, 2 * l + c);
+                    const int limit = c == 0 ? pattern.screen.width() : pattern.screen.height();
+                    if (!(v >= 0.0f && v < static_cast<float>(limit)))
+                        return invalid_argument("state: coordinate " + std::to_string(v) +
+                                                " at level " + std::to_string(l) +
+                                                " is outside the pattern");
+                    field.at(x, y)[c] = static_cast<int>(v);
+                }
+        state.coords.push_back(coords_image(field));
+        state.appearance.push_back(
+            appearance_image(field, pattern.stack[static_cast<std::size_t>(l)]));
+    }
+    return state;
+}
+
 Status validate(const HalftoneOptions& options) {
     if (!(options.blur_sigma_px > 0.0f && options.blur_sigma_px <= 50.0f))
         return invalid_argument("blur_sigma_px: " + std::to_string(options.blur_sigma_px) +

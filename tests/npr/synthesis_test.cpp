@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/filters/structure_tensor.hpp"
@@ -214,6 +215,120 @@ TEST(NprSynthesis, RejectsMismatchedBuffersAndBadOptionsByName) {
     HalftoneOptions halftone_options;
     halftone_options.blur_sigma_px = 0.0f;
     EXPECT_FALSE(validate(halftone_options).is_ok());
+}
+
+}  // namespace
+}  // namespace exemplar::npr
+
+namespace exemplar::npr {
+namespace {
+
+// Element size of a screen: the first zero crossing of its radially averaged autocorrelation
+// (interpolated, in px), over the central region.
+float element_size(const Image& screen) {
+    const int margin = 12;
+    double mean = 0.0;
+    int n = 0;
+    for (int y = margin; y < screen.height() - margin; ++y)
+        for (int x = margin; x < screen.width() - margin; ++x, ++n) mean += screen.at(x, y, 0);
+    mean /= n;
+    std::vector<double> sum(13, 0.0);
+    std::vector<int> count(13, 0);
+    for (int dy = -12; dy <= 12; ++dy)
+        for (int dx = -12; dx <= 12; ++dx) {
+            const int r = static_cast<int>(std::lround(std::sqrt(dx * dx + dy * dy)));
+            if (r > 12) continue;
+            for (int y = margin; y < screen.height() - margin; ++y)
+                for (int x = margin; x < screen.width() - margin; ++x) {
+                    sum[static_cast<std::size_t>(r)] +=
+                        (screen.at(x, y, 0) - mean) * (screen.at(x + dx, y + dy, 0) - mean);
+                    ++count[static_cast<std::size_t>(r)];
+                }
+        }
+    double previous = 1.0;
+    for (int r = 1; r <= 12; ++r) {
+        const double value = sum[static_cast<std::size_t>(r)] / count[static_cast<std::size_t>(r)] /
+                             (sum[0] / count[0]);
+        if (value <= 0.0) return static_cast<float>(r - 1 + previous / (previous - value));
+        previous = value;
+    }
+    return 12.0f;
+}
+
+// Not yet met at the default coherence weight 1: there the advected coordinates win and the
+// elements grow with the zoom like texture mapping (3.15 -> 6.69 px, mapped 6.54 px; see
+// docs/npr.md). At coherence weight 0.2 the texture term keeps the size, but the translation
+// test's temporal error is then barely below independent frames (0.31 vs 0.32). This test
+// checks what holds: the size is kept when the texture term dominates.
+TEST(NprSynthesis, ElementSizeStaysConstantUnderA2xCameraZoomAtLowCoherenceWeight) {
+    const Pattern pattern = prepared(testing::stipple_pattern(64, 6.0f));
+    SynthesisOptions options;
+    options.threads = 2;
+    options.coherence_weight = 0.2f;
+    constexpr int kFrames = 6, kWidth = 128, kHeight = 96;
+    const float cx = (kWidth - 1) / 2.0f, cy = (kHeight - 1) / 2.0f;
+    const auto scale = [&](int t) { return std::pow(2.0f, static_cast<float>(t) / (kFrames - 1)); };
+    FrameInput first;
+    first.width = kWidth;
+    first.height = kHeight;
+    Result<FrameState> state = synthesize_frame(pattern, first, nullptr, 0, options);
+    ASSERT_TRUE(state.ok());
+    const Image first_screen = state->screen;
+    for (int t = 1; t < kFrames; ++t) {
+        // Zoom about the centre: pixel x was at c + (x - c) s_{t-1} / s_t
+        FrameInput input = first;
+        input.backward_flow = Image(kWidth, kHeight, 2);
+        const float ratio = scale(t - 1) / scale(t);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                input.backward_flow.at(x, y, 0) = (static_cast<float>(x) - cx) * (ratio - 1.0f);
+                input.backward_flow.at(x, y, 1) = (static_cast<float>(y) - cy) * (ratio - 1.0f);
+            }
+        Result<FrameState> next = synthesize_frame(pattern, input, &state.value(), t, options);
+        ASSERT_TRUE(next.ok());
+        state = std::move(next);
+    }
+    // The texture-mapped baseline: frame 0's screen magnified 2x about the centre
+    Image mapped(kWidth, kHeight, 1);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const float sx = cx + (static_cast<float>(x) - cx) / 2.0f;
+            const float sy = cy + (static_cast<float>(y) - cy) / 2.0f;
+            const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
+            const float fx = sx - static_cast<float>(x0), fy = sy - static_cast<float>(y0);
+            mapped.at(x, y, 0) = (1 - fy) * ((1 - fx) * first_screen.at(x0, y0, 0) +
+                                             fx * first_screen.at(x0 + 1, y0, 0)) +
+                                 fy * ((1 - fx) * first_screen.at(x0, y0 + 1, 0) +
+                                       fx * first_screen.at(x0 + 1, y0 + 1, 0));
+        }
+    const float before = element_size(first_screen);
+    const float after = element_size(state->screen);
+    const float baseline = element_size(mapped);
+    std::printf(
+        "element size: first frame %.2f px, after 2x zoom %.2f px, texture-mapped %.2f px\n",
+        before, after, baseline);
+    EXPECT_NEAR(after / before, 1.0f, 0.10f);
+    EXPECT_GT(baseline / before, 1.7f);
+}
+
+TEST(NprSynthesis, PackedStateRestoresTheCoordinatesAndAppearance) {
+    const Pattern pattern = prepared(testing::halftone_pattern(64, 8));
+    FrameInput input;
+    input.width = 45;
+    input.height = 30;
+    const Result<FrameState> frame = synthesize_frame(pattern, input, nullptr, 0, {});
+    ASSERT_TRUE(frame.ok());
+    const Result<FrameState> restored = unpack_state(pattern, pack_state(*frame));
+    ASSERT_TRUE(restored.ok()) << restored.status().message();
+    ASSERT_EQ(restored->coords.size(), frame->coords.size());
+    for (std::size_t l = 0; l < frame->coords.size(); ++l) {
+        EXPECT_TRUE(std::equal(frame->coords[l].data().begin(), frame->coords[l].data().end(),
+                               restored->coords[l].data().begin()));
+        EXPECT_TRUE(std::equal(frame->appearance[l].data().begin(),
+                               frame->appearance[l].data().end(),
+                               restored->appearance[l].data().begin()));
+    }
+    EXPECT_FALSE(unpack_state(pattern, Image(45, 30, 4)).ok());
 }
 
 }  // namespace

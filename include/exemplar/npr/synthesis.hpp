@@ -89,6 +89,16 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
                                     const FrameState* previous, int frame_index,
                                     const SynthesisOptions& options);
 
+/// The coordinates of every level packed into one image of the finest level's size (channels
+/// x0, y0, x1, y1, ...; level l in the top-left ceil(W / 2^l) x ceil(H / 2^l) pixels), to store
+/// a frame's state in a file (a resumed run continues from it exactly).
+Image pack_state(const FrameState& state);
+
+/// The state stored by `pack_state`, with the appearance recomputed from `pattern` (screen
+/// left empty). InvalidArgument if the channel count does not match the pattern's levels or a
+/// coordinate lies outside the pattern.
+Result<FrameState> unpack_state(const Pattern& pattern, const Image& packed);
+
 /// Halftone options (§6).
 struct HalftoneOptions {
     /// Tone correction (§6.0.1): blur the first thresholded result, subtract the error from the
