@@ -307,7 +307,15 @@ void correct(Field& field, const Image& stack, const LevelBuffers& b, const Fiel
                     float best = std::numeric_limits<float>::infinity();
                     int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
                     for (std::size_t k = 0; k < candidates.size(); k += 2) {
-                        const int ux = candidates[k], uy = candidates[k + 1];
+                        const int ux = wrap(candidates[k], stack.width());
+                        const int uy = wrap(candidates[k + 1], stack.height());
+                        candidates[k] = ux;
+                        candidates[k + 1] = uy;
+                        // Coherent neighbours propose the same coordinate: evaluate it once
+                        bool seen = false;
+                        for (std::size_t j = 0; j < k && !seen; j += 2)
+                            seen = candidates[j] == ux && candidates[j + 1] == uy;
+                        if (seen) continue;
                         float error = 0.0f;
                         for (int m = 0; m < 9 && error < best; ++m) {
                             const float* want =
