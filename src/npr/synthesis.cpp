@@ -93,9 +93,16 @@ void pattern_offset(float c, float s, float dx, float dy, float h, int& ox, int&
     oy = static_cast<int>(std::lround((s * dx + c * dy) * h));
 }
 
+// wrap() for values that are usually within one period of [0, n): no division then.
+int wrap_near(int v, int n) {
+    if (v < 0) v += n;
+    if (v >= n) v -= n;
+    return v >= 0 && v < n ? v : wrap(v, n);
+}
+
 // Appearance of pattern pixel (x, y) (wrapped) at one stack level.
 const float* appearance_at(const Image& stack, int x, int y) {
-    return stack.pixel(wrap(x, stack.width()), wrap(y, stack.height()));
+    return stack.pixel(wrap_near(x, stack.width()), wrap_near(y, stack.height()));
 }
 
 // Bilinear sample of an image with clamped borders (n channels into out).
