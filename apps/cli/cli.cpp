@@ -60,6 +60,7 @@ struct CommandLine {
     BeautifyCommand beautify{app};
     AnimateCommand animate{app};
     FluidCommand fluid{app};
+    NprCommand npr{app};
 };
 
 // roff text: a backslash as \e, a hyphen as \- (so flags copy and search as typed), and a
@@ -172,6 +173,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.animate.run(streams);
         } else if (cli.fluid.parsed()) {
             status = cli.fluid.run(streams);
+        } else if (cli.npr.parsed()) {
+            status = cli.npr.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

@@ -529,10 +529,16 @@ Result<FrameState> unpack_state(const Pattern& pattern, const Image& packed) {
         const int width = (packed.width() + spacing - 1) / spacing;
         const int height = (packed.height() + spacing - 1) / spacing;
         Field field{width, height, std::vector<int>(2 * static_cast<std::size_t>(width) * height)};
+        // By name: a file format may reorder channels (OpenEXR sorts them)
+        const int channel[2] = {find_channel(packed, std::to_string(l).insert(0, 1, 'x')),
+                                find_channel(packed, std::to_string(l).insert(0, 1, 'y'))};
+        if (channel[0] < 0 || channel[1] < 0)
+            return invalid_argument("state: no channels x" + std::to_string(l) + ", y" +
+                                    std::to_string(l));
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x)
                 for (int c = 0; c < 2; ++c) {
-                    const float v = packed.at(x, y, 2 * l + c);
+                    const float v = packed.at(x, y, channel[c]);
                     const int limit = c == 0 ? pattern.screen.width() : pattern.screen.height();
                     if (!(v >= 0.0f && v < static_cast<float>(limit)))
                         return invalid_argument("state: coordinate " + std::to_string(v) +

@@ -94,9 +94,10 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
 /// a frame's state in a file (a resumed run continues from it exactly).
 Image pack_state(const FrameState& state);
 
-/// The state stored by `pack_state`, with the appearance recomputed from `pattern` (screen
-/// left empty). InvalidArgument if the channel count does not match the pattern's levels or a
-/// coordinate lies outside the pattern.
+/// The state stored by `pack_state` (channels found by name, in any order), with the
+/// appearance recomputed from `pattern` (screen left empty). InvalidArgument if the channel
+/// count does not match the pattern's levels, a channel is missing or a coordinate lies
+/// outside the pattern.
 Result<FrameState> unpack_state(const Pattern& pattern, const Image& packed);
 
 /// Halftone options (§6).
