@@ -256,7 +256,8 @@ public:
 
 private:
     CLI::App* app_ = nullptr;
-    std::string pattern_, frames_, output_;
+    std::string pattern_, frames_, output_, mp4_;
+    double fps_ = 24.0;
     std::string style_ = "stipple";
     std::string tone_ = "direct_diffuse";
     std::optional<std::string> orientation_;

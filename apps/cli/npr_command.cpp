@@ -2,7 +2,8 @@
 // (issue 20, docs/npr.md) from the frame folders of `exemplar render --frames`.
 //
 // Frames are synthesized in order; each output is written atomically with its synthesis state
-// (the pattern coordinates of every level, OUT.state.exr) as soon as it is done. A frame whose
+// (the pattern coordinates of every level, OUT.state.exr) as soon as it is done; --mp4 adds
+// every frame of the range (also resumed ones, read back) to one video. A frame whose
 // output and state exist is skipped (resume) and its state read back as the next frame's
 // previous frame, so a resumed range gives the same bytes as an uninterrupted one. A missing
 // buffer stops the run with one line naming it; the frames written so far are kept.
@@ -103,6 +104,8 @@ NprCommand::NprCommand(CLI::App& parent) {
                      "Initialization patch size in coarsest-level pixels (3..32, default 12)");
     app_->add_option("--coherence-weight", coherence_weight_,
                      "Weight of the temporal coherence term (0..100, default 1)");
+    app_->add_option("--mp4", mp4_, "Also write the range as an MP4 (even frame sizes)");
+    app_->add_option("--fps", fps_, "Frames per second of the MP4 (default 24)");
     app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
     app_->add_option("--seed", seed_, "Random seed (same seed, same output)");
     app_->add_flag("--resume,!--no-resume", resume_,
@@ -122,6 +125,8 @@ Status NprCommand::run(const Streams& streams) {
     if (last_ < first_)
         return invalid_argument("--last: " + std::to_string(last_) + " is before --first " +
                                 std::to_string(first_));
+    if (!(fps_ > 0 && fps_ <= 1000))
+        return invalid_argument("--fps: " + std::to_string(fps_) + " is invalid (must be 0..1000)");
     npr::PatternOptions pattern_options;
     pattern_options.levels = levels_;
     npr::SynthesisOptions options;
@@ -148,6 +153,30 @@ Status NprCommand::run(const Streams& streams) {
         return invalid_argument("--pattern " + pattern_ + ": " + prepared.status().message());
     const npr::Pattern& pattern = *prepared;
 
+    if (!mp4_.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(check_output_path("--mp4", mp4_));
+        EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(mp4_));
+        if (!video::mp4_writing_supported())
+            return unsupported("--mp4: this OpenCV build cannot encode MP4");
+    }
+    std::optional<video::Mp4Writer> mp4;  // opened at the first frame (its size)
+    const auto add_to_mp4 = [&](const Image& frame) -> Status {
+        if (mp4_.empty()) return Status::ok();
+        if (!mp4) {
+            if (frame.width() % 2 != 0 || frame.height() % 2 != 0)
+                return invalid_argument("--mp4: the frames are " + std::to_string(frame.width()) +
+                                        "x" + std::to_string(frame.height()) +
+                                        " but MP4 needs even sizes");
+            auto writer = video::Mp4Writer::open(mp4_, frame.width(), frame.height(), fps_);
+            if (!writer.ok()) return writer.status();
+            mp4.emplace(std::move(writer).value());
+        }
+        Image rgb(frame.width(), frame.height(), 3);
+        for (int y = 0; y < rgb.height(); ++y)
+            for (int x = 0; x < rgb.width(); ++x)
+                for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = frame.at(x, y, 0);
+        return mp4->write(rgb);
+    };
     ProgressBar bar(streams.err, "npr", !quiet_ && streams.err_is_terminal);
     const int count = last_ - first_ + 1;
     std::optional<npr::FrameState> previous;
@@ -171,6 +200,11 @@ Status NprCommand::run(const Streams& streams) {
             auto state = npr::unpack_state(pattern, *packed);
             if (!state.ok()) return invalid_argument(state_path + ": " + state.status().message());
             previous = std::move(state).value();
+            if (!mp4_.empty()) {
+                auto stored = load_image(out_path);
+                if (!stored.ok()) return stored.status();
+                EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(*stored));
+            }
             continue;
         }
         // This frame's buffers
@@ -247,6 +281,7 @@ Status NprCommand::run(const Streams& streams) {
         state_options.format = PixelFormat::Float;
         EXEMPLAR_RETURN_IF_ERROR(save_image(npr::pack_state(*state), state_path, state_options));
         EXEMPLAR_RETURN_IF_ERROR(video::write_frame(result, output_, n));
+        EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(result));
         ++written;
         if (!quiet_) streams.out << out_path << '\n';
         previous = std::move(state).value();
@@ -255,6 +290,10 @@ Status NprCommand::run(const Streams& streams) {
                        std::to_string(count) + ")");
     }
     bar.finish();
+    if (mp4) {
+        EXEMPLAR_RETURN_IF_ERROR(mp4->finish());
+        if (!quiet_) streams.out << mp4_ << '\n';
+    }
     if (!quiet_) {
         streams.out << written << " frame" << (written == 1 ? "" : "s") << " written, "
                     << count - written << " already done\n";

@@ -1,5 +1,5 @@
 // `exemplar npr` through run_cli on frame folders that `exemplar render --frames` writes (a
-// tiny moving sphere): outputs, resume with identical bytes, one-line errors with exit code 1
+// tiny moving sphere): outputs, resume with identical bytes, MP4, one-line errors with exit code 1
 // that keep the finished frames.
 
 #include <gtest/gtest.h>
@@ -123,6 +123,14 @@ TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {
         EXPECT_EQ(bytes(path("O/000" + std::to_string(n) + ".png")),
                   outputs[static_cast<std::size_t>(n)])
             << "frame " << n;
+}
+
+TEST_F(NprCli, WritesAnMp4OfTheRange) {
+    const CliRun r = run(npr({"--mp4", path("movie/npr.mp4")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(path("movie/npr.mp4")));
+    EXPECT_GT(fs::file_size(path("movie/npr.mp4")), 1000u);
+    EXPECT_TRUE(fs::exists(path("O/0002.png")));
 }
 
 TEST_F(NprCli, HatchStyleUsesTheOrientationBuffer) {
