@@ -7,7 +7,7 @@ include(CMakePackageConfigHelpers)
 
 set(EXEMPLAR_MODULES exemplar_core exemplar_io exemplar_filters exemplar_synth exemplar_render
     exemplar_stylit exemplar_video exemplar_sketch exemplar_animate exemplar_fluid exemplar_noisy
-    exemplar_paint)
+    exemplar_paint exemplar_npr)
 # The modules' object files, and the modules themselves for their dependencies (the linker
 # takes nothing from their archives: the objects already define every symbol).
 set(EXEMPLAR_OBJECTS)

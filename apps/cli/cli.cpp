@@ -63,6 +63,7 @@ struct CommandLine {
     NoisyCommand noisy{app};
     DirectionsCommand directions{app};
     PaintCommand paint{app};
+    NprCommand npr{app};
 };
 
 // roff text: a backslash as \e, a hyphen as \- (so flags copy and search as typed), and a
@@ -181,6 +182,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.directions.run(streams);
         } else if (cli.paint.parsed()) {
             status = cli.paint.run(streams);
+        } else if (cli.npr.parsed()) {
+            status = cli.npr.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

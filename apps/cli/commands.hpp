@@ -317,4 +317,37 @@ private:
     std::set<std::string> numeric_from_config_;
 };
 
+/// `exemplar npr`: image-space stippling, hatching and halftoning of the frame folders of
+/// `exemplar render --frames`; see docs/npr.md.
+class NprCommand {
+public:
+    /// Adds the `npr` subcommand and its flags to `app`.
+    explicit NprCommand(CLI::App& app);
+    NprCommand(const NprCommand&) = delete;
+    NprCommand& operator=(const NprCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command over the frame range.
+    Status run(const Streams& streams);
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string pattern_, frames_, output_, mp4_;
+    double fps_ = 24.0;
+    std::string style_ = "stipple";
+    std::string tone_ = "direct_diffuse";
+    std::optional<std::string> orientation_;
+    int first_ = 0;
+    int last_ = 0;
+    int levels_ = 3;
+    int patch_size_ = 12;
+    float coherence_weight_ = 1.0f;
+    int threads_ = 0;
+    std::uint64_t seed_ = 1;
+    bool lines_ = true;
+    bool tone_correction_ = true;
+    bool resume_ = true;
+    bool quiet_ = false;
+};
+
 }  // namespace exemplar::cli

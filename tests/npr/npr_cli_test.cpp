@@ -1,0 +1,183 @@
+// `exemplar npr` through run_cli on frame folders that `exemplar render --frames` writes (a
+// tiny moving sphere): outputs, resume with identical bytes, MP4, one-line errors with exit code 1
+// that keep the finished frames.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "npr_patterns.hpp"
+
+namespace exemplar::npr {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int code = -1;
+    std::string out;
+    std::string err;
+};
+
+CliRun run(std::vector<std::string> args) {
+    args.insert(args.begin(), "exemplar");
+    std::vector<const char*> argv;
+    for (const std::string& a : args) argv.push_back(a.c_str());
+    std::ostringstream out, err;
+    const int code = cli::run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+    return {code, out.str(), err.str()};
+}
+
+std::string bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Three 64x48 frames of a sphere moving right, and a 64x64 stipple pattern.
+class NprCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("exemplar_npr_cli_" + std::to_string(::getpid()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        std::ofstream(path("scene.json")) << R"({
+            "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov_deg": 40},
+            "sky": [0.8, 0.8, 0.8],
+            "materials": [{"name": "m"}],
+            "objects": [{"shape": "sphere", "material": "m", "subdivisions": 24,
+                         "keyframes": [{"frame": 0, "translate": [0, 0, 0]},
+                                       {"frame": 10, "translate": [1, 0, 0]}]}]})";
+        const CliRun render =
+            run({"render", "--scene", path("scene.json"), "--width", "64", "--height", "48",
+                 "--spp", "2", "-j", "2", "--frames", "0-2", "-o", path("R/frame_%04d"), "-q"});
+        ASSERT_EQ(render.code, 0) << render.err;
+        ASSERT_TRUE(save_image(testing::stipple_pattern(64, 5.0f), path("stipple.png")).is_ok());
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::vector<std::string> npr(std::vector<std::string> more) const {
+        std::vector<std::string> args = {"npr",
+                                         "--pattern",
+                                         path("stipple.png"),
+                                         "--frames",
+                                         path("R/frame_%04d"),
+                                         "--first",
+                                         "0",
+                                         "--last",
+                                         "2",
+                                         "-o",
+                                         path("O/%04d.png"),
+                                         "--tone",
+                                         "fullgi",
+                                         "-j",
+                                         "2",
+                                         "-q"};
+        args.insert(args.end(), more.begin(), more.end());
+        return args;
+    }
+    fs::path dir_;
+};
+
+TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {
+    const CliRun first = run(npr({}));
+    ASSERT_EQ(first.code, 0) << first.err;
+    std::vector<std::string> outputs;
+    for (int n = 0; n <= 2; ++n) {
+        const std::string out = path("O/000" + std::to_string(n) + ".png");
+        ASSERT_TRUE(fs::exists(out)) << out;
+        ASSERT_TRUE(fs::exists(out + ".state.exr")) << out;
+        outputs.push_back(bytes(out));
+    }
+    const Result<Image> image = load_image(path("O/0001.png"));
+    ASSERT_TRUE(image.ok());
+    EXPECT_EQ(image->width(), 64);
+    EXPECT_EQ(image->height(), 48);
+    int ink = 0;
+    for (float v : image->data()) {
+        EXPECT_TRUE(v == 0.0f || v == 1.0f);
+        ink += v == 0.0f;
+    }
+    EXPECT_GT(ink, 0);
+    EXPECT_LT(ink, 64 * 48);
+    // Everything done: nothing rewritten
+    CliRun again = run(npr({}));
+    ASSERT_EQ(again.code, 0) << again.err;
+    // Frames 1 and 2 redone from frame 0's stored state: the same bytes
+    fs::remove(path("O/0001.png"));
+    fs::remove(path("O/0002.png"));
+    again = run(npr({}));
+    ASSERT_EQ(again.code, 0) << again.err;
+    for (int n = 0; n <= 2; ++n)
+        EXPECT_EQ(bytes(path("O/000" + std::to_string(n) + ".png")),
+                  outputs[static_cast<std::size_t>(n)])
+            << "frame " << n;
+}
+
+TEST_F(NprCli, WritesAnMp4OfTheRange) {
+    const CliRun r = run(npr({"--mp4", path("movie/npr.mp4")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(path("movie/npr.mp4")));
+    EXPECT_GT(fs::file_size(path("movie/npr.mp4")), 1000u);
+    EXPECT_TRUE(fs::exists(path("O/0002.png")));
+}
+
+TEST_F(NprCli, HatchStyleUsesTheOrientationBuffer) {
+    ASSERT_TRUE(save_image(testing::hatching_pattern(64, 8, 2.5f), path("hatch.png")).is_ok());
+    std::vector<std::string> args = npr({"--style", "hatch"});
+    args[2] = path("hatch.png");
+    const CliRun hatch = run(args);
+    ASSERT_EQ(hatch.code, 0) << hatch.err;
+    EXPECT_TRUE(fs::exists(path("O/0002.png")));
+    // Without the buffer the hatch style fails, naming it
+    fs::remove_all(path("O"));
+    fs::remove(path("R/frame_0000/orientation.exr"));
+    const CliRun missing = run(args);
+    EXPECT_EQ(missing.code, 1);
+    EXPECT_NE(missing.err.find("missing buffer 'orientation'"), std::string::npos) << missing.err;
+}
+
+TEST_F(NprCli, AMissingBufferIsNamedAndFinishedFramesAreKept) {
+    fs::remove(path("R/frame_0002/backward_flow.exr"));
+    const CliRun r = run(npr({}));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(path("R/frame_0002") + ": missing buffer 'backward_flow'"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(fs::exists(path("O/0000.png")));
+    EXPECT_TRUE(fs::exists(path("O/0001.png")));
+    EXPECT_FALSE(fs::exists(path("O/0002.png")));
+}
+
+TEST_F(NprCli, BadInputsFailWithOneLineAndNoOutput) {
+    ASSERT_TRUE(save_image(testing::halftone_pattern(16, 8), path("tiny.png")).is_ok());
+    std::vector<std::string> args = npr({});
+    args[2] = path("tiny.png");
+    const CliRun small = run(args);
+    EXPECT_EQ(small.code, 1);
+    EXPECT_NE(small.err.find("16x16 is too small (needs at least 48x48"), std::string::npos)
+        << small.err;
+    EXPECT_EQ(std::count(small.err.begin(), small.err.end(), '\n'), 1) << small.err;
+    const CliRun style = run(npr({"--style", "crosshatch"}));
+    EXPECT_EQ(style.code, 1);
+    EXPECT_NE(style.err.find("--style: 'crosshatch' is invalid"), std::string::npos) << style.err;
+    const CliRun levels = run(npr({"--levels", "9"}));
+    EXPECT_EQ(levels.code, 1);
+    EXPECT_NE(levels.err.find("levels: 9 is invalid"), std::string::npos) << levels.err;
+    EXPECT_FALSE(fs::exists(path("O/0000.png")));
+}
+
+}  // namespace
+}  // namespace exemplar::npr
