@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "cli_fixture.hpp"
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "fluid_scene.hpp"
@@ -20,26 +20,9 @@ namespace exemplar::fluid {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-    int code = -1;
-    std::string out;
-    std::string err;
-};
-
-CliRun run(std::vector<std::string> args) {
-    args.insert(args.begin(), "exemplar");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int code = cli::run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-    return {code, out.str(), err.str()};
-}
-
-std::string bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using cli::testing::CliRun;
+using cli::testing::file_bytes;
+using cli::testing::run;
 
 // A temporary folder with a 6-frame 48x48 plume (sim/alpha, sim/motion) and a 28x28 exemplar.
 class FluidCli : public ::testing::Test {
@@ -83,7 +66,7 @@ protected:
         for (int n = 0; n <= 5; ++n) {
             char name[32];
             std::snprintf(name, sizeof name, "/%04d.png", n);
-            out.push_back(bytes(path(folder) + name));
+            out.push_back(file_bytes(path(folder) + name));
         }
         return out;
     }

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "cli_fixture.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/video/frame_sequence.hpp"
 #include "procedural.hpp"
@@ -18,25 +18,9 @@ namespace exemplar::noisy {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-    int code = 0;
-    std::string out, err;
-};
-
-CliRun run(std::vector<std::string> args) {
-    args.insert(args.begin(), {"exemplar", "noisy"});
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int code = cli::run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-    return {code, out.str(), err.str()};
-}
-
-std::string bytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using cli::testing::CliRun;
+using cli::testing::file_bytes;
+using cli::testing::run;
 
 class NoisyCli : public ::testing::Test {
 protected:
@@ -93,11 +77,12 @@ TEST_F(NoisyCli, WritesEveryFrameIdenticallyForAnyThreadCount) {
     const CliRun two = run(args("B/%04d.png", "2"));
     ASSERT_EQ(two.code, 0) << two.err;
     for (int n = 1; n <= 4; ++n) {
-        const std::string a = bytes(path("A/%04d.png", n)), b = bytes(path("B/%04d.png", n));
+        const std::string a = file_bytes(path("A/%04d.png", n)),
+                          b = file_bytes(path("B/%04d.png", n));
         EXPECT_FALSE(a.empty());
         EXPECT_EQ(a, b) << "frame " << n;
     }
-    EXPECT_NE(bytes(path("A/%04d.png", 1)), bytes(path("A/%04d.png", 2)));
+    EXPECT_NE(file_bytes(path("A/%04d.png", 1)), file_bytes(path("A/%04d.png", 2)));
 }
 
 TEST_F(NoisyCli, ResumesAndSplitsRangesWithoutChangingAFrame) {
@@ -107,7 +92,7 @@ TEST_F(NoisyCli, ResumesAndSplitsRangesWithoutChangingAFrame) {
     part[5] = "2";
     part[7] = "3";
     ASSERT_EQ(run(part).code, 0);
-    EXPECT_EQ(bytes(path("B/%04d.png", 2)), bytes(path("A/%04d.png", 2)));
+    EXPECT_EQ(file_bytes(path("B/%04d.png", 2)), file_bytes(path("A/%04d.png", 2)));
     EXPECT_FALSE(fs::exists(path("B/%04d.png", 1)));
     // Resume: an existing frame is kept as it is.
     { std::ofstream(path("A/%04d.png", 3), std::ios::binary) << "kept"; }
@@ -115,7 +100,7 @@ TEST_F(NoisyCli, ResumesAndSplitsRangesWithoutChangingAFrame) {
     again.pop_back();  // not quiet
     const CliRun resumed = run(again);
     ASSERT_EQ(resumed.code, 0) << resumed.err;
-    EXPECT_EQ(bytes(path("A/%04d.png", 3)), "kept");
+    EXPECT_EQ(file_bytes(path("A/%04d.png", 3)), "kept");
 }
 
 TEST_F(NoisyCli, ReadsAJobFileAndFlagsWin) {

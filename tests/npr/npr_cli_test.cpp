@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "cli_fixture.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "npr_patterns.hpp"
 
@@ -21,26 +21,9 @@ namespace exemplar::npr {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliRun {
-    int code = -1;
-    std::string out;
-    std::string err;
-};
-
-CliRun run(std::vector<std::string> args) {
-    args.insert(args.begin(), "exemplar");
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int code = cli::run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-    return {code, out.str(), err.str()};
-}
-
-std::string bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using cli::testing::CliRun;
+using cli::testing::file_bytes;
+using cli::testing::run;
 
 // Three 64x48 frames of a sphere moving right, and a 64x64 stipple pattern.
 class NprCli : public ::testing::Test {
@@ -98,7 +81,7 @@ TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {
         const std::string out = path("O/000" + std::to_string(n) + ".png");
         ASSERT_TRUE(fs::exists(out)) << out;
         ASSERT_TRUE(fs::exists(out + ".state.exr")) << out;
-        outputs.push_back(bytes(out));
+        outputs.push_back(file_bytes(out));
     }
     const Result<Image> image = load_image(path("O/0001.png"));
     ASSERT_TRUE(image.ok());
@@ -120,7 +103,7 @@ TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {
     again = run(npr({}));
     ASSERT_EQ(again.code, 0) << again.err;
     for (int n = 0; n <= 2; ++n)
-        EXPECT_EQ(bytes(path("O/000" + std::to_string(n) + ".png")),
+        EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
                   outputs[static_cast<std::size_t>(n)])
             << "frame " << n;
 }
