@@ -80,6 +80,30 @@ def test_chain_and_per_frame_plans():
         xd.run([xd.Unit("a", ("x",), "o/%d.png", 0, 0, after=("nowhere",))])
 
 
+def test_a_one_block_plan_is_one_animate_run(cli, tmp_path):
+    job = make_clip(tmp_path)
+    subprocess.run([cli, "animate", str(job), "-q", "-j", "1", "-o",
+                    str(tmp_path / "one/%04d.png")], check=True)
+    units = xd.animate_units(str(job), block=8, gap=1, threads=1)
+    assert [(u.first, u.last) for u in units] == [(0, 7)]
+    xd.run(units, executable=cli)
+    for i in range(8):
+        assert ((tmp_path / f"out/{i:04d}.png").read_bytes() ==
+                (tmp_path / f"one/{i:04d}.png").read_bytes())
+
+
+def commands_writing_into(folder: pathlib.Path) -> list:
+    """Pids of the processes whose command line names `folder`."""
+    pids = []
+    for proc in pathlib.Path("/proc").iterdir():
+        try:
+            if proc.name.isdigit() and str(folder).encode() in (proc / "cmdline").read_bytes():
+                pids.append(int(proc.name))
+        except OSError:  # ended meanwhile
+            pass
+    return pids
+
+
 def test_a_failing_unit_raises_the_commands_message(cli, tmp_path):
     unit = xd.Unit("bad", ("animate", str(tmp_path / "missing.json"), "--frames",
                            "{first}-{last}", "-o", "{output}"), str(tmp_path / "o/%04d.png"), 0, 1)
@@ -87,28 +111,42 @@ def test_a_failing_unit_raises_the_commands_message(cli, tmp_path):
         xd.run([unit], executable=cli)
 
 
+def alive(pid: int) -> bool:
+    """True while the process exists and is not a zombie."""
+    try:
+        return pathlib.Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
 def kill_one_attempt(staging: pathlib.Path, worker_pids: set, killed: list, stop):
-    """Kills the worker running the first unit attempt seen under `staging` (its attempt.json
-    names the worker's pid); records (unit, pid) when the attempt was still unfinished once the
-    worker was dead (its staging folder still there), else tries the next attempt."""
+    """Kills the worker running the first unit whose command is seen running in a staging
+    folder under `staging` (its attempt.json names the worker's pid). Records (unit, worker pid,
+    whether the command was gone 0.5 s after the worker: the parent-death signal is immediate,
+    a unit runs for about a second) when the attempt was still unfinished once the worker was
+    dead (its staging folder still there); else tries the next attempt."""
     tried = set()
     while not stop.is_set() and not killed:
         for attempt in staging.glob("*/attempt.json") if staging.is_dir() else []:
             if attempt in tried:
                 continue
-            tried.add(attempt)
             try:
                 info = json.loads(attempt.read_text())
             except (OSError, ValueError):  # being written: read it next time round
-                tried.discard(attempt)
                 continue
-            if info["pid"] not in worker_pids:
-                continue
+            commands = commands_writing_into(attempt.parent)
+            if info["pid"] not in worker_pids or not commands:
+                continue  # not a worker of this cluster, or its command is not running yet
+            tried.add(attempt)
             os.kill(info["pid"], signal.SIGKILL)
-            while os.path.exists(f"/proc/{info['pid']}") and not stop.is_set():
+            while alive(info["pid"]) and not stop.is_set():
+                time.sleep(0.01)
+            deadline = time.monotonic() + 0.5
+            while commands_writing_into(attempt.parent) and time.monotonic() < deadline:
                 time.sleep(0.01)
             if attempt.parent.is_dir():
-                killed.append((info["unit"], info["pid"]))
+                killed.append((info["unit"], info["pid"],
+                               not commands_writing_into(attempt.parent)))
                 return
         time.sleep(0.01)
 
@@ -135,9 +173,10 @@ def test_a_killed_worker_changes_no_byte(cli, client, tmp_path):
     assert killed, "no unit was running when a worker could be killed"
     assert outputs == [str(cluster / f"out/{i:04d}.png") for i in (0, 1, 2, 4, 5, 6, 7, 3)]
     assert frame_bytes(cluster) == expected
-    # The dead worker's attempt left its staging folder; the nanny restarted the worker.
-    client.wait_for_workers(2, timeout=120)
-    assert killed[0][1] not in set(client.run(os.getpid).values())
+    unit, worker, command_died_with_worker = killed[0]
+    assert command_died_with_worker, f"{unit}: the command outlived its killed worker"
+    client.wait_for_workers(2, timeout=120)  # the nanny restarted it
+    assert worker not in set(client.run(os.getpid).values())
 
 
 def test_resume_redoes_only_missing_units(cli, client, tmp_path):
