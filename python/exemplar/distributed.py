@@ -174,12 +174,23 @@ def animate_units(job: str, *, first: int | None = None, last: int | None = None
     return units
 
 
+# prctl, resolved here: the child of a threaded worker must not load anything between fork and
+# exec (a lock held by another thread at the fork would never be released).
+_prctl = ctypes.CDLL(None, use_errno=True).prctl
+_PR_SET_PDEATHSIG = 1
+
+
 def _die_with_parent() -> None:
     # In the child, before exec: SIGKILL when the worker process dies, so a killed worker
-    # leaves no command running (the waiting thread outlives the child otherwise).
-    libc = ctypes.CDLL(None, use_errno=True)
-    PR_SET_PDEATHSIG = 1
-    libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    # leaves no command running (otherwise it would run on, orphaned, to its end).
+    _prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL))
+
+
+def _fill(arg: str, values: dict) -> str:
+    # Plain replacement, not str.format: paths may contain braces.
+    for name, value in values.items():
+        arg = arg.replace("{" + name + "}", value)
+    return arg
 
 
 def run_unit(unit: Unit, executable: str = "exemplar", *_after: object) -> list[str]:
@@ -202,7 +213,7 @@ def run_unit(unit: Unit, executable: str = "exemplar", *_after: object) -> list[
             raise UnitFailed(f"{unit.name}: hand-over frame {frame} ({source}) does not exist")
         shutil.copyfile(source, pattern % frame)
     values = {"first": str(unit.first), "last": str(unit.last), "output": pattern}
-    argv = [executable] + [arg.format(**values) if "{" in arg else arg for arg in unit.command]
+    argv = [executable] + [_fill(arg, values) for arg in unit.command]
     completed = subprocess.run(argv, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                stderr=subprocess.PIPE, text=True, preexec_fn=_die_with_parent)
     if completed.returncode != 0:
