@@ -200,7 +200,8 @@ def test_fluid_in_chained_units_is_one_run(cli, client, tmp_path):
                     "32", "--frames", "6", "-o", str(tmp_path / "sim"), "-q"], check=True)
     exemplar.save_image(np.concatenate([pattern(24, 24, 3, 0.7), gradient(24, 24)], axis=-1),
                         str(tmp_path / "fire.png"))
-    args = ["--exemplar", str(tmp_path / "fire.png"), "--alpha", str(tmp_path / "sim/alpha/%04d.png"),
+    args = ["--exemplar", str(tmp_path / "fire.png"),
+            "--alpha", str(tmp_path / "sim/alpha/%04d.png"),
             "--motion", str(tmp_path / "sim/motion/%04d.flo"), "-j", "1"]
     subprocess.run([cli, "fluid", *args, "--first", "0", "--last", "5", "--output",
                     str(tmp_path / "one/%04d.png"), "-q"], check=True)
