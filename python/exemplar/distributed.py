@@ -203,7 +203,14 @@ def run_unit(unit: Unit, executable: str = "exemplar", *_after: object) -> list[
         return outputs
     final_dir = os.path.dirname(os.path.abspath(unit.output % unit.first))
     staging = os.path.join(final_dir, STAGING, f"{unit.first:08d}-{uuid.uuid4().hex}")
-    os.makedirs(staging)
+    for _ in range(3):  # another plan's `run` may remove the empty STAGING folder meanwhile
+        try:
+            os.makedirs(staging)
+            break
+        except FileNotFoundError:
+            continue
+    else:
+        os.makedirs(staging)
     with open(os.path.join(staging, "attempt.json"), "w", encoding="utf-8") as f:
         json.dump({"unit": unit.name, "pid": os.getpid()}, f)
     pattern = os.path.join(staging, os.path.basename(unit.output))
@@ -266,7 +273,22 @@ def run(units: Iterable[Unit], client=None, *, executable: str = "exemplar",
     `timeout` (seconds) bounds the wait for the whole plan on a cluster."""
     ordered = _ordered(units)
     if client is None:
-        return [path for unit in ordered for path in run_unit(unit, executable)]
+        for unit in ordered:
+            run_unit(unit, executable)
+    else:
+        _run_on(client, ordered, executable, retries, timeout)
+    # An empty staging folder is removed; a dead attempt's stays (docs/distributed.md).
+    for folder in {os.path.dirname(os.path.abspath(unit.output % unit.first))
+                   for unit in ordered}:
+        try:
+            os.rmdir(os.path.join(folder, STAGING))
+        except OSError:
+            pass
+    return [path for unit in ordered for path in unit.outputs()]
+
+
+def _run_on(client, ordered: list[Unit], executable: str, retries: int,
+            timeout: float | None) -> None:
     futures = {}
     for unit in ordered:
         if unit.done():  # resume: not even a task
@@ -276,7 +298,6 @@ def run(units: Iterable[Unit], client=None, *, executable: str = "exemplar",
                                            key=f"exemplar-{unit.name}-{uuid.uuid4().hex}",
                                            pure=False, retries=retries)
     _gather(client, list(futures.values()), timeout)
-    return [path for unit in ordered for path in unit.outputs()]
 
 
 def _gather(client, futures, timeout):

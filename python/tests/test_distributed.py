@@ -158,6 +158,7 @@ def test_a_killed_worker_changes_no_byte(cli, client, tmp_path):
     plan = lambda folder: xd.animate_units(str(folder / "job.json"), block=4, gap=1, threads=1)
     xd.run(plan(single), executable=cli)
     expected = frame_bytes(single)
+    assert not (single / "out" / xd.STAGING).exists()  # removed once empty
     assert sorted(expected) == [f"{i:04d}.png" for i in range(8)]
 
     worker_pids = set(client.run(os.getpid).values())
@@ -173,6 +174,9 @@ def test_a_killed_worker_changes_no_byte(cli, client, tmp_path):
     assert killed, "no unit was running when a worker could be killed"
     assert outputs == [str(cluster / f"out/{i:04d}.png") for i in (0, 1, 2, 4, 5, 6, 7, 3)]
     assert frame_bytes(cluster) == expected
+    assert [p.name for p in (cluster / "out").iterdir() if not p.name.endswith(".png")] == [
+        xd.STAGING]  # holding the dead attempt's folder only
+    assert list((cluster / "out" / xd.STAGING).iterdir())
     unit, worker, command_died_with_worker = killed[0]
     assert command_died_with_worker, f"{unit}: the command outlived its killed worker"
     client.wait_for_workers(2, timeout=120)  # the nanny restarted it
