@@ -201,6 +201,9 @@ def run_unit(unit: Unit, executable: str = "exemplar", *_after: object) -> list[
     outputs = unit.outputs()
     if unit.done():
         return outputs
+    if "%" in os.path.dirname(unit.output):
+        raise ValueError(f"{unit.name}: output {unit.output}: the frame number must be in the "
+                         "file name, not in a folder")
     final_dir = os.path.dirname(os.path.abspath(unit.output % unit.first))
     staging = os.path.join(final_dir, STAGING, f"{unit.first:08d}-{uuid.uuid4().hex}")
     for _ in range(3):  # another plan's `run` may remove the empty STAGING folder meanwhile
@@ -211,6 +214,14 @@ def run_unit(unit: Unit, executable: str = "exemplar", *_after: object) -> list[
             continue
     else:
         os.makedirs(staging)
+    try:
+        _attempt(unit, executable, staging, outputs)
+    finally:  # a failed attempt leaves nothing; a killed one leaves its folder
+        shutil.rmtree(staging, ignore_errors=True)
+    return outputs
+
+
+def _attempt(unit: Unit, executable: str, staging: str, outputs: list[str]) -> None:
     with open(os.path.join(staging, "attempt.json"), "w", encoding="utf-8") as f:
         json.dump({"unit": unit.name, "pid": os.getpid()}, f)
     pattern = os.path.join(staging, os.path.basename(unit.output))
@@ -229,8 +240,6 @@ def run_unit(unit: Unit, executable: str = "exemplar", *_after: object) -> list[
                          f"{lines[-1] if lines else '(no message)'}")
     for frame, path in zip(range(unit.first, unit.last + 1), outputs):
         os.replace(pattern % frame, path)
-    shutil.rmtree(staging, ignore_errors=True)
-    return outputs
 
 
 def _ordered(units: Iterable[Unit]) -> list[Unit]:
@@ -272,18 +281,20 @@ def run(units: Iterable[Unit], client=None, *, executable: str = "exemplar",
     `executable` is the `exemplar` command as the workers see it (on their PATH by default).
     `timeout` (seconds) bounds the wait for the whole plan on a cluster."""
     ordered = _ordered(units)
-    if client is None:
-        for unit in ordered:
-            run_unit(unit, executable)
-    else:
-        _run_on(client, ordered, executable, retries, timeout)
-    # An empty staging folder is removed; a dead attempt's stays (docs/distributed.md).
-    for folder in {os.path.dirname(os.path.abspath(unit.output % unit.first))
-                   for unit in ordered}:
-        try:
-            os.rmdir(os.path.join(folder, STAGING))
-        except OSError:
-            pass
+    try:
+        if client is None:
+            for unit in ordered:
+                run_unit(unit, executable)
+        else:
+            _run_on(client, ordered, executable, retries, timeout)
+    finally:
+        # An empty staging folder is removed; a dead attempt's stays (docs/distributed.md).
+        for folder in {os.path.dirname(os.path.abspath(unit.output % unit.first))
+                       for unit in ordered}:
+            try:
+                os.rmdir(os.path.join(folder, STAGING))
+            except OSError:
+                pass
     return [path for unit in ordered for path in unit.outputs()]
 
 

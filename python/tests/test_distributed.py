@@ -109,6 +109,7 @@ def test_a_failing_unit_raises_the_commands_message(cli, tmp_path):
                            "{first}-{last}", "-o", "{output}"), str(tmp_path / "o/%04d.png"), 0, 1)
     with pytest.raises(xd.UnitFailed, match=r"bad: exemplar exited with 1: .*missing\.json"):
         xd.run([unit], executable=cli)
+    assert not (tmp_path / "o").exists() or not any((tmp_path / "o").iterdir())
 
 
 def alive(pid: int) -> bool:
