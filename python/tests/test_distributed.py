@@ -216,3 +216,21 @@ def test_fluid_in_chained_units_is_one_run(cli, client, tmp_path):
     for i in range(6):
         assert ((tmp_path / f"chain/{i:04d}.png").read_bytes() ==
                 (tmp_path / f"one/{i:04d}.png").read_bytes())
+
+
+def test_noisy_frames_one_unit_each_are_one_run(cli, client, tmp_path):
+    # Color Me Noisy: frame i depends only on (seed, i), so every frame is its own unit.
+    verbs = subprocess.run([cli, "--help"], capture_output=True, text=True, check=True).stdout
+    if "\n  noisy " not in verbs:  # before the merge of the noisy branch
+        pytest.skip("this exemplar has no `noisy` verb")
+    make_clip(tmp_path)
+    args = ["--exemplar", str(tmp_path / "style_out.png"),
+            "--frames", str(tmp_path / "frames/%04d.png"), "--noise", "2", "--seed", "3"]
+    subprocess.run([cli, "noisy", *args, "--first", "0", "--last", "5", "-o",
+                    str(tmp_path / "one/%04d.png"), "-q", "-j", "1"], check=True)
+    units = xd.per_frame_units("noisy", args, str(tmp_path / "each/%04d.png"), 0, 5, threads=1)
+    assert len(units) == 6
+    xd.run(units, client, executable=cli, timeout=PLAN_TIMEOUT_S)
+    for i in range(6):
+        assert ((tmp_path / f"each/{i:04d}.png").read_bytes() ==
+                (tmp_path / f"one/{i:04d}.png").read_bytes())
