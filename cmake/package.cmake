@@ -68,5 +68,7 @@ set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
 if(EXEMPLAR_PYTHON)
   math(EXPR next_minor "${EXEMPLAR_PYTHON_VERSION_MINOR} + 1")
   set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3 (>= ${EXEMPLAR_PYTHON_VERSION_MAJOR}.${EXEMPLAR_PYTHON_VERSION_MINOR}), python3 (<< ${EXEMPLAR_PYTHON_VERSION_MAJOR}.${next_minor}), python3-numpy")
+  # exemplar.distributed imports dask.distributed only when used.
+  set(CPACK_DEBIAN_PACKAGE_SUGGESTS "python3-distributed")
 endif()
 include(CPack)

@@ -18,6 +18,7 @@ packages=(
   clang-format ccache                   # formatting; compilations cached across clones
   python3-dev pybind11-dev python3-numpy  # the Python module (python/)
   python3-pytest python3-pip python3-venv   # its tests; pip install . without an index
+  python3-distributed                    # exemplar.distributed: frames on a Dask cluster
 )
 
 missing=()
