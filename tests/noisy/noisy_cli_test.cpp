@@ -20,7 +20,12 @@ namespace {
 namespace fs = std::filesystem;
 using cli::testing::CliRun;
 using cli::testing::file_bytes;
-using cli::testing::run;
+
+// `exemplar noisy ARGS...`, in-process.
+CliRun run_noisy(std::vector<std::string> args) {
+    args.insert(args.begin(), "noisy");
+    return cli::testing::run(std::move(args));
+}
 
 class NoisyCli : public ::testing::Test {
 protected:
@@ -72,9 +77,9 @@ protected:
 };
 
 TEST_F(NoisyCli, WritesEveryFrameIdenticallyForAnyThreadCount) {
-    const CliRun one = run(args("A/%04d.png", "1"));
+    const CliRun one = run_noisy(args("A/%04d.png", "1"));
     ASSERT_EQ(one.code, 0) << one.err;
-    const CliRun two = run(args("B/%04d.png", "2"));
+    const CliRun two = run_noisy(args("B/%04d.png", "2"));
     ASSERT_EQ(two.code, 0) << two.err;
     for (int n = 1; n <= 4; ++n) {
         const std::string a = file_bytes(path("A/%04d.png", n)),
@@ -86,19 +91,19 @@ TEST_F(NoisyCli, WritesEveryFrameIdenticallyForAnyThreadCount) {
 }
 
 TEST_F(NoisyCli, ResumesAndSplitsRangesWithoutChangingAFrame) {
-    ASSERT_EQ(run(args("A/%04d.png", "2")).code, 0);
+    ASSERT_EQ(run_noisy(args("A/%04d.png", "2")).code, 0);
     // Frames 2..3 alone, into another folder: the same bytes as in the whole range.
     std::vector<std::string> part = args("B/%04d.png", "1");
     part[5] = "2";
     part[7] = "3";
-    ASSERT_EQ(run(part).code, 0);
+    ASSERT_EQ(run_noisy(part).code, 0);
     EXPECT_EQ(file_bytes(path("B/%04d.png", 2)), file_bytes(path("A/%04d.png", 2)));
     EXPECT_FALSE(fs::exists(path("B/%04d.png", 1)));
     // Resume: an existing frame is kept as it is.
     { std::ofstream(path("A/%04d.png", 3), std::ios::binary) << "kept"; }
     std::vector<std::string> again = args("A/%04d.png", "2");
     again.pop_back();  // not quiet
-    const CliRun resumed = run(again);
+    const CliRun resumed = run_noisy(again);
     ASSERT_EQ(resumed.code, 0) << resumed.err;
     EXPECT_EQ(file_bytes(path("A/%04d.png", 3)), "kept");
 }
@@ -110,7 +115,7 @@ TEST_F(NoisyCli, ReadsAJobFileAndFlagsWin) {
             << "\", \"first\": 1, \"last\": 2, \"noise\": 3, \"output\": \"" << path("J/%04d.png")
             << "\", \"patch_size\": 5, \"em-iterations\": 2, \"search-iterations\": 3}";
     }
-    const CliRun from_job = run({"--config", path("job.json"), "--last", "1", "-q"});
+    const CliRun from_job = run_noisy({"--config", path("job.json"), "--last", "1", "-q"});
     ASSERT_EQ(from_job.code, 0) << from_job.err;
     EXPECT_TRUE(fs::exists(path("J/%04d.png", 1)));
     EXPECT_FALSE(fs::exists(path("J/%04d.png", 2)));
@@ -118,7 +123,7 @@ TEST_F(NoisyCli, ReadsAJobFileAndFlagsWin) {
         std::ofstream job(path("bad.json"));
         job << "{\"noise\": 3, \"colour\": 1}";
     }
-    const CliRun bad = run({"--config", path("bad.json")});
+    const CliRun bad = run_noisy({"--config", path("bad.json")});
     EXPECT_EQ(bad.code, 1);
     EXPECT_EQ(bad.err, "exemplar: " + path("bad.json") + ": unknown key 'colour'\n");
 }
@@ -126,19 +131,19 @@ TEST_F(NoisyCli, ReadsAJobFileAndFlagsWin) {
 TEST_F(NoisyCli, BadInputsGiveOneLineErrors) {
     std::vector<std::string> a = args("E/%04d.png", "1");
     a[7] = "5";  // --last 5: R/0005.png is missing
-    CliRun r = run(a);
+    CliRun r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: " + path("R/%04d.png", 5) + ": no such file (frame 5 of 1..5)\n");
 
     a = args("E/%04d.png", "1");
     a[9] = "-2";
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: noise: -2 is invalid (must be 0..256)\n");
 
     a = args("E/%04d.png", "1");
     a[9] = "9";
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: " + path("R/%04d.png", 1) +
                          ": noise: 9 is too strong for the 32x32 reference and the 64x64 "
@@ -146,38 +151,38 @@ TEST_F(NoisyCli, BadInputsGiveOneLineErrors) {
 
     a = args("E/%04d.png", "1");
     a.insert(a.end(), {"--filter", "gauss"});
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: filter: 'gauss' is invalid (must be one of box, lanczos3)\n");
 
     a = args("E/%04d.png", "-1");
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: --threads: -1 is invalid (must be >= 0)\n");
 
     a = args("E/%04d.png", "1");
     a.erase(a.begin() + 4, a.begin() + 8);  // no --first, --last
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: --frames " + path("R/%04d.png") +
                          ": a frame pattern needs --first and --last\n");
 
     a = args("E/%04d.png", "1");
     a.erase(a.begin() + 8, a.begin() + 10);  // no --noise
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: --noise: is required (the low-pass strength f in pixels)\n");
 
     ASSERT_TRUE(save_image(Image(16, 16, 1, 0.5f), path("map.png")).ok());
     a = args("E/%04d.png", "1");
     a.insert(a.end(), {"--noise-map", path("map.png")});
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: " + path("map.png") + ": is 16x16 but " + path("R/%04d.png", 1) +
                          " is 32x32\n");
 
     ASSERT_TRUE(save_image(testing::cel(40, 32, 12, 14, 9), path("R/%04d.png", 3)).ok());
-    r = run(args("E/%04d.png", "1"));
+    r = run_noisy(args("E/%04d.png", "1"));
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: " + path("R/%04d.png", 3) + ": is 40x32 but " +
                          path("R/%04d.png", 1) + " is 32x32\n");
@@ -193,19 +198,19 @@ TEST_F(NoisyCli, TakesOrientationFields) {
     a[7] = "2";
     a.insert(a.end(),
              {"--exemplar-orientation", path("OS.exr"), "--frame-orientation", path("O/%04d.exr")});
-    const CliRun oriented = run(a);
+    const CliRun oriented = run_noisy(a);
     ASSERT_EQ(oriented.code, 0) << oriented.err;
     EXPECT_TRUE(fs::exists(path("T/%04d.png", 2)));
 
     a.resize(a.size() - 2);  // no --frame-orientation
-    CliRun r = run(a);
+    CliRun r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err,
               "exemplar: --exemplar-orientation and --frame-orientation: give both, or neither\n");
     ASSERT_TRUE(save_image(Image(64, 64, 1, 0.0f), path("OS.png")).ok());
     a[a.size() - 1] = path("OS.png");
     a.insert(a.end(), {"--frame-orientation", path("O/%04d.exr")});
-    r = run(a);
+    r = run_noisy(a);
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: --exemplar-orientation " + path("OS.png") +
                          ": an orientation field holds angles in radians and needs a float "
@@ -225,13 +230,13 @@ TEST_F(NoisyCli, ReadsAVideo) {
     a[3] = path("clip.mp4");
     a[5] = "0";
     a[7] = "1";
-    const CliRun r = run(a);
+    const CliRun r = run_noisy(a);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(fs::exists(path("V/%04d.png", 0)));
     EXPECT_TRUE(fs::exists(path("V/%04d.png", 1)));
     EXPECT_FALSE(fs::exists(path("V/%04d.png", 2)));
     a[7] = "5";
-    const CliRun beyond = run(a);
+    const CliRun beyond = run_noisy(a);
     EXPECT_EQ(beyond.code, 1);
     EXPECT_EQ(beyond.err,
               "exemplar: --first/--last: 0..5 is invalid (the video has frames 0..2)\n");
