@@ -35,11 +35,13 @@ from ._exemplar import (
     save_image,
 )
 from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
+from ._exemplar import _fluid_frame, _fluid_simulate
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
     "InvalidArgumentError", "IoError", "Progress", "StylizeResult", "UnsupportedError",
-    "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "flow", "load_image",
+    "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "flow", "fluid_frame",
+    "fluid_simulate", "load_image",
     "option_specs", "render", "save_image", "stylit", "stylize",
 ]
 
@@ -79,3 +81,13 @@ def animate(style_input, style_output, frames, **options):
 @_signatures.decorate
 def flow(from_frame, to_frame, **options):
     return _flow(from_frame, to_frame, **options)
+
+
+@_signatures.decorate
+def fluid_frame(exemplar, target_alpha, **options):
+    return _fluid_frame(exemplar, target_alpha, **options)
+
+
+@_signatures.decorate
+def fluid_simulate(**options):
+    return _fluid_simulate(**options)

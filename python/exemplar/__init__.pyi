@@ -690,6 +690,131 @@ def flow(
     Returns dict[str, numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def fluid_frame(
+    exemplar: Image,
+    target_alpha: Image,
+    *,
+    previous_output: Image | None = None,
+    previous_motion: Image | None = None,
+    previous_exemplar: Image | None = None,
+    motion: Image | None = None,
+    patch_size: int = 5,
+    temporal_weight: float = 0.2,
+    boundary_weight: float = 3.0,
+    alpha_weight: float = 3.0,
+    blur_radius: float = 3.0,
+    boundary_low: float = 0.1,
+    boundary_high: float = 0.9,
+    motion_blur: float = 0.0,
+    usage: str = 'uniform',
+    rotations: bool = False,
+    seed: int = 1,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """LazyFluids (Jamriska et al. 2015): synthesizes one frame of a fluid animation from an
+    RGBA exemplar, the frame's target alpha mask and, after the first frame, the previous
+    output and the motion that carries it here. The step `exemplar fluid` takes per frame
+    (call it frame after frame, passing each output as the next previous_output). Returns
+    the frame, HxWx4 RGBA with straight alpha, in the exemplar's dtype.
+
+    Parameters:
+      exemplar (Image)
+          Z^t: the RGBA exemplar (4 channels, straight alpha).
+      target_alpha (Image)
+          X^t_a: the target alpha mask (HxW, values 0..1).
+      previous_output (Image | None, default None)
+          X^{t-1}: the previous frame's output (RGBA, target size); None = first frame (no
+          temporal term).
+      previous_motion (Image | None, default None)
+          F^{t-1}: forward motion from the previous frame to this one (HxWx2 float32,
+          pixels); required with previous_output.
+      previous_exemplar (Image | None, default None)
+          Z^{t-1}: the exemplar frame of the previous output frame; None = exemplar (a still
+          exemplar).
+      motion (Image | None, default None)
+          This frame's forward motion (HxWx2 float32), for motion_blur.
+      patch_size (int, default 5)
+          Patch width (odd). Paper: 5. Range 3..15 px.
+      temporal_weight (float, default 0.2)
+          lambda: weight of the previous output advected along the motion (0 = every frame
+          on its own; 0 at emitters and in the first frame). Paper: 0.2. Range 0.0..10.0.
+      boundary_weight (float, default 3.0)
+          eta: weight of the blurred alpha guide; lower = more varied boundaries. Paper: 3.
+          Range 0.0..100.0.
+      alpha_weight (float, default 3.0)
+          Weight of the synthesized alpha channel (1 per colour channel). Paper: 3. Range
+          0.0..100.0.
+      blur_radius (float, default 3.0)
+          r: Gaussian blur (sigma) of the alpha masks before segmentation; scale with the
+          resolution. Paper: 3. Range 0.0..50.0 px.
+      boundary_low (float, default 0.1)
+          l: blurred alpha above this is fluid (boundary or interior). Paper: 0.1. Range
+          0.0..0.999.
+      boundary_high (float, default 0.9)
+          u: blurred alpha at or above this is interior. Paper: 0.9. Range 0.001..1.0.
+      motion_blur (float, default 0.0)
+          Motion blur along the motion, sigma as a fraction of the motion's length (0 =
+          off). Range 0.0..2.0.
+      usage (str, default 'uniform')
+          'uniform' (LazyFluids) or 'none' (plain nearest neighbours, for comparisons).
+      rotations (bool, default False)
+          Add the exemplar rotated by 90, 180 and 270 degrees.
+      seed (int, default 1)
+          Random seed (same seed, same output).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def fluid_simulate(
+    *,
+    width: int,
+    height: int,
+    frames: int,
+    seed: int = 1,
+    warmup_frames: int = 0,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> tuple[list[numpy.ndarray], list[numpy.ndarray]]:
+    """Simulates the built-in `plume` scene of `exemplar fluid simulate` (2D stable fluids)
+    into LazyFluids targets. Returns (alphas, motions): per frame an HxW float32 alpha mask
+    and the HxWx2 float32 forward motion to the next frame, in pixels.
+
+    Parameters:
+      width (int)
+          Frame width, pixels (8..8192).
+      height (int)
+          Frame height, pixels (8..8192).
+      frames (int)
+          Number of frames (>= 1).
+      seed (int, default 1)
+          Seed of the emitters' jitter (the scene's seed).
+      warmup_frames (int, default 0)
+          Frames simulated before the first returned one (the scene's warmup_frames).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns tuple[list[numpy.ndarray], list[numpy.ndarray]]. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

@@ -31,6 +31,7 @@ class Param(NamedTuple):
 
 _IMAGE = "Image"
 _SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option table
+_FLUID = "fluid"  # marker: the fluid option table (patch_size, temporal_weight, ...)
 _RUN = [
     Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
     Param("progress", "Callable[[Progress], bool | None] | None",
@@ -232,6 +233,54 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "dict[str, numpy.ndarray]",
     ),
+    "fluid_frame": (
+        "LazyFluids (Jamriska et al. 2015): synthesizes one frame of a fluid animation from an "
+        "RGBA exemplar, the frame's target alpha mask and, after the first frame, the previous "
+        "output and the motion that carries it here. The step `exemplar fluid` takes per frame "
+        "(call it frame after frame, passing each output as the next previous_output). Returns "
+        "the frame, HxWx4 RGBA with straight alpha, in the exemplar's dtype.",
+        [
+            Param("exemplar", _IMAGE, "Z^t: the RGBA exemplar (4 channels, straight alpha).",
+                  positional=True),
+            Param("target_alpha", _IMAGE, "X^t_a: the target alpha mask (HxW, values 0..1).",
+                  positional=True),
+            Param("previous_output", "Image | None",
+                  "X^{t-1}: the previous frame's output (RGBA, target size); None = first frame "
+                  "(no temporal term).", None),
+            Param("previous_motion", "Image | None",
+                  "F^{t-1}: forward motion from the previous frame to this one (HxWx2 float32, "
+                  "pixels); required with previous_output.", None),
+            Param("previous_exemplar", "Image | None",
+                  "Z^{t-1}: the exemplar frame of the previous output frame; None = exemplar (a "
+                  "still exemplar).", None),
+            Param("motion", "Image | None",
+                  "This frame's forward motion (HxWx2 float32), for motion_blur.", None),
+            _FLUID,
+            Param("usage", "str", "'uniform' (LazyFluids) or 'none' (plain nearest "
+                  "neighbours, for comparisons).", "uniform"),
+            Param("rotations", "bool",
+                  "Add the exemplar rotated by 90, 180 and 270 degrees.", False),
+            Param("seed", "int", "Random seed (same seed, same output).", 1),
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
+    "fluid_simulate": (
+        "Simulates the built-in `plume` scene of `exemplar fluid simulate` (2D stable fluids) "
+        "into LazyFluids targets. Returns (alphas, motions): per frame an HxW float32 alpha "
+        "mask and the HxWx2 float32 forward motion to the next frame, in pixels.",
+        [
+            Param("width", "int", "Frame width, pixels (8..8192)."),
+            Param("height", "int", "Frame height, pixels (8..8192)."),
+            Param("frames", "int", "Number of frames (>= 1)."),
+            Param("seed", "int", "Seed of the emitters' jitter (the scene's seed).", 1),
+            Param("warmup_frames", "int",
+                  "Frames simulated before the first returned one (the scene's warmup_frames).",
+                  0),
+            *_RUN,
+        ],
+        "tuple[list[numpy.ndarray], list[numpy.ndarray]]",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
@@ -251,6 +300,17 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         "BeautifyResult",
     ),
 }
+
+
+def _fluid_params() -> list[Param]:
+    params = []
+    for spec in _exemplar._fluid_option_specs():
+        unit = f" {spec['unit']}" if spec["unit"] else ""
+        low, high = (int(spec["min"]), int(spec["max"])) if spec["type"] == "int" \
+            else (spec["min"], spec["max"])
+        doc = f"{spec['doc'].rstrip('.')}. Range {low}..{high}{unit}."
+        params.append(Param(spec["name"], spec["type"], doc, spec["default"]))
+    return params
 
 
 def _table_params(verb: str) -> list[Param]:
@@ -279,6 +339,8 @@ def _params(verb: str) -> list[Param]:
     for param in _VERBS[verb][1]:
         if param == _SYNTHESIS:
             params += _words(verb) + _table_params(verb)
+        elif param == _FLUID:
+            params += _fluid_params()
         else:
             params.append(param)
     return params

@@ -22,4 +22,7 @@ void register_animate(py::module_& module);
 /// flow (flow.cpp).
 void register_flow(py::module_& module);
 
+/// fluid_frame, fluid_simulate and the fluid option table (fluid.cpp).
+void register_fluid(py::module_& module);
+
 }  // namespace exemplar::python
