@@ -35,13 +35,13 @@ from ._exemplar import (
     save_image,
 )
 from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
-from ._exemplar import _fluid_frame, _fluid_simulate
+from ._exemplar import _fluid_frame, _fluid_simulate, _noisy_frame
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
     "InvalidArgumentError", "IoError", "Progress", "StylizeResult", "UnsupportedError",
     "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "flow", "fluid_frame",
-    "fluid_simulate", "load_image",
+    "fluid_simulate", "load_image", "noisy_frame",
     "option_specs", "render", "save_image", "stylit", "stylize",
 ]
 
@@ -91,3 +91,8 @@ def fluid_frame(exemplar, target_alpha, **options):
 @_signatures.decorate
 def fluid_simulate(**options):
     return _fluid_simulate(**options)
+
+
+@_signatures.decorate
+def noisy_frame(exemplar, reference, **options):
+    return _noisy_frame(exemplar, reference, **options)

@@ -815,6 +815,88 @@ def fluid_simulate(
     Returns tuple[list[numpy.ndarray], list[numpy.ndarray]]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def noisy_frame(
+    exemplar: Image,
+    reference: Image,
+    *,
+    frame: int = 0,
+    noise: float,
+    level_ratio: float = 0.85,
+    patch_size: int = 7,
+    em_iterations: int = 4,
+    search_iterations: int = 8,
+    lattice_spacing: float = 50.0,
+    min_offset: float = 15.0,
+    max_offset: float = 25.0,
+    seed: int = 1,
+    filter: str = 'box',
+    noise_map: Image | None = None,
+    exemplar_orientation: Image | None = None,
+    frame_orientation: Image | None = None,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Color Me Noisy (Fiser et al. 2014): re-synthesizes one frame of a reference animation
+    from a scan of a drawing medium, the frame's low frequencies following the reference and
+    its details changing at random from frame to frame (more with a larger noise). The call
+    `exemplar noisy` makes per frame: frame `frame` depends only on (exemplar, reference,
+    options, seed, frame). Returns the frame at the reference's size in the exemplar's
+    channels and dtype.
+
+    Parameters:
+      exemplar (Image)
+          S: the scan of the drawing medium (1..4 channels).
+      reference (Image)
+          R_i: the reference frame (1, 3 or 4 channels).
+      frame (int, default 0)
+          The frame's number i (keys its randomness, as the CLI's frame numbers do).
+      noise (float)
+          Low-pass strength f: width of the box separating the reference's low frequencies
+          (kept) from the details (re-synthesized at random in every frame). Larger = more
+          temporal noise; <= 1 = the least (finest level only). At most min side / patch-
+          size. Range 0.0..256.0 px.
+      level_ratio (float, default 0.85)
+          Ratio of the sampling rates of consecutive pyramid levels between strength f and 1
+          (chapter: 0.85). Range 0.5..0.95.
+      patch_size (int, default 7)
+          Patch width; odd (chapter: 7). Range 3..31 px.
+      em_iterations (int, default 4)
+          Search+vote iterations per pyramid level (chapter: 4). Range 1..100 iterations.
+      search_iterations (int, default 8)
+          PatchMatch iterations per nearest-neighbour search (chapter: 8). Range 1..100
+          iterations.
+      lattice_spacing (float, default 50.0)
+          Spacing of the control lattice of the random rigid-MLS pre-deformation of the
+          source, in source pixels (chapter: 50). Range 4.0..10000.0 px.
+      min_offset (float, default 15.0)
+          Shortest random move of a lattice point (chapter: 15); 0 with max-offset 0 turns
+          the pre-deformation off. Range 0.0..1000.0 px.
+      max_offset (float, default 25.0)
+          Longest random move of a lattice point (chapter: 25). Range 0.0..1000.0 px.
+      seed (int, default 1)
+          Random seed: frame i depends only on (seed, i).
+      filter (str, default 'box')
+          Low-pass filter: 'box' or 'lanczos3'.
+      noise_map (Image | None, default None)
+          Per-pixel noise strength in [0, 1] scaling noise (HxW, reference size).
+      exemplar_orientation (Image | None, default None)
+          Orientation field of the exemplar (HxW float32, radians); with frame_orientation.
+      frame_orientation (Image | None, default None)
+          Orientation field of the frame (HxW float32, radians, reference size).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

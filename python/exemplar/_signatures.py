@@ -32,6 +32,7 @@ class Param(NamedTuple):
 _IMAGE = "Image"
 _SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option table
 _FLUID = "fluid"  # marker: the fluid option table (patch_size, temporal_weight, ...)
+_NOISY = "noisy"  # marker: the noisy option table (noise, level_ratio, ...)
 _RUN = [
     Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
     Param("progress", "Callable[[Progress], bool | None] | None",
@@ -281,6 +282,36 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "tuple[list[numpy.ndarray], list[numpy.ndarray]]",
     ),
+    "noisy_frame": (
+        "Color Me Noisy (Fiser et al. 2014): re-synthesizes one frame of a reference animation "
+        "from a scan of a drawing medium, the frame's low frequencies following the reference "
+        "and its details changing at random from frame to frame (more with a larger noise). "
+        "The call `exemplar noisy` makes per frame: frame `frame` depends only on (exemplar, "
+        "reference, options, seed, frame). Returns the frame at the reference's size in the "
+        "exemplar's channels and dtype.",
+        [
+            Param("exemplar", _IMAGE, "S: the scan of the drawing medium (1..4 channels).",
+                  positional=True),
+            Param("reference", _IMAGE, "R_i: the reference frame (1, 3 or 4 channels).",
+                  positional=True),
+            Param("frame", "int", "The frame's number i (keys its randomness, as the CLI's "
+                  "frame numbers do).", 0),
+            _NOISY,
+            Param("seed", "int", "Random seed: frame i depends only on (seed, i).", 1),
+            Param("filter", "str", "Low-pass filter: 'box' or 'lanczos3'.", "box"),
+            Param("noise_map", "Image | None",
+                  "Per-pixel noise strength in [0, 1] scaling noise (HxW, reference size).",
+                  None),
+            Param("exemplar_orientation", "Image | None",
+                  "Orientation field of the exemplar (HxW float32, radians); with "
+                  "frame_orientation.", None),
+            Param("frame_orientation", "Image | None",
+                  "Orientation field of the frame (HxW float32, radians, reference size).",
+                  None),
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
@@ -302,14 +333,17 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
 }
 
 
-def _fluid_params() -> list[Param]:
+def _verb_table_params(specs: list[dict[str, Any]], required: tuple[str, ...] = ()
+                       ) -> list[Param]:
+    """A verb's own option table (fluid, noisy) as keyword parameters."""
     params = []
-    for spec in _exemplar._fluid_option_specs():
+    for spec in specs:
         unit = f" {spec['unit']}" if spec["unit"] else ""
         low, high = (int(spec["min"]), int(spec["max"])) if spec["type"] == "int" \
             else (spec["min"], spec["max"])
         doc = f"{spec['doc'].rstrip('.')}. Range {low}..{high}{unit}."
-        params.append(Param(spec["name"], spec["type"], doc, spec["default"]))
+        default = _REQUIRED if spec["name"] in required else spec["default"]
+        params.append(Param(spec["name"], spec["type"], doc, default))
     return params
 
 
@@ -340,7 +374,11 @@ def _params(verb: str) -> list[Param]:
         if param == _SYNTHESIS:
             params += _words(verb) + _table_params(verb)
         elif param == _FLUID:
-            params += _fluid_params()
+            params += _verb_table_params(_exemplar._fluid_option_specs())
+        elif param == _NOISY:
+            # noise has no default on the CLI either: the noise level is the user's choice.
+            noisy = _verb_table_params(_exemplar._noisy_option_specs(), required=("noise",))
+            params += sorted(noisy, key=lambda p: p.default is not _REQUIRED)
         else:
             params.append(param)
     return params

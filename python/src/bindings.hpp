@@ -25,4 +25,7 @@ void register_flow(py::module_& module);
 /// fluid_frame, fluid_simulate and the fluid option table (fluid.cpp).
 void register_fluid(py::module_& module);
 
+/// noisy_frame and the noisy option table (noisy.cpp).
+void register_noisy(py::module_& module);
+
 }  // namespace exemplar::python
