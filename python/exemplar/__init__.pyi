@@ -897,6 +897,109 @@ def noisy_frame(
     Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def directions(
+    image: Image,
+    *,
+    radius: float = 10.0,
+    iterations: int = 3,
+    gradient_sigma: float = 1.0,
+    harmonize: bool = True,
+    threads: int = 0,
+) -> numpy.ndarray:
+    """Brushables' signed direction field of an exemplar (Lukac et al. 2015 s3.1): edge tangent
+    flow from tangents whose signs were harmonized first. The CLI's `exemplar directions`;
+    returns the angles (HxW float32, radians in (-pi, pi], counter-clockwise on screen, 0
+    where no direction is known), paint's source_directions.
+
+    Parameters:
+      image (Image)
+          The exemplar (grey from Rec. 709 luma of channels 0..2).
+      radius (float, default 10.0)
+          Radius of the edge tangent flow filter in px (1..100); about 35 for noisy
+          textures.
+      iterations (int, default 3)
+          Edge tangent flow iterations (0..10).
+      gradient_sigma (float, default 1.0)
+          Blur before the gradients in px (0..10).
+      harmonize (bool, default True)
+          Harmonize the tangents' signs (False: plain ETF, the CLI's --no-harmonize).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def paint(
+    source: Image,
+    strokes: Sequence[dict[str, Any]],
+    *,
+    width: int | None = None,
+    height: int | None = None,
+    canvas: Image | None = None,
+    source_mask: Image | None = None,
+    source_directions: Image | None = None,
+    shape_weight: float = 25.0,
+    edge_extent: float = 16.0,
+    shape_bins: int = 8,
+    alpha_weight: float = 3.0,
+    vote_coherence: float = 2.0,
+    patch_size: int = 5,
+    seed: int = 1,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Brushables (Lukac et al. 2015): paints strokes on a canvas and fills the painted region
+    with the exemplar's texture, its features following the strokes' directions and its
+    boundary effects the region's edges. The CLI's `exemplar paint` with the strokes as
+    dicts (the keys of its JSON stroke files); returns RGBA (straight alpha, transparent
+    outside the strokes, or over canvas), the source's dtype.
+
+    Parameters:
+      source (Image)
+          The exemplar: RGBA (alpha = its shape) or RGB.
+      strokes (Sequence[dict[str, Any]])
+          Strokes in order: {'points': Nx2 (x, y in canvas px), 'width': brush diameter in
+          px (default 40), 'comb': True to only re-direct painted pixels}.
+      width (int | None, default None)
+          Canvas width in px (or canvas's).
+      height (int | None, default None)
+          Canvas height in px (or canvas's).
+      canvas (Image | None, default None)
+          Background to paint over (RGB or RGBA).
+      source_mask (Image | None, default None)
+          Shape mask of the exemplar (HxW, inside where > 0.5); default alpha > 0.
+      source_directions (Image | None, default None)
+          Direction field of the exemplar (HxW float32 angles, as directions() returns);
+          default directions(source).
+      shape_weight (float, default 25.0)
+          Weight lambda of the Shape Hint against the colour distance (0 = off, ..1000).
+      edge_extent (float, default 16.0)
+          How deep boundary effects reach into the texture, px: the Shape Hint's radius
+          (1..256).
+      shape_bins (int, default 8)
+          Bins on the Shape Hint's ring (4..32).
+      alpha_weight (float, default 3.0)
+          Weight of alpha against each colour channel (0..100).
+      vote_coherence (float, default 2.0)
+          Coherence range sigma_c^2 of the vote in px^2 (0 = off, ..100).
+      patch_size (int, default 5)
+          Patch width in px (odd, 3..15).
+      seed (int, default 1)
+          Random seed.
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

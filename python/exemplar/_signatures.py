@@ -312,6 +312,62 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "numpy.ndarray",
     ),
+    "directions": (
+        "Brushables' signed direction field of an exemplar (Lukac et al. 2015 s3.1): edge "
+        "tangent flow from tangents whose signs were harmonized first. The CLI's "
+        "`exemplar directions`; returns the angles (HxW float32, radians in (-pi, pi], "
+        "counter-clockwise on screen, 0 where no direction is known), paint's "
+        "source_directions.",
+        [
+            Param("image", _IMAGE, "The exemplar (grey from Rec. 709 luma of channels 0..2).",
+                  positional=True),
+            Param("radius", "float", "Radius of the edge tangent flow filter in px (1..100); "
+                  "about 35 for noisy textures.", 10.0),
+            Param("iterations", "int", "Edge tangent flow iterations (0..10).", 3),
+            Param("gradient_sigma", "float", "Blur before the gradients in px (0..10).", 1.0),
+            Param("harmonize", "bool", "Harmonize the tangents' signs (False: plain ETF, the "
+                  "CLI's --no-harmonize).", True),
+            _RUN[0],
+        ],
+        "numpy.ndarray",
+    ),
+    "paint": (
+        "Brushables (Lukac et al. 2015): paints strokes on a canvas and fills the painted "
+        "region with the exemplar's texture, its features following the strokes' directions "
+        "and its boundary effects the region's edges. The CLI's `exemplar paint` with the "
+        "strokes as dicts (the keys of its JSON stroke files); returns RGBA (straight alpha, "
+        "transparent outside the strokes, or over canvas), the source's dtype.",
+        [
+            Param("source", _IMAGE, "The exemplar: RGBA (alpha = its shape) or RGB.",
+                  positional=True),
+            Param("strokes", "Sequence[dict[str, Any]]",
+                  "Strokes in order: {'points': Nx2 (x, y in canvas px), 'width': brush "
+                  "diameter in px (default 40), 'comb': True to only re-direct painted pixels}.",
+                  positional=True),
+            Param("width", "int | None", "Canvas width in px (or canvas's).", None),
+            Param("height", "int | None", "Canvas height in px (or canvas's).", None),
+            Param("canvas", "Image | None", "Background to paint over (RGB or RGBA).", None),
+            Param("source_mask", "Image | None",
+                  "Shape mask of the exemplar (HxW, inside where > 0.5); default alpha > 0.",
+                  None),
+            Param("source_directions", "Image | None",
+                  "Direction field of the exemplar (HxW float32 angles, as directions() "
+                  "returns); default directions(source).", None),
+            Param("shape_weight", "float", "Weight lambda of the Shape Hint against the "
+                  "colour distance (0 = off, ..1000).", 25.0),
+            Param("edge_extent", "float", "How deep boundary effects reach into the texture, "
+                  "px: the Shape Hint's radius (1..256).", 16.0),
+            Param("shape_bins", "int", "Bins on the Shape Hint's ring (4..32).", 8),
+            Param("alpha_weight", "float", "Weight of alpha against each colour channel "
+                  "(0..100).", 3.0),
+            Param("vote_coherence", "float", "Coherence range sigma_c^2 of the vote in px^2 "
+                  "(0 = off, ..100).", 2.0),
+            Param("patch_size", "int", "Patch width in px (odd, 3..15).", 5),
+            Param("seed", "int", "Random seed.", 1),
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "

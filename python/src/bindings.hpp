@@ -28,4 +28,7 @@ void register_fluid(py::module_& module);
 /// noisy_frame and the noisy option table (noisy.cpp).
 void register_noisy(py::module_& module);
 
+/// directions and paint (paint.cpp).
+void register_paint(py::module_& module);
+
 }  // namespace exemplar::python
