@@ -104,3 +104,14 @@ def test_fluid_frame_reports_progress_and_cancels():
     calls = []
     exemplar.fluid_frame(fire(), alpha, blur_radius=1.5, progress=calls.append)
     assert calls and 0 <= calls[-1].fraction <= 1
+
+
+def test_fluid_simulate_reports_progress_and_cancels():
+    events = []
+    exemplar.fluid_simulate(width=16, height=16, frames=3,
+                            progress=lambda p: events.append((p.stage, p.iteration)))
+    assert events == [("simulate", 1), ("simulate", 2), ("simulate", 3)]
+    token = exemplar.CancelToken()
+    token.cancel()
+    with pytest.raises(exemplar.Cancelled):
+        exemplar.fluid_simulate(width=16, height=16, frames=3, cancel=token)
