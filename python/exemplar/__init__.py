@@ -35,12 +35,14 @@ from ._exemplar import (
     save_image,
 )
 from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
+from ._exemplar import _directions, _fluid_frame, _fluid_simulate, _noisy_frame, _paint
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
     "InvalidArgumentError", "IoError", "Progress", "StylizeResult", "UnsupportedError",
-    "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "flow", "load_image",
-    "option_specs", "render", "save_image", "stylit", "stylize",
+    "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "directions", "flow",
+    "fluid_frame", "fluid_simulate", "load_image", "noisy_frame", "option_specs", "paint",
+    "render", "save_image", "stylit", "stylize",
 ]
 
 
@@ -79,3 +81,28 @@ def animate(style_input, style_output, frames, **options):
 @_signatures.decorate
 def flow(from_frame, to_frame, **options):
     return _flow(from_frame, to_frame, **options)
+
+
+@_signatures.decorate
+def fluid_frame(exemplar, target_alpha, **options):
+    return _fluid_frame(exemplar, target_alpha, **options)
+
+
+@_signatures.decorate
+def fluid_simulate(**options):
+    return _fluid_simulate(**options)
+
+
+@_signatures.decorate
+def noisy_frame(exemplar, reference, **options):
+    return _noisy_frame(exemplar, reference, **options)
+
+
+@_signatures.decorate
+def directions(image, **options):
+    return _directions(image, **options)
+
+
+@_signatures.decorate
+def paint(source, strokes, **options):
+    return _paint(source, strokes, **options)

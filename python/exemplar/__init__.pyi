@@ -690,6 +690,316 @@ def flow(
     Returns dict[str, numpy.ndarray]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def fluid_frame(
+    exemplar: Image,
+    target_alpha: Image,
+    *,
+    previous_output: Image | None = None,
+    previous_motion: Image | None = None,
+    previous_exemplar: Image | None = None,
+    motion: Image | None = None,
+    patch_size: int = 5,
+    temporal_weight: float = 0.2,
+    boundary_weight: float = 3.0,
+    alpha_weight: float = 3.0,
+    blur_radius: float = 3.0,
+    boundary_low: float = 0.1,
+    boundary_high: float = 0.9,
+    motion_blur: float = 0.0,
+    usage: str = 'uniform',
+    rotations: bool = False,
+    seed: int = 1,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """LazyFluids (Jamriska et al. 2015): synthesizes one frame of a fluid animation from an
+    RGBA exemplar, the frame's target alpha mask and, after the first frame, the previous
+    output and the motion that carries it here. The step `exemplar fluid` takes per frame
+    (call it frame after frame, passing each output as the next previous_output). Returns
+    the frame, HxWx4 RGBA with straight alpha, in the exemplar's dtype.
+
+    Parameters:
+      exemplar (Image)
+          Z^t: the RGBA exemplar (4 channels, straight alpha).
+      target_alpha (Image)
+          X^t_a: the target alpha mask (HxW, values 0..1).
+      previous_output (Image | None, default None)
+          X^{t-1}: the previous frame's output (RGBA, target size); None = first frame (no
+          temporal term).
+      previous_motion (Image | None, default None)
+          F^{t-1}: forward motion from the previous frame to this one (HxWx2 float32,
+          pixels); required with previous_output.
+      previous_exemplar (Image | None, default None)
+          Z^{t-1}: the exemplar frame of the previous output frame; None = exemplar (a still
+          exemplar).
+      motion (Image | None, default None)
+          This frame's forward motion (HxWx2 float32), for motion_blur.
+      patch_size (int, default 5)
+          Patch width (odd). Paper: 5. Range 3..15 px.
+      temporal_weight (float, default 0.2)
+          lambda: weight of the previous output advected along the motion (0 = every frame
+          on its own; 0 at emitters and in the first frame). Paper: 0.2. Range 0.0..10.0.
+      boundary_weight (float, default 3.0)
+          eta: weight of the blurred alpha guide; lower = more varied boundaries. Paper: 3.
+          Range 0.0..100.0.
+      alpha_weight (float, default 3.0)
+          Weight of the synthesized alpha channel (1 per colour channel). Paper: 3. Range
+          0.0..100.0.
+      blur_radius (float, default 3.0)
+          r: Gaussian blur (sigma) of the alpha masks before segmentation; scale with the
+          resolution. Paper: 3. Range 0.0..50.0 px.
+      boundary_low (float, default 0.1)
+          l: blurred alpha above this is fluid (boundary or interior). Paper: 0.1. Range
+          0.0..0.999.
+      boundary_high (float, default 0.9)
+          u: blurred alpha at or above this is interior. Paper: 0.9. Range 0.001..1.0.
+      motion_blur (float, default 0.0)
+          Motion blur along the motion, sigma as a fraction of the motion's length (0 =
+          off). Range 0.0..2.0.
+      usage (str, default 'uniform')
+          'uniform' (LazyFluids) or 'none' (plain nearest neighbours, for comparisons).
+      rotations (bool, default False)
+          Add the exemplar rotated by 90, 180 and 270 degrees.
+      seed (int, default 1)
+          Random seed (same seed, same output).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def fluid_simulate(
+    *,
+    width: int,
+    height: int,
+    frames: int,
+    seed: int = 1,
+    warmup_frames: int = 0,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> tuple[list[numpy.ndarray], list[numpy.ndarray]]:
+    """Simulates the built-in `plume` scene of `exemplar fluid simulate` (2D stable fluids)
+    into LazyFluids targets. Returns (alphas, motions): per frame an HxW float32 alpha mask
+    and the HxWx2 float32 forward motion to the next frame, in pixels.
+
+    Parameters:
+      width (int)
+          Frame width, pixels (8..8192).
+      height (int)
+          Frame height, pixels (8..8192).
+      frames (int)
+          Number of frames (>= 1).
+      seed (int, default 1)
+          Seed of the emitters' jitter (the scene's seed).
+      warmup_frames (int, default 0)
+          Frames simulated before the first returned one (the scene's warmup_frames).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns tuple[list[numpy.ndarray], list[numpy.ndarray]]. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def noisy_frame(
+    exemplar: Image,
+    reference: Image,
+    *,
+    frame: int = 0,
+    noise: float,
+    level_ratio: float = 0.85,
+    patch_size: int = 7,
+    em_iterations: int = 4,
+    search_iterations: int = 8,
+    lattice_spacing: float = 50.0,
+    min_offset: float = 15.0,
+    max_offset: float = 25.0,
+    seed: int = 1,
+    filter: str = 'box',
+    noise_map: Image | None = None,
+    exemplar_orientation: Image | None = None,
+    frame_orientation: Image | None = None,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Color Me Noisy (Fiser et al. 2014): re-synthesizes one frame of a reference animation
+    from a scan of a drawing medium, the frame's low frequencies following the reference and
+    its details changing at random from frame to frame (more with a larger noise). The call
+    `exemplar noisy` makes per frame: frame `frame` depends only on (exemplar, reference,
+    options, seed, frame). Returns the frame at the reference's size in the exemplar's
+    channels and dtype.
+
+    Parameters:
+      exemplar (Image)
+          S: the scan of the drawing medium (1..4 channels).
+      reference (Image)
+          R_i: the reference frame (1, 3 or 4 channels).
+      frame (int, default 0)
+          The frame's number i (keys its randomness, as the CLI's frame numbers do).
+      noise (float)
+          Low-pass strength f: width of the box separating the reference's low frequencies
+          (kept) from the details (re-synthesized at random in every frame). Larger = more
+          temporal noise; <= 1 = the least (finest level only). At most min side / patch-
+          size. Range 0.0..256.0 px.
+      level_ratio (float, default 0.85)
+          Ratio of the sampling rates of consecutive pyramid levels between strength f and 1
+          (chapter: 0.85). Range 0.5..0.95.
+      patch_size (int, default 7)
+          Patch width; odd (chapter: 7). Range 3..31 px.
+      em_iterations (int, default 4)
+          Search+vote iterations per pyramid level (chapter: 4). Range 1..100 iterations.
+      search_iterations (int, default 8)
+          PatchMatch iterations per nearest-neighbour search (chapter: 8). Range 1..100
+          iterations.
+      lattice_spacing (float, default 50.0)
+          Spacing of the control lattice of the random rigid-MLS pre-deformation of the
+          source, in source pixels (chapter: 50). Range 4.0..10000.0 px.
+      min_offset (float, default 15.0)
+          Shortest random move of a lattice point (chapter: 15); 0 with max-offset 0 turns
+          the pre-deformation off. Range 0.0..1000.0 px.
+      max_offset (float, default 25.0)
+          Longest random move of a lattice point (chapter: 25). Range 0.0..1000.0 px.
+      seed (int, default 1)
+          Random seed: frame i depends only on (seed, i).
+      filter (str, default 'box')
+          Low-pass filter: 'box' or 'lanczos3'.
+      noise_map (Image | None, default None)
+          Per-pixel noise strength in [0, 1] scaling noise (HxW, reference size).
+      exemplar_orientation (Image | None, default None)
+          Orientation field of the exemplar (HxW float32, radians); with frame_orientation.
+      frame_orientation (Image | None, default None)
+          Orientation field of the frame (HxW float32, radians, reference size).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def directions(
+    image: Image,
+    *,
+    radius: float = 10.0,
+    iterations: int = 3,
+    gradient_sigma: float = 1.0,
+    harmonize: bool = True,
+    threads: int = 0,
+) -> numpy.ndarray:
+    """Brushables' signed direction field of an exemplar (Lukac et al. 2015 s3.1): edge tangent
+    flow from tangents whose signs were harmonized first. The CLI's `exemplar directions`;
+    returns the angles (HxW float32, radians in (-pi, pi], counter-clockwise on screen, 0
+    where no direction is known), paint's source_directions.
+
+    Parameters:
+      image (Image)
+          The exemplar (grey from Rec. 709 luma of channels 0..2).
+      radius (float, default 10.0)
+          Radius of the edge tangent flow filter in px (1..100); about 35 for noisy
+          textures.
+      iterations (int, default 3)
+          Edge tangent flow iterations (0..10).
+      gradient_sigma (float, default 1.0)
+          Blur before the gradients in px (0..10).
+      harmonize (bool, default True)
+          Harmonize the tangents' signs (False: plain ETF, the CLI's --no-harmonize).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def paint(
+    source: Image,
+    strokes: Sequence[dict[str, Any]],
+    *,
+    width: int | None = None,
+    height: int | None = None,
+    canvas: Image | None = None,
+    source_mask: Image | None = None,
+    source_directions: Image | None = None,
+    shape_weight: float = 25.0,
+    edge_extent: float = 16.0,
+    shape_bins: int = 8,
+    alpha_weight: float = 3.0,
+    vote_coherence: float = 2.0,
+    patch_size: int = 5,
+    seed: int = 1,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Brushables (Lukac et al. 2015): paints strokes on a canvas and fills the painted region
+    with the exemplar's texture, its features following the strokes' directions and its
+    boundary effects the region's edges. The CLI's `exemplar paint` with the strokes as
+    dicts (the keys of its JSON stroke files); returns RGBA (straight alpha, transparent
+    outside the strokes, or over canvas), the source's dtype.
+
+    Parameters:
+      source (Image)
+          The exemplar: RGBA (alpha = its shape) or RGB.
+      strokes (Sequence[dict[str, Any]])
+          Strokes in order: {'points': Nx2 (x, y in canvas px), 'width': brush diameter in
+          px (default 40), 'comb': True to only re-direct painted pixels}.
+      width (int | None, default None)
+          Canvas width in px (or canvas's).
+      height (int | None, default None)
+          Canvas height in px (or canvas's).
+      canvas (Image | None, default None)
+          Background to paint over (RGB or RGBA).
+      source_mask (Image | None, default None)
+          Shape mask of the exemplar (HxW, inside where > 0.5); default alpha > 0.
+      source_directions (Image | None, default None)
+          Direction field of the exemplar (HxW float32 angles, as directions() returns);
+          default directions(source).
+      shape_weight (float, default 25.0)
+          Weight lambda of the Shape Hint against the colour distance (0 = off, ..1000).
+      edge_extent (float, default 16.0)
+          How deep boundary effects reach into the texture, px: the Shape Hint's radius
+          (1..256).
+      shape_bins (int, default 8)
+          Bins on the Shape Hint's ring (4..32).
+      alpha_weight (float, default 3.0)
+          Weight of alpha against each colour channel (0..100).
+      vote_coherence (float, default 2.0)
+          Coherence range sigma_c^2 of the vote in px^2 (0 = off, ..100).
+      patch_size (int, default 5)
+          Patch width in px (odd, 3..15).
+      seed (int, default 1)
+          Random seed.
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

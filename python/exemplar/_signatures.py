@@ -31,6 +31,8 @@ class Param(NamedTuple):
 
 _IMAGE = "Image"
 _SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option table
+_FLUID = "fluid"  # marker: the fluid option table (patch_size, temporal_weight, ...)
+_NOISY = "noisy"  # marker: the noisy option table (noise, level_ratio, ...)
 _RUN = [
     Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
     Param("progress", "Callable[[Progress], bool | None] | None",
@@ -232,6 +234,140 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "dict[str, numpy.ndarray]",
     ),
+    "fluid_frame": (
+        "LazyFluids (Jamriska et al. 2015): synthesizes one frame of a fluid animation from an "
+        "RGBA exemplar, the frame's target alpha mask and, after the first frame, the previous "
+        "output and the motion that carries it here. The step `exemplar fluid` takes per frame "
+        "(call it frame after frame, passing each output as the next previous_output). Returns "
+        "the frame, HxWx4 RGBA with straight alpha, in the exemplar's dtype.",
+        [
+            Param("exemplar", _IMAGE, "Z^t: the RGBA exemplar (4 channels, straight alpha).",
+                  positional=True),
+            Param("target_alpha", _IMAGE, "X^t_a: the target alpha mask (HxW, values 0..1).",
+                  positional=True),
+            Param("previous_output", "Image | None",
+                  "X^{t-1}: the previous frame's output (RGBA, target size); None = first frame "
+                  "(no temporal term).", None),
+            Param("previous_motion", "Image | None",
+                  "F^{t-1}: forward motion from the previous frame to this one (HxWx2 float32, "
+                  "pixels); required with previous_output.", None),
+            Param("previous_exemplar", "Image | None",
+                  "Z^{t-1}: the exemplar frame of the previous output frame; None = exemplar (a "
+                  "still exemplar).", None),
+            Param("motion", "Image | None",
+                  "This frame's forward motion (HxWx2 float32), for motion_blur.", None),
+            _FLUID,
+            Param("usage", "str", "'uniform' (LazyFluids) or 'none' (plain nearest "
+                  "neighbours, for comparisons).", "uniform"),
+            Param("rotations", "bool",
+                  "Add the exemplar rotated by 90, 180 and 270 degrees.", False),
+            Param("seed", "int", "Random seed (same seed, same output).", 1),
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
+    "fluid_simulate": (
+        "Simulates the built-in `plume` scene of `exemplar fluid simulate` (2D stable fluids) "
+        "into LazyFluids targets. Returns (alphas, motions): per frame an HxW float32 alpha "
+        "mask and the HxWx2 float32 forward motion to the next frame, in pixels.",
+        [
+            Param("width", "int", "Frame width, pixels (8..8192)."),
+            Param("height", "int", "Frame height, pixels (8..8192)."),
+            Param("frames", "int", "Number of frames (>= 1)."),
+            Param("seed", "int", "Seed of the emitters' jitter (the scene's seed).", 1),
+            Param("warmup_frames", "int",
+                  "Frames simulated before the first returned one (the scene's warmup_frames).",
+                  0),
+            *_RUN,
+        ],
+        "tuple[list[numpy.ndarray], list[numpy.ndarray]]",
+    ),
+    "noisy_frame": (
+        "Color Me Noisy (Fiser et al. 2014): re-synthesizes one frame of a reference animation "
+        "from a scan of a drawing medium, the frame's low frequencies following the reference "
+        "and its details changing at random from frame to frame (more with a larger noise). "
+        "The call `exemplar noisy` makes per frame: frame `frame` depends only on (exemplar, "
+        "reference, options, seed, frame). Returns the frame at the reference's size in the "
+        "exemplar's channels and dtype.",
+        [
+            Param("exemplar", _IMAGE, "S: the scan of the drawing medium (1..4 channels).",
+                  positional=True),
+            Param("reference", _IMAGE, "R_i: the reference frame (1, 3 or 4 channels).",
+                  positional=True),
+            Param("frame", "int", "The frame's number i (keys its randomness, as the CLI's "
+                  "frame numbers do).", 0),
+            _NOISY,
+            Param("seed", "int", "Random seed: frame i depends only on (seed, i).", 1),
+            Param("filter", "str", "Low-pass filter: 'box' or 'lanczos3'.", "box"),
+            Param("noise_map", "Image | None",
+                  "Per-pixel noise strength in [0, 1] scaling noise (HxW, reference size).",
+                  None),
+            Param("exemplar_orientation", "Image | None",
+                  "Orientation field of the exemplar (HxW float32, radians); with "
+                  "frame_orientation.", None),
+            Param("frame_orientation", "Image | None",
+                  "Orientation field of the frame (HxW float32, radians, reference size).",
+                  None),
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
+    "directions": (
+        "Brushables' signed direction field of an exemplar (Lukac et al. 2015 s3.1): edge "
+        "tangent flow from tangents whose signs were harmonized first. The CLI's "
+        "`exemplar directions`; returns the angles (HxW float32, radians in (-pi, pi], "
+        "counter-clockwise on screen, 0 where no direction is known), paint's "
+        "source_directions.",
+        [
+            Param("image", _IMAGE, "The exemplar (grey from Rec. 709 luma of channels 0..2).",
+                  positional=True),
+            Param("radius", "float", "Radius of the edge tangent flow filter in px (1..100); "
+                  "about 35 for noisy textures.", 10.0),
+            Param("iterations", "int", "Edge tangent flow iterations (0..10).", 3),
+            Param("gradient_sigma", "float", "Blur before the gradients in px (0..10).", 1.0),
+            Param("harmonize", "bool", "Harmonize the tangents' signs (False: plain ETF, the "
+                  "CLI's --no-harmonize).", True),
+            _RUN[0],
+        ],
+        "numpy.ndarray",
+    ),
+    "paint": (
+        "Brushables (Lukac et al. 2015): paints strokes on a canvas and fills the painted "
+        "region with the exemplar's texture, its features following the strokes' directions "
+        "and its boundary effects the region's edges. The CLI's `exemplar paint` with the "
+        "strokes as dicts (the keys of its JSON stroke files); returns RGBA (straight alpha, "
+        "transparent outside the strokes, or over canvas), the source's dtype.",
+        [
+            Param("source", _IMAGE, "The exemplar: RGBA (alpha = its shape) or RGB.",
+                  positional=True),
+            Param("strokes", "Sequence[dict[str, Any]]",
+                  "Strokes in order: {'points': Nx2 (x, y in canvas px), 'width': brush "
+                  "diameter in px (default 40), 'comb': True to only re-direct painted pixels}.",
+                  positional=True),
+            Param("width", "int | None", "Canvas width in px (or canvas's).", None),
+            Param("height", "int | None", "Canvas height in px (or canvas's).", None),
+            Param("canvas", "Image | None", "Background to paint over (RGB or RGBA).", None),
+            Param("source_mask", "Image | None",
+                  "Shape mask of the exemplar (HxW, inside where > 0.5); default alpha > 0.",
+                  None),
+            Param("source_directions", "Image | None",
+                  "Direction field of the exemplar (HxW float32 angles, as directions() "
+                  "returns); default directions(source).", None),
+            Param("shape_weight", "float", "Weight lambda of the Shape Hint against the "
+                  "colour distance (0 = off, ..1000).", 25.0),
+            Param("edge_extent", "float", "How deep boundary effects reach into the texture, "
+                  "px: the Shape Hint's radius (1..256).", 16.0),
+            Param("shape_bins", "int", "Bins on the Shape Hint's ring (4..32).", 8),
+            Param("alpha_weight", "float", "Weight of alpha against each colour channel "
+                  "(0..100).", 3.0),
+            Param("vote_coherence", "float", "Coherence range sigma_c^2 of the vote in px^2 "
+                  "(0 = off, ..100).", 2.0),
+            Param("patch_size", "int", "Patch width in px (odd, 3..15).", 5),
+            Param("seed", "int", "Random seed.", 1),
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
@@ -251,6 +387,20 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         "BeautifyResult",
     ),
 }
+
+
+def _verb_table_params(specs: list[dict[str, Any]], required: tuple[str, ...] = ()
+                       ) -> list[Param]:
+    """A verb's own option table (fluid, noisy) as keyword parameters."""
+    params = []
+    for spec in specs:
+        unit = f" {spec['unit']}" if spec["unit"] else ""
+        low, high = (int(spec["min"]), int(spec["max"])) if spec["type"] == "int" \
+            else (spec["min"], spec["max"])
+        doc = f"{spec['doc'].rstrip('.')}. Range {low}..{high}{unit}."
+        default = _REQUIRED if spec["name"] in required else spec["default"]
+        params.append(Param(spec["name"], spec["type"], doc, default))
+    return params
 
 
 def _table_params(verb: str) -> list[Param]:
@@ -279,6 +429,12 @@ def _params(verb: str) -> list[Param]:
     for param in _VERBS[verb][1]:
         if param == _SYNTHESIS:
             params += _words(verb) + _table_params(verb)
+        elif param == _FLUID:
+            params += _verb_table_params(_exemplar._fluid_option_specs())
+        elif param == _NOISY:
+            # noise has no default on the CLI either: the noise level is the user's choice.
+            noisy = _verb_table_params(_exemplar._noisy_option_specs(), required=("noise",))
+            params += sorted(noisy, key=lambda p: p.default is not _REQUIRED)
         else:
             params.append(param)
     return params

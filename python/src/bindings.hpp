@@ -22,4 +22,13 @@ void register_animate(py::module_& module);
 /// flow (flow.cpp).
 void register_flow(py::module_& module);
 
+/// fluid_frame, fluid_simulate and the fluid option table (fluid.cpp).
+void register_fluid(py::module_& module);
+
+/// noisy_frame and the noisy option table (noisy.cpp).
+void register_noisy(py::module_& module);
+
+/// directions and paint (paint.cpp).
+void register_paint(py::module_& module);
+
 }  // namespace exemplar::python

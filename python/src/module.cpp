@@ -49,6 +49,9 @@ PYBIND11_MODULE(_exemplar, module) {
     register_sketch(module);
     register_animate(module);
     register_flow(module);
+    register_fluid(module);
+    register_noisy(module);
+    register_paint(module);
     module.def("option_specs", &option_specs_for_python,
                "The synthesis options (the library's option table): a list of dicts with name, "
                "doc, unit, type, min, max and default.");

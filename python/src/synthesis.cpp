@@ -68,8 +68,8 @@ std::vector<GuidePair> guides_from(const py::handle& guides) {
         const py::object item = sequence[i];
         py::object source, target, weight = py::none(), weight_map = py::none();
         if (py::isinstance<py::dict>(item)) {
-            py::dict entry = py::reinterpret_borrow<py::dict>(item);
-            entry = py::dict(entry);  // a copy: pop() must not change the caller's dict
+            // A copy (dict.copy(); py::dict(d) shares d): pop() must not change the caller's.
+            py::dict entry = item.attr("copy")();
             source = pop(entry, "source");
             target = pop(entry, "target");
             weight = pop(entry, "weight");

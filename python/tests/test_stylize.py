@@ -72,10 +72,13 @@ def test_guides_as_dicts_and_tuples_are_the_same(pair):
     style, source, target = pair
     weight_map = np.full(target.shape[:2], 0.5, dtype=np.float32)
     as_tuple = exemplar.stylize(style, [(source, target, 2.0, weight_map)])
-    as_dict = exemplar.stylize(style, [{"source": source, "target": target, "weight": 2.0,
-                                        "weight_map": weight_map}])
+    guides = [{"source": source, "target": target, "weight": 2.0, "weight_map": weight_map}]
+    as_dict = exemplar.stylize(style, guides)
     np.testing.assert_array_equal(as_tuple.image, as_dict.image)
     np.testing.assert_array_equal(as_tuple.nnf, as_dict.nnf)
+    # The caller's dicts are read, not emptied: the same list gives the same result again.
+    assert sorted(guides[0]) == ["source", "target", "weight", "weight_map"]
+    np.testing.assert_array_equal(exemplar.stylize(style, guides).image, as_dict.image)
 
 
 def test_the_result_describes_its_field(pair):

@@ -1,0 +1,181 @@
+// exemplar.fluid_frame and exemplar.fluid_simulate: LazyFluids one frame at a time (the library's
+// synthesize_fluid_frame, the step `exemplar fluid` takes per frame) and the stable-fluids
+// simulator (`exemplar fluid simulate` with the built-in plume scene). The keywords of
+// fluid_frame are the fluid option table's (fluid_option_specs(): patch_size, temporal_weight,
+// ...) plus the CLI's --seed, --usage and --rotations.
+
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <utility>
+#include <vector>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/fluid/simulate.hpp"
+#include "keywords.hpp"
+#include "run.hpp"
+
+namespace exemplar::python {
+
+namespace {
+
+std::string python_name(std::string_view name) {
+    std::string text(name);
+    for (char& c : text) {
+        if (c == '-') c = '_';
+    }
+    return text;
+}
+
+// An optional image keyword (Colour: HxWxC).
+std::optional<Image> optional_input(py::dict& kwargs, const char* name) {
+    const py::object value = pop(kwargs, name);
+    if (value.is_none()) return std::nullopt;
+    return image_from_array(value, name, Shape::Colour).image;
+}
+
+py::array fluid_frame_py(const py::object& exemplar, const py::object& target_alpha,
+                         py::kwargs kwargs) {
+    py::dict args(kwargs);
+    // Options, as the CLI sets them: defaults, the table's options, seed, rotations, usage.
+    fluid::FluidOptions options;
+    for (const fluid::FluidOptionSpec& spec : fluid::fluid_option_specs()) {
+        const std::string name = python_name(spec.name);
+        const py::object value = pop(args, name.c_str());
+        if (!value.is_none()) check(fluid::set_option(options, spec, number(value, name)));
+    }
+    if (const py::object seed = pop(args, "seed"); !seed.is_none()) {
+        const int value = integer(seed, "seed");
+        if (value < 0) {
+            throw InputError("seed: " + std::to_string(value) + " is invalid (must be >= 0)");
+        }
+        options.synthesis.seed = static_cast<std::uint64_t>(value);
+    }
+    if (const py::object rotations = pop(args, "rotations"); !rotations.is_none()) {
+        if (!py::isinstance<py::bool_>(rotations)) throw py::type_error("rotations: must be a bool");
+        options.rotations = rotations.cast<bool>();
+    }
+    if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
+        const std::string value = text(usage, "usage");
+        if (value != "uniform" && value != "none") {
+            throw InputError("usage: '" + value + "' is invalid (must be one of uniform, none)");
+        }
+        options.uniform_usage = value == "uniform";
+    }
+    const py::object progress = pop(args, "progress");
+    const py::object cancel = pop(args, "cancel");
+    const py::object threads = pop(args, "threads");
+    check(fluid::validate(options));
+
+    const std::optional<Image> previous_exemplar = optional_input(args, "previous_exemplar");
+    const std::optional<Image> previous_output = optional_input(args, "previous_output");
+    const std::optional<Image> previous_motion = optional_input(args, "previous_motion");
+    const std::optional<Image> motion = optional_input(args, "motion");
+    reject_unknown(args, "fluid_frame");
+
+    ImageArg exemplar_arg = image_from_array(exemplar, "exemplar", Shape::Colour);
+    const Image alpha = image_from_array(target_alpha, "target_alpha", Shape::Grey).image;
+
+    fluid::FluidFrameInput input;
+    input.exemplar = &exemplar_arg.image;
+    input.previous_exemplar = previous_exemplar ? &*previous_exemplar : nullptr;
+    input.target_alpha = &alpha;
+    input.previous_output = previous_output ? &*previous_output : nullptr;
+    input.previous_motion = previous_motion ? &*previous_motion : nullptr;
+    input.motion = motion ? &*motion : nullptr;
+
+    PythonRun run(threads_keyword(threads), progress, cancel);
+    fluid::FluidFrameResult result = run([&](const RunContext& context) {
+        return fluid::synthesize_fluid_frame(input, options, context);
+    });
+    return array_from_image(std::move(result.rgba), exemplar_arg.type);
+}
+
+// The built-in plume scene of `exemplar fluid simulate` (width, height, frames, seed, warm-up);
+// returns (alphas, motions): per frame an HxW float32 alpha mask and an HxWx2 float32 motion to
+// the next frame.
+py::tuple fluid_simulate_py(py::kwargs kwargs) {
+    py::dict args(kwargs);
+    const auto required = [&](const char* name) {
+        const py::object value = pop(args, name);
+        if (value.is_none()) {
+            throw py::type_error(std::string("fluid_simulate() missing required keyword argument '") +
+                                 name + "'");
+        }
+        return integer(value, name);
+    };
+    const int width = required("width");
+    const int height = required("height");
+    const int frames = required("frames");
+    fluid::FluidScene scene = fluid::plume_scene(width, height);
+    if (const py::object seed = pop(args, "seed"); !seed.is_none()) {
+        const int value = integer(seed, "seed");
+        if (value < 0) {
+            throw InputError("seed: " + std::to_string(value) + " is invalid (must be >= 0)");
+        }
+        scene.seed = static_cast<std::uint64_t>(value);
+    }
+    if (const py::object warmup = pop(args, "warmup_frames"); !warmup.is_none()) {
+        scene.warmup_frames = integer(warmup, "warmup_frames");
+    }
+    const py::object progress = pop(args, "progress");
+    const py::object cancel = pop(args, "cancel");
+    const py::object threads = pop(args, "threads");
+    reject_unknown(args, "fluid_simulate");
+    check(fluid::validate(scene));
+
+    std::vector<Image> alphas, motions;
+    PythonRun run(threads_keyword(threads), progress, cancel);
+    run([&](const RunContext& context) -> Result<int> {
+        const Status status = fluid::simulate(scene, frames,
+                               [&](int, const Image& alpha, const Image& motion) {
+                                   alphas.push_back(alpha);
+                                   motions.push_back(motion);
+                                   return Status::ok();
+                               },
+                               context);
+        if (!status.is_ok()) return status;
+        return frames;
+    });
+    py::list alpha_list, motion_list;
+    for (Image& image : alphas) alpha_list.append(grey_array_from_image(std::move(image)));
+    for (Image& image : motions) {
+        motion_list.append(array_from_image(std::move(image), SampleType::Float32));
+    }
+    return py::make_tuple(alpha_list, motion_list);
+}
+
+}  // namespace
+
+void register_fluid(py::module_& module) {
+    module.def("_fluid_frame", &fluid_frame_py, py::arg("exemplar"), py::arg("target_alpha"));
+    module.def("_fluid_simulate", &fluid_simulate_py);
+    module.def("_fluid_option_specs", [] {
+        py::list specs;
+        const fluid::FluidOptions defaults;
+        for (const fluid::FluidOptionSpec& spec : fluid::fluid_option_specs()) {
+            const bool integral = std::holds_alternative<int fluid::FluidOptions::*>(spec.field);
+            py::dict entry;
+            entry["name"] = python_name(spec.name);
+            entry["doc"] = std::string(spec.doc);
+            entry["unit"] = std::string(spec.unit);
+            entry["type"] = integral ? "int" : "float";
+            entry["min"] = spec.min;
+            entry["max"] = spec.max;
+            const double value = fluid::get_option(defaults, spec);
+            if (integral) {
+                entry["default"] = py::int_(static_cast<long long>(value));
+            } else {
+                entry["default"] = py::float_(std::stod(std::to_string(static_cast<float>(value))));
+            }
+            specs.append(entry);
+        }
+        return specs;
+    });
+}
+
+}  // namespace exemplar::python

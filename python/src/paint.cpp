@@ -1,0 +1,191 @@
+// exemplar.directions and exemplar.paint: Brushables (Lukac et al. 2015) as `exemplar directions`
+// and `exemplar paint` do it (apps/cli/directions_command.cpp, paint_command.cpp), arrays where
+// they read and write files, strokes as dicts with the keys of their JSON stroke files. Neither
+// verb has an option table: the keywords are the CLI's flags with '_' for '-'.
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/paint.hpp"
+#include "exemplar/paint/strokes.hpp"
+#include "keywords.hpp"
+#include "run.hpp"
+
+namespace exemplar::python {
+
+namespace {
+
+bool flag(py::dict& kwargs, const char* name, bool fallback) {
+    const py::object value = pop(kwargs, name);
+    if (value.is_none()) return fallback;
+    if (!py::isinstance<py::bool_>(value)) throw py::type_error(std::string(name) + ": must be a bool");
+    return value.cast<bool>();
+}
+
+template <typename T>
+void set_number(py::dict& kwargs, const char* name, T& field) {
+    const py::object value = pop(kwargs, name);
+    if (value.is_none()) return;
+    if constexpr (std::is_same_v<T, float>) {
+        field = static_cast<float>(number(value, name));
+    } else {
+        field = integer(value, name);
+    }
+}
+
+py::array directions_py(const py::object& image, py::kwargs kwargs) {
+    py::dict args(kwargs);
+    paint::DirectionAnalysisOptions options;
+    set_number(args, "radius", options.radius_px);
+    set_number(args, "iterations", options.iterations);
+    set_number(args, "gradient_sigma", options.gradient_sigma_px);
+    options.harmonize_signs = flag(args, "harmonize", true);
+    const int threads = threads_keyword(pop(args, "threads"));
+    reject_unknown(args, "directions");
+    check(paint::validate(options));
+    const Image input = image_from_array(image, "image", Shape::Colour).image;
+    Result<Image> field = [&] {
+        py::gil_scoped_release release;
+        return paint::analyze_directions(input, options, threads);
+    }();
+    return grey_array_from_image(paint::direction_angles(take(std::move(field))));
+}
+
+std::string indexed(const char* name, std::size_t i) {
+    return std::string(name) + "[" + std::to_string(i) + "]";
+}
+
+// strokes: dicts {"points": Nx2, "width": 40, "comb": False}, as the CLI's JSON stroke files.
+std::vector<paint::Stroke> strokes_from(const py::handle& strokes) {
+    if (!py::isinstance<py::sequence>(strokes) || py::isinstance<py::str>(strokes)) {
+        throw py::type_error("strokes: must be a sequence of dicts with points, width, comb");
+    }
+    std::vector<paint::Stroke> out;
+    const auto sequence = py::reinterpret_borrow<py::sequence>(strokes);
+    for (std::size_t i = 0; i < sequence.size(); ++i) {
+        const std::string what = indexed("strokes", i);
+        if (!py::isinstance<py::dict>(sequence[i])) {
+            throw py::type_error(what + ": must be a dict with points, width, comb");
+        }
+        // A copy (dict.copy(); py::dict(d) would share d): pop() must not change the caller's.
+        py::dict entry = sequence[i].attr("copy")();
+        const py::object points = pop(entry, "points");
+        const py::object width = pop(entry, "width");
+        const py::object comb = pop(entry, "comb");
+        for (const auto& key : entry) {
+            throw py::type_error(what + ": unknown key '" + std::string(py::str(key.first)) +
+                                 "' (keys: points, width, comb)");
+        }
+        if (points.is_none()) throw py::type_error(what + ": needs 'points'");
+        const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
+            points);
+        if (!array || array.ndim() != 2 || array.shape(1) != 2) {
+            throw InputError(what + ": points must be Nx2 (x, y in canvas pixels)");
+        }
+        paint::Stroke stroke;
+        for (py::ssize_t k = 0; k < array.shape(0); ++k) {
+            stroke.points.push_back({static_cast<float>(array.at(k, 0)),
+                                     static_cast<float>(array.at(k, 1))});
+        }
+        if (!width.is_none()) stroke.width_px = static_cast<float>(number(width, what + " width"));
+        if (!comb.is_none()) {
+            if (!py::isinstance<py::bool_>(comb)) throw py::type_error(what + " comb: must be a bool");
+            stroke.comb = comb.cast<bool>();
+        }
+        out.push_back(std::move(stroke));
+    }
+    return out;
+}
+
+py::array paint_py(const py::object& source, const py::object& strokes, py::kwargs kwargs) {
+    py::dict args(kwargs);
+    paint::PaintOptions options;
+    set_number(args, "shape_weight", options.shape_weight);
+    set_number(args, "edge_extent", options.edge_extent_px);
+    set_number(args, "shape_bins", options.shape_bins);
+    set_number(args, "alpha_weight", options.alpha_weight);
+    set_number(args, "vote_coherence", options.vote_coherence);
+    set_number(args, "patch_size", options.patch_size);
+    if (const py::object seed = pop(args, "seed"); !seed.is_none()) {
+        const int value = integer(seed, "seed");
+        if (value < 0) {
+            throw InputError("seed: " + std::to_string(value) + " is invalid (must be >= 0)");
+        }
+        options.seed = static_cast<std::uint64_t>(value);
+    }
+    check(paint::validate(options));
+    const py::object width_given = pop(args, "width");
+    const py::object height_given = pop(args, "height");
+    const py::object canvas_given = pop(args, "canvas");
+    const py::object mask_given = pop(args, "source_mask");
+    const py::object directions_given = pop(args, "source_directions");
+    const py::object progress = pop(args, "progress");
+    const py::object cancel = pop(args, "cancel");
+    const py::object threads = pop(args, "threads");
+    reject_unknown(args, "paint");
+
+    Image background;
+    if (!canvas_given.is_none()) {
+        background = image_from_array(canvas_given, "canvas", Shape::Colour).image;
+        if (background.channels() != 3 && background.channels() != 4) {
+            throw InputError("canvas: must be RGB or RGBA");
+        }
+    }
+    int width = width_given.is_none() ? background.width() : integer(width_given, "width");
+    int height = height_given.is_none() ? background.height() : integer(height_given, "height");
+    if (width <= 0 || height <= 0) {
+        throw InputError("width/height: " + std::to_string(width) + "x" + std::to_string(height) +
+                         " is invalid (both must be > 0, or give canvas)");
+    }
+    if (width > 32768 || height > 32768) throw InputError("width/height: at most 32768 px");
+    if (!background.empty() && (background.width() != width || background.height() != height)) {
+        throw InputError("canvas: is " + std::to_string(background.width()) + "x" +
+                         std::to_string(background.height()) + " but width/height are " +
+                         std::to_string(width) + "x" + std::to_string(height));
+    }
+
+    paint::PaintSource input;
+    ImageArg source_arg = image_from_array(source, "source", Shape::Colour);
+    input.image = source_arg.image;
+    if (input.image.channels() != 3 && input.image.channels() != 4) {
+        throw InputError("source: has " + std::to_string(input.image.channels()) +
+                         " channels (must be RGB or RGBA)");
+    }
+    if (!mask_given.is_none()) {
+        input.mask = image_from_array(mask_given, "source_mask", Shape::Grey).image;
+    }
+    if (!directions_given.is_none()) {
+        ImageArg arg = image_from_array(directions_given, "source_directions", Shape::Grey);
+        if (arg.type != SampleType::Float32) {
+            throw InputError("source_directions: a direction field holds angles in radians and "
+                             "must be float32");
+        }
+        input.directions = std::move(arg.image);
+    }
+    const std::vector<paint::Stroke> stroke_list = strokes_from(strokes);
+    paint::PaintCanvas canvas(width, height);
+    for (const paint::Stroke& stroke : stroke_list) take(canvas.add_stroke(stroke));
+
+    PythonRun run(threads_keyword(threads), progress, cancel);
+    paint::PaintResult result = run(
+        [&](const RunContext& context) { return paint::paint(input, canvas, options, context); });
+    Image out = background.empty() ? std::move(result.image)
+                                   : paint::composite_over(result.image, background);
+    return array_from_image(std::move(out), source_arg.type);
+}
+
+}  // namespace
+
+void register_paint(py::module_& module) {
+    module.def("_directions", &directions_py, py::arg("image"));
+    module.def("_paint", &paint_py, py::arg("source"), py::arg("strokes"));
+}
+
+}  // namespace exemplar::python
