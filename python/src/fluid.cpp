@@ -8,8 +8,8 @@
 
 #include <optional>
 #include <string>
-#include <variant>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "arrays.hpp"
@@ -23,14 +23,6 @@ namespace exemplar::python {
 
 namespace {
 
-std::string python_name(std::string_view name) {
-    std::string text(name);
-    for (char& c : text) {
-        if (c == '-') c = '_';
-    }
-    return text;
-}
-
 // An optional image keyword (Colour: HxWxC).
 std::optional<Image> optional_input(py::dict& kwargs, const char* name) {
     const py::object value = pop(kwargs, name);
@@ -43,20 +35,14 @@ py::array fluid_frame_py(const py::object& exemplar, const py::object& target_al
     py::dict args(kwargs);
     // Options, as the CLI sets them: defaults, the table's options, seed, rotations, usage.
     fluid::FluidOptions options;
-    for (const fluid::FluidOptionSpec& spec : fluid::fluid_option_specs()) {
-        const std::string name = python_name(spec.name);
-        const py::object value = pop(args, name.c_str());
-        if (!value.is_none()) check(fluid::set_option(options, spec, number(value, name)));
-    }
-    if (const py::object seed = pop(args, "seed"); !seed.is_none()) {
-        const int value = integer(seed, "seed");
-        if (value < 0) {
-            throw InputError("seed: " + std::to_string(value) + " is invalid (must be >= 0)");
-        }
-        options.synthesis.seed = static_cast<std::uint64_t>(value);
-    }
+    pop_table_options(args, options, fluid::fluid_option_specs(),
+                      [](fluid::FluidOptions& o, const fluid::FluidOptionSpec& spec, double value) {
+                          return fluid::set_option(o, spec, value);
+                      });
+    pop_seed(args, options.synthesis.seed);
     if (const py::object rotations = pop(args, "rotations"); !rotations.is_none()) {
-        if (!py::isinstance<py::bool_>(rotations)) throw py::type_error("rotations: must be a bool");
+        if (!py::isinstance<py::bool_>(rotations))
+            throw py::type_error("rotations: must be a bool");
         options.rotations = rotations.cast<bool>();
     }
     if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
@@ -103,8 +89,8 @@ py::tuple fluid_simulate_py(py::kwargs kwargs) {
     const auto required = [&](const char* name) {
         const py::object value = pop(args, name);
         if (value.is_none()) {
-            throw py::type_error(std::string("fluid_simulate() missing required keyword argument '") +
-                                 name + "'");
+            throw py::type_error(
+                std::string("fluid_simulate() missing required keyword argument '") + name + "'");
         }
         return integer(value, name);
     };
@@ -131,13 +117,14 @@ py::tuple fluid_simulate_py(py::kwargs kwargs) {
     std::vector<Image> alphas, motions;
     PythonRun run(threads_keyword(threads), progress, cancel);
     run([&](const RunContext& context) -> Result<int> {
-        const Status status = fluid::simulate(scene, frames,
-                               [&](int, const Image& alpha, const Image& motion) {
-                                   alphas.push_back(alpha);
-                                   motions.push_back(motion);
-                                   return Status::ok();
-                               },
-                               context);
+        const Status status = fluid::simulate(
+            scene, frames,
+            [&](int, const Image& alpha, const Image& motion) {
+                alphas.push_back(alpha);
+                motions.push_back(motion);
+                return Status::ok();
+            },
+            context);
         if (!status.is_ok()) return status;
         return frames;
     });
@@ -155,26 +142,11 @@ void register_fluid(py::module_& module) {
     module.def("_fluid_frame", &fluid_frame_py, py::arg("exemplar"), py::arg("target_alpha"));
     module.def("_fluid_simulate", &fluid_simulate_py);
     module.def("_fluid_option_specs", [] {
-        py::list specs;
-        const fluid::FluidOptions defaults;
-        for (const fluid::FluidOptionSpec& spec : fluid::fluid_option_specs()) {
-            const bool integral = std::holds_alternative<int fluid::FluidOptions::*>(spec.field);
-            py::dict entry;
-            entry["name"] = python_name(spec.name);
-            entry["doc"] = std::string(spec.doc);
-            entry["unit"] = std::string(spec.unit);
-            entry["type"] = integral ? "int" : "float";
-            entry["min"] = spec.min;
-            entry["max"] = spec.max;
-            const double value = fluid::get_option(defaults, spec);
-            if (integral) {
-                entry["default"] = py::int_(static_cast<long long>(value));
-            } else {
-                entry["default"] = py::float_(std::stod(std::to_string(static_cast<float>(value))));
-            }
-            specs.append(entry);
-        }
-        return specs;
+        return table_specs_for_python<fluid::FluidOptions>(
+            fluid::fluid_option_specs(),
+            [](const fluid::FluidOptions& o, const fluid::FluidOptionSpec& spec) {
+                return fluid::get_option(o, spec);
+            });
     });
 }
 

@@ -5,17 +5,12 @@
 #include <cstdlib>
 #include <limits>
 
+#include "arrays.hpp"
 #include "errors.hpp"
 
 namespace exemplar::python {
 
 namespace {
-
-std::string python_name(std::string_view name) {
-    std::string text(name);
-    std::replace(text.begin(), text.end(), '-', '_');
-    return text;
-}
 
 std::string type_name(const py::handle& value) {
     return py::str(py::type::of(value).attr("__name__"));
@@ -102,28 +97,56 @@ py::object python_option_value(const OptionSpec& spec, double value) {
     return py::float_(shortest_float(static_cast<float>(value)));
 }
 
-py::list option_specs_for_python() {
-    py::list specs;
-    const SynthesisOptions defaults;
-    for (const OptionSpec& spec : synthesis_option_specs()) {
-        const bool integer = !std::holds_alternative<float SynthesisOptions::*>(spec.field);
-        const double value = get_option(defaults, spec);
-        py::dict entry;
-        entry["name"] = python_name(spec.name);
-        entry["doc"] = std::string(spec.doc);
-        entry["unit"] = std::string(spec.unit);
-        entry["type"] = integer ? "int" : "float";
-        if (integer) {
-            entry["min"] = static_cast<long long>(spec.min);
-            entry["max"] = static_cast<long long>(spec.max);
-        } else {
-            entry["min"] = spec.min;
-            entry["max"] = spec.max;
-        }
-        entry["default"] = python_option_value(spec, value);
-        specs.append(entry);
+std::string python_name(std::string_view name) {
+    std::string text(name);
+    std::replace(text.begin(), text.end(), '-', '_');
+    return text;
+}
+
+void pop_seed(py::dict& kwargs, std::uint64_t& seed) {
+    const py::object value = pop(kwargs, "seed");
+    if (value.is_none()) return;
+    const int given = integer(value, "seed");
+    if (given < 0)
+        throw InputError("seed: " + std::to_string(given) + " is invalid (must be >= 0)");
+    seed = static_cast<std::uint64_t>(given);
+}
+
+Image pop_angles(py::dict& kwargs, const char* name) {
+    const py::object value = pop(kwargs, name);
+    if (value.is_none()) return {};
+    ImageArg arg = image_from_array(value, name, Shape::Grey);
+    if (arg.type != SampleType::Float32) {
+        throw InputError(std::string(name) +
+                         ": an orientation field holds angles in radians and must be float32");
     }
-    return specs;
+    return std::move(arg.image);
+}
+
+py::dict option_entry(std::string_view name, std::string_view doc, std::string_view unit,
+                      bool integer, double min, double max, double value) {
+    py::dict entry;
+    entry["name"] = python_name(name);
+    entry["doc"] = std::string(doc);
+    entry["unit"] = std::string(unit);
+    entry["type"] = integer ? "int" : "float";
+    if (integer) {
+        entry["min"] = static_cast<long long>(min);
+        entry["max"] = static_cast<long long>(max);
+        entry["default"] = py::int_(static_cast<long long>(value));
+    } else {
+        entry["min"] = min;
+        entry["max"] = max;
+        entry["default"] = py::float_(shortest_float(static_cast<float>(value)));
+    }
+    return entry;
+}
+
+py::list option_specs_for_python() {
+    return table_specs_for_python<SynthesisOptions>(
+        synthesis_option_specs(), [](const SynthesisOptions& options, const OptionSpec& spec) {
+            return get_option(options, spec);
+        });
 }
 
 }  // namespace exemplar::python

@@ -5,8 +5,14 @@
 
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
+#include <variant>
 
+#include "errors.hpp"
+#include "exemplar/core/image.hpp"
 #include "exemplar/synth/options.hpp"
 
 namespace exemplar::python {
@@ -45,5 +51,44 @@ py::object python_option_value(const OptionSpec& spec, double value);
 /// The option table for Python: one dict per option (name with '_', doc, unit, min, max,
 /// default, type "int" or "float"), in the table's order.
 py::list option_specs_for_python();
+
+/// An option's name as a Python keyword: '-' as '_' (`patch-size` -> `patch_size`).
+std::string python_name(std::string_view name);
+
+/// Pops `seed` (an int >= 0) into `seed` when given.
+void pop_seed(py::dict& kwargs, std::uint64_t& seed);
+
+/// Pops an orientation-field keyword: HxW float32 angles in radians (uint8 would hold 0..1);
+/// empty when not given.
+Image pop_angles(py::dict& kwargs, const char* name);
+
+/// One option-table entry for Python, as option_specs_for_python() makes them.
+py::dict option_entry(std::string_view name, std::string_view doc, std::string_view unit,
+                      bool integer, double min, double max, double value);
+
+/// A module's option table (fluid, noisy: specs with name, doc, unit, min, max and a `field`
+/// variant of member pointers) as option_specs_for_python() gives the engine's.
+template <class Options, class Spec, class Get>
+py::list table_specs_for_python(std::span<const Spec> specs, Get get) {
+    py::list list;
+    const Options defaults;
+    for (const Spec& spec : specs) {
+        const bool integer = !std::holds_alternative<float Options::*>(spec.field);
+        list.append(option_entry(spec.name, spec.doc, spec.unit, integer, spec.min, spec.max,
+                                 get(defaults, spec)));
+    }
+    return list;
+}
+
+/// Pops every option of a module's table from `kwargs` into `options` through `set` (the
+/// module's set_option, whose errors become exceptions).
+template <class Options, class Spec, class Set>
+void pop_table_options(py::dict& kwargs, Options& options, std::span<const Spec> specs, Set set) {
+    for (const Spec& spec : specs) {
+        const std::string name = python_name(spec.name);
+        const py::object value = pop(kwargs, name.c_str());
+        if (!value.is_none()) check(set(options, spec, number(value, name)));
+    }
+}
 
 }  // namespace exemplar::python

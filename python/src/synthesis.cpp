@@ -118,18 +118,6 @@ Image optional_image(py::dict& kwargs, const char* name, Shape shape) {
     return image_from_array(value, name, shape).image;
 }
 
-// An angle field: radians, so float32 only (uint8 would hold 0..1).
-Image optional_angles(py::dict& kwargs, const char* name) {
-    const py::object value = pop(kwargs, name);
-    if (value.is_none()) return {};
-    ImageArg arg = image_from_array(value, name, Shape::Grey);
-    if (arg.type != SampleType::Float32) {
-        throw InputError(std::string(name) +
-                         ": an orientation field holds angles in radians and must be float32");
-    }
-    return std::move(arg.image);
-}
-
 // Label maps of both sides as dense indices, as the CLI reads label files: each distinct value
 // (all channels) is one label, the same value on both sides the same label. `values` keeps each
 // label's value for messages.
@@ -213,8 +201,8 @@ StylizeResult stylize(const py::object& style, const py::object& guides, py::kwa
     input.source_mask = optional_image(args, "source_mask", Shape::Grey);
     std::vector<std::vector<float>> label_values;
     labels_from(args, input, label_values);
-    input.source_orientation = optional_angles(args, "source_orientation");
-    input.target_orientation = optional_angles(args, "target_orientation");
+    input.source_orientation = pop_angles(args, "source_orientation");
+    input.target_orientation = pop_angles(args, "target_orientation");
     input.initial_target = optional_image(args, "init", Shape::Colour);
     if (const py::object nnf = pop(args, "init_nnf"); !nnf.is_none()) {
         ImageArg arg = image_from_array(nnf, "init_nnf", Shape::Colour);
