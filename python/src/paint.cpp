@@ -3,6 +3,8 @@
 // they read and write files, strokes as dicts with the keys of their JSON stroke files. Neither
 // verb has an option table: the keywords are the CLI's flags with '_' for '-'.
 
+#include "exemplar/paint/paint.hpp"
+
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -13,7 +15,6 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "exemplar/paint/directions.hpp"
-#include "exemplar/paint/paint.hpp"
 #include "exemplar/paint/strokes.hpp"
 #include "keywords.hpp"
 #include "run.hpp"
@@ -25,7 +26,8 @@ namespace {
 bool flag(py::dict& kwargs, const char* name, bool fallback) {
     const py::object value = pop(kwargs, name);
     if (value.is_none()) return fallback;
-    if (!py::isinstance<py::bool_>(value)) throw py::type_error(std::string(name) + ": must be a bool");
+    if (!py::isinstance<py::bool_>(value))
+        throw py::type_error(std::string(name) + ": must be a bool");
     return value.cast<bool>();
 }
 
@@ -84,19 +86,20 @@ std::vector<paint::Stroke> strokes_from(const py::handle& strokes) {
                                  "' (keys: points, width, comb)");
         }
         if (points.is_none()) throw py::type_error(what + ": needs 'points'");
-        const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(
-            points);
+        const auto array =
+            py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
         if (!array || array.ndim() != 2 || array.shape(1) != 2) {
             throw InputError(what + ": points must be Nx2 (x, y in canvas pixels)");
         }
         paint::Stroke stroke;
         for (py::ssize_t k = 0; k < array.shape(0); ++k) {
-            stroke.points.push_back({static_cast<float>(array.at(k, 0)),
-                                     static_cast<float>(array.at(k, 1))});
+            stroke.points.push_back(
+                {static_cast<float>(array.at(k, 0)), static_cast<float>(array.at(k, 1))});
         }
         if (!width.is_none()) stroke.width_px = static_cast<float>(number(width, what + " width"));
         if (!comb.is_none()) {
-            if (!py::isinstance<py::bool_>(comb)) throw py::type_error(what + " comb: must be a bool");
+            if (!py::isinstance<py::bool_>(comb))
+                throw py::type_error(what + " comb: must be a bool");
             stroke.comb = comb.cast<bool>();
         }
         out.push_back(std::move(stroke));
@@ -164,8 +167,9 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
     if (!directions_given.is_none()) {
         ImageArg arg = image_from_array(directions_given, "source_directions", Shape::Grey);
         if (arg.type != SampleType::Float32) {
-            throw InputError("source_directions: a direction field holds angles in radians and "
-                             "must be float32");
+            throw InputError(
+                "source_directions: a direction field holds angles in radians and "
+                "must be float32");
         }
         input.directions = std::move(arg.image);
     }
