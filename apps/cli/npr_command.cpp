@@ -290,15 +290,7 @@ Status NprCommand::run(const Streams& streams) {
                        std::to_string(count) + ")");
     }
     bar.finish();
-    if (mp4) {
-        EXEMPLAR_RETURN_IF_ERROR(mp4->finish());
-        if (!quiet_) streams.out << mp4_ << '\n';
-    }
-    if (!quiet_) {
-        streams.out << written << " frame" << (written == 1 ? "" : "s") << " written, "
-                    << count - written << " already done\n";
-    }
-    return Status::ok();
+    return finish_frame_range(streams.out, mp4, mp4_, written, count, quiet_);
 }
 
 }  // namespace exemplar::cli

@@ -228,4 +228,17 @@ bool same_file(const std::string& a, const std::string& b) {
     return ca == cb;
 }
 
+Status finish_frame_range(std::ostream& out, std::optional<video::Mp4Writer>& mp4,
+                          const std::string& mp4_path, int written, int count, bool quiet) {
+    if (mp4) {
+        EXEMPLAR_RETURN_IF_ERROR(mp4->finish());
+        if (!quiet) out << mp4_path << '\n';
+    }
+    if (!quiet) {
+        out << written << " frame" << (written == 1 ? "" : "s") << " written, " << count - written
+            << " already done\n";
+    }
+    return Status::ok();
+}
+
 }  // namespace exemplar::cli

@@ -2,6 +2,8 @@
 // Output files of the commands: checks made before a run starts (so that a long run does not end
 // in "PNG cannot store 5 channels"), the bit depth of what is written, and the error map's scale.
 
+#include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 
@@ -9,6 +11,7 @@
 #include "exemplar/core/status.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/synth/synthesize.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 
 namespace exemplar::cli {
 
@@ -66,5 +69,10 @@ bool same_file(const std::string& a, const std::string& b);
 
 /// Lower-case extension with the dot (".png"), or "".
 std::string lowercase_extension(const std::string& path);
+
+/// The end of a per-frame verb's range: closes the MP4 when one was opened and, unless `quiet`,
+/// prints its path and "N frames written, M already done" (`count` frames in the range).
+Status finish_frame_range(std::ostream& out, std::optional<video::Mp4Writer>& mp4,
+                          const std::string& mp4_path, int written, int count, bool quiet);
 
 }  // namespace exemplar::cli
