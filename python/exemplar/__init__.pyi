@@ -828,6 +828,7 @@ def noisy_frame(
     lattice_spacing: float = 50.0,
     min_offset: float = 15.0,
     max_offset: float = 25.0,
+    coarse_weight: float = 0.5,
     seed: int = 1,
     filter: str = 'box',
     noise_map: Image | None = None,
@@ -874,6 +875,10 @@ def noisy_frame(
           the pre-deformation off. Range 0.0..1000.0 px.
       max_offset (float, default 25.0)
           Longest random move of a lattice point (chapter: 25). Range 0.0..1000.0 px.
+      coarse_weight (float, default 0.5)
+          Weight of the low-passed reference as a guide on every level (coarse consistency,
+          eq. 4.2, as a term of the patch distance); 0 = only the coarsest level starts from
+          it. Range 0.0..100.0.
       seed (int, default 1)
           Random seed: frame i depends only on (seed, i).
       filter (str, default 'box')

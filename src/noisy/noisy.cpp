@@ -32,7 +32,7 @@ namespace {
 
 using O = NoisyOptions;
 
-const std::array<NoisyOptionSpec, 8> kSpecs{{
+const std::array<NoisyOptionSpec, 9> kSpecs{{
     {"noise",
      "Low-pass strength f: width of the box separating the reference's low frequencies (kept) "
      "from the details (re-synthesized at random in every frame). Larger = more temporal "
@@ -57,6 +57,10 @@ const std::array<NoisyOptionSpec, 8> kSpecs{{
      "px", 0, 1000, &O::min_offset_px},
     {"max-offset", "Longest random move of a lattice point (chapter: 25).", "px", 0, 1000,
      &O::max_offset_px},
+    {"coarse-weight",
+     "Weight of the low-passed reference as a guide on every level (coarse consistency, eq. "
+     "4.2, as a term of the patch distance); 0 = only the coarsest level starts from it.",
+     "", 0, 100, &O::coarse_weight},
 }};
 
 bool same_name(std::string_view a, std::string_view b) {
@@ -301,6 +305,13 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
     RunContext inner(threads);
     inner.cancel = context.cancel;
 
+    // The coarse-consistency guide pair: both low-passed at the full strength f.
+    Image source_low, reference_low;
+    if (options.coarse_weight > 0.0f) {
+        source_low = low_pass(deformed, options.noise, options.filter, threads);
+        reference_low = low_pass(reference, options.noise, options.filter, threads);
+    }
+
     // Coarse to fine; the coarsest target level is the low-passed reference (eq. 4.2).
     const int levels = static_cast<int>(strengths.size());
     Image current;
@@ -349,6 +360,22 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
         input.target_height = th;
         input.initial_target = std::move(start);
         if (!all_active) input.target_mask = std::move(active);
+        if (options.coarse_weight > 0.0f) {
+            GuidePair coarse;
+            coarse.name = "low-passed reference";
+            coarse.source = resize(source_low, input.style.width(), input.style.height(),
+                                   ResampleFilter::Gaussian, threads);
+            coarse.target = resize(reference_low, tw, th, ResampleFilter::Gaussian, threads);
+            coarse.weight = options.coarse_weight;
+            // A pixel of lower noise m(p) < 1 follows h_{f m(p)} * R, which h_f * R would pull
+            // towards blur; it starts from the reference on a finer level instead, so the
+            // guide weighs it by m(p) (0 = held by that start alone).
+            if (!frame.noise_map.empty()) {
+                coarse.target_weight_map =
+                    resize(frame.noise_map, tw, th, ResampleFilter::Box, threads);
+            }
+            input.guides.push_back(std::move(coarse));
+        }
         if (oriented) {
             input.source_orientation = resize(deformed_orientation, input.style.width(),
                                               input.style.height(), ResampleFilter::Nearest, 1);
