@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -37,12 +38,6 @@ bool same_pixels(const Image& a, const Image& b) {
            std::equal(a.data().begin(), a.data().end(), b.data().begin());
 }
 
-bool flag(const py::object& value, const char* name) {
-    if (!py::isinstance<py::bool_>(value))
-        throw py::type_error(std::string(name) + ": must be a bool");
-    return value.cast<bool>();
-}
-
 // A buffer array: HxW (one channel) or HxWxC.
 ImageArg buffer_from_array(const py::handle& value, const std::string& name) {
     const bool grey =
@@ -64,16 +59,18 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
         options.tone = text(tone, "tone");
     if (const py::object orientation = pop(args, "orientation"); !orientation.is_none())
         options.orientation = text(orientation, "orientation");
-    if (const py::object lines = pop(args, "lines"); !lines.is_none())
-        options.lines = flag(lines, "lines");
-    if (const py::object correction = pop(args, "tone_correction"); !correction.is_none())
-        options.tone_correction = flag(correction, "tone_correction");
+    options.lines = pop_bool(args, "lines", options.lines);
+    options.tone_correction = pop_bool(args, "tone_correction", options.tone_correction);
     pop_seed(args, options.seed);
     check(npr::validate(options));
     int frame_index = 0;
     if (const py::object frame = pop(args, "frame"); !frame.is_none())
         frame_index = integer(frame, "frame");
-    const py::object linear_tone = pop(args, "linear_tone");
+    // None: from the tone's dtype (float32 = linear, as render() returns it)
+    std::optional<bool> linear_tone;
+    if (args.contains("linear_tone") && !args["linear_tone"].is_none())
+        linear_tone = pop_bool(args, "linear_tone", false);
+    pop(args, "linear_tone");
     const py::object previous_object = pop(args, "previous");
     const py::object progress = pop(args, "progress");
     const py::object cancel = pop(args, "cancel");
@@ -99,8 +96,7 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
         if (!dict.contains(need.name)) continue;  // the library names it
         ImageArg arg = buffer_from_array(dict[py::str(need.name)], need.name);
         if (need.role == npr::BufferRole::Tone) {
-            frame.tone_linear = linear_tone.is_none() ? arg.type == SampleType::Float32
-                                                      : flag(linear_tone, "linear_tone");
+            frame.tone_linear = linear_tone.value_or(arg.type == SampleType::Float32);
         }
         frame[need.role] = std::move(arg.image);
     }

@@ -150,6 +150,8 @@ def test_npr_refuses_what_the_library_refuses():
         exemplar.npr_frame(pat, [buffers["direct_diffuse"]])
     with pytest.raises(TypeError, match="lines: must be a bool"):
         exemplar.npr_frame(pat, buffers, lines=1)
+    with pytest.raises(TypeError, match="linear_tone: must be a bool"):
+        exemplar.npr_frame(pat, buffers, linear_tone=1)
     with pytest.raises(TypeError, match="unexpected keyword argument 'levles'"):
         exemplar.npr_frame(pat, buffers, levles=2)
 

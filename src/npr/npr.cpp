@@ -7,10 +7,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <string>
 #include <utility>
 
+#include "exemplar/core/option_table.hpp"
 #include "exemplar/render/render.hpp"
 
 namespace exemplar::npr {
@@ -33,14 +33,6 @@ const std::array<NprOptionSpec, 3> kSpecs{{
      "= steadier elements, which then grow and shrink with a camera zoom.",
      "", 0, 100, &O::coherence_weight},
 }};
-
-// "12", "0.5": a number as the table's ranges are written.
-std::string number_text(double value) {
-    std::string text = std::to_string(value);
-    text.erase(text.find_last_not_of('0') + 1);
-    if (text.back() == '.') text.pop_back();
-    return text;
-}
 
 std::string size_text(const Image& image) {
     return std::to_string(image.width()) + "x" + std::to_string(image.height());
@@ -79,22 +71,11 @@ std::span<const NprOptionSpec> npr_option_specs() {
 }
 
 double get_option(const NprOptions& options, const NprOptionSpec& spec) {
-    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+    return get_table_option(options, spec);
 }
 
 Status set_option(NprOptions& options, const NprOptionSpec& spec, double value) {
-    const bool integral = std::holds_alternative<int NprOptions::*>(spec.field);
-    if (!(value >= spec.min && value <= spec.max) || (integral && value != std::floor(value)))
-        return invalid_argument(std::string(spec.name) + ": " + number_text(value) +
-                                " is invalid (must be " + (integral ? "an integer, " : "") +
-                                number_text(spec.min) + ".." + number_text(spec.max) + ")");
-    std::visit(
-        [&](auto field) {
-            using T = std::remove_reference_t<decltype(options.*field)>;
-            options.*field = static_cast<T>(value);
-        },
-        spec.field);
-    return Status::ok();
+    return set_table_option(options, spec, value);
 }
 
 Status validate(const NprOptions& options) {
