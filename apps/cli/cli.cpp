@@ -63,6 +63,7 @@ struct CommandLine {
     NoisyCommand noisy{app};
     DirectionsCommand directions{app};
     PaintCommand paint{app};
+    BrushCommand brush{app};
     NprCommand npr{app};
 };
 
@@ -182,6 +183,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.directions.run(streams);
         } else if (cli.paint.parsed()) {
             status = cli.paint.run(streams);
+        } else if (cli.brush.parsed()) {
+            status = cli.brush.run(streams);
         } else if (cli.npr.parsed()) {
             status = cli.npr.run(streams);
         }

@@ -18,6 +18,7 @@
 #include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/paint.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
@@ -202,6 +203,33 @@ private:
     int width_ = 0;
     int height_ = 0;
     paint::PaintOptions options_;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
+/// `exemplar brush`: paints paths with a line feature selected in a palette image (Painting by
+/// Feature, docs/feature.md).
+class BrushCommand {
+public:
+    /// Adds the `brush` subcommand and its flags to `app`.
+    explicit BrushCommand(CLI::App& app);
+    BrushCommand(const BrushCommand&) = delete;
+    BrushCommand& operator=(const BrushCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string palette_, feature_, path_, output_, canvas_, walk_ = "randomized";
+    int width_ = 0;
+    int height_ = 0;
+    float brush_width_ = 0.0f;
+    std::uint64_t seed_ = 1;
+    bool snap_ = true;
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
     int threads_ = 0;
     bool quiet_ = false;
 };

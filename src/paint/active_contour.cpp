@@ -63,11 +63,8 @@ Result<std::vector<StrokePoint>> snap_to_edges(const Image& palette,
         return invalid_argument("feature: has " + std::to_string(rough.size()) +
                                 " point(s) (needs at least 2)");
     }
-    for (StrokePoint p : rough) {
-        if (!std::isfinite(p.x) || !std::isfinite(p.y))
-            return invalid_argument("feature: a point is not finite");
-    }
     if (palette.empty()) return invalid_argument("palette: is empty");
+    EXEMPLAR_RETURN_IF_ERROR(check_inside(palette, rough));
     std::vector<StrokePoint> v = sample_path(rough, options.snap_spacing_px);
     // Keep the rough path's end: the last sample can fall up to a spacing short of it.
     const StrokePoint end = rough.back();

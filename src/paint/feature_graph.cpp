@@ -117,6 +117,18 @@ void sample_bilinear(const Image& image, float x, float y, float* out) {
     }
 }
 
+Status check_inside(const Image& palette, std::span<const StrokePoint> points) {
+    for (StrokePoint p : points) {
+        if (!(p.x >= 0.0f && p.y >= 0.0f && p.x <= static_cast<float>(palette.width()) &&
+              p.y <= static_cast<float>(palette.height()))) {
+            return invalid_argument(
+                "feature: point " + point_str(p) + " lies outside the palette (" +
+                std::to_string(palette.width()) + "x" + std::to_string(palette.height()) + ")");
+        }
+    }
+    return Status::ok();
+}
+
 Result<LineFeature> LineFeature::create(const Image& palette, const Stroke& selection,
                                         const FeatureBrushOptions& options, int threads) {
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
@@ -133,14 +145,7 @@ Result<LineFeature> LineFeature::create(const Image& palette, const Stroke& sele
         return invalid_argument("feature: width " + std::to_string(selection.width_px) +
                                 " is invalid (must be 1..1024)");
     }
-    for (StrokePoint p : selection.points) {
-        if (!(p.x >= 0.0f && p.y >= 0.0f && p.x <= static_cast<float>(palette.width()) &&
-              p.y <= static_cast<float>(palette.height()))) {
-            return invalid_argument(
-                "feature: point " + point_str(p) + " lies outside the palette (" +
-                std::to_string(palette.width()) + "x" + std::to_string(palette.height()) + ")");
-        }
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_inside(palette, selection.points));
     const std::vector<StrokePoint> points =
         sample_path(selection.points, options.sample_spacing_px);
     if (points.size() < 2) {

@@ -27,6 +27,9 @@ private:
     double until_next_ = 0.0;  // arc length from last_ to the next sample
 };
 
+/// InvalidArgument naming the first point outside [0, width] × [0, height] of `palette`.
+Status check_inside(const Image& palette, std::span<const StrokePoint> points);
+
 /// All samples of a polyline.
 std::vector<StrokePoint> sample_path(std::span<const StrokePoint> points, double spacing);
 

@@ -121,8 +121,8 @@ Status validate(const FeatureBrushOptions& options);
 /// ignored) onto the feature's edge: a greedy active contour (Williams and Shah 1992's
 /// discretization of Kass et al. 1988) with the elasticity, rigidity and edge terms of
 /// `options`, on the points of the rough polyline resampled every `snap_spacing_px`. Open
-/// contour: the end points move too. Errors (InvalidArgument): fewer than two points, a
-/// non-finite point.
+/// contour: the end points move too. Errors (InvalidArgument): fewer than two points, a point
+/// outside the palette (or not finite).
 Result<std::vector<StrokePoint>> snap_to_edges(const Image& palette,
                                                std::span<const StrokePoint> rough,
                                                const FeatureBrushOptions& options = {});

@@ -1,0 +1,133 @@
+// Stroke files: the strokes JSON of docs/paint.md and SVG drawings (sketch::load_svg).
+
+#include "stroke_files.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "exemplar/sketch/svg.hpp"
+
+namespace exemplar::cli {
+
+namespace {
+
+using nlohmann::json;
+
+bool has_extension(const std::string& path, const std::string& ext) {
+    if (path.size() < ext.size()) return false;
+    std::string tail = path.substr(path.size() - ext.size());
+    for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return tail == ext;
+}
+
+// `[{"points": [[x, y], ...], "width": 40, "comb": false}, ...]`, coordinates in canvas pixels.
+Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& flag,
+                                                     const std::string& path) {
+    std::ifstream file(path);
+    if (!file) return io_error(flag + " " + path + ": cannot be read");
+    std::stringstream text;
+    text << file.rdbuf();
+    const json doc = json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+    if (doc.is_discarded()) return invalid_argument(flag + " " + path + ": not valid JSON");
+    if (!doc.is_array()) {
+        return invalid_argument(flag + " " + path + ": must be an array of strokes");
+    }
+    std::vector<paint::Stroke> strokes;
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+        const json& s = doc[i];
+        const std::string where = flag + " " + path + ": stroke " + std::to_string(i) + ": ";
+        if (!s.is_object()) return invalid_argument(where + "must be an object");
+        for (const auto& [key, value] : s.items()) {
+            if (key != "points" && key != "width" && key != "comb") {
+                return invalid_argument(where + "unknown key '" + key +
+                                        "' (known: points, width, comb)");
+            }
+        }
+        paint::Stroke stroke;
+        if (!s.contains("points") || !s["points"].is_array()) {
+            return invalid_argument(where + "'points' must be an array of [x, y]");
+        }
+        for (const json& p : s["points"]) {
+            if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+                return invalid_argument(where + "'points' must be an array of [x, y]");
+            }
+            stroke.points.push_back({p[0].get<float>(), p[1].get<float>()});
+        }
+        if (s.contains("width")) {
+            if (!s["width"].is_number())
+                return invalid_argument(where + "'width' must be a number");
+            stroke.width_px = s["width"].get<float>();
+        }
+        if (s.contains("comb")) {
+            if (!s["comb"].is_boolean())
+                return invalid_argument(where + "'comb' must be true or false");
+            stroke.comb = s["comb"].get<bool>();
+        }
+        if (Status st = paint::validate(stroke); !st.is_ok()) {
+            return invalid_argument(where + st.message());
+        }
+        strokes.push_back(std::move(stroke));
+    }
+    return strokes;
+}
+
+// Every SVG path is a painting stroke: its centre line sampled every ~1 px and its stroke-width,
+// the viewBox (if any) mapped onto the canvas.
+Result<std::vector<paint::Stroke>> read_svg_strokes(const std::string& flag,
+                                                    const std::string& path, int width,
+                                                    int height) {
+    auto drawing = sketch::load_svg(path);
+    if (!drawing.ok()) return drawing.status();
+    double sx = 1.0, sy = 1.0, ox = 0.0, oy = 0.0;
+    if (drawing->view_width > 0.0 && drawing->view_height > 0.0) {
+        sx = width / drawing->view_width;
+        sy = height / drawing->view_height;
+        ox = drawing->view_x;
+        oy = drawing->view_y;
+    }
+    std::vector<paint::Stroke> strokes;
+    for (std::size_t i = 0; i < drawing->paths.size(); ++i) {
+        const sketch::Path& p = drawing->paths[i];
+        if (p.empty()) continue;
+        paint::Stroke stroke;
+        stroke.width_px =
+            static_cast<float>(drawing->stroke_widths[i] * std::sqrt(std::abs(sx * sy)));
+        auto add = [&](sketch::Vec2 v) {
+            stroke.points.push_back(
+                {static_cast<float>((v.x - ox) * sx), static_cast<float>((v.y - oy) * sy)});
+        };
+        add(p.start());
+        for (const sketch::Cubic& c : p.segments) {
+            const double length = sketch::distance(c.p0, c.c1) + sketch::distance(c.c1, c.c2) +
+                                  sketch::distance(c.c2, c.p3);
+            const int steps = std::clamp(static_cast<int>(std::ceil(length * sx)), 1, 4096);
+            for (int k = 1; k <= steps; ++k) add(c.point(static_cast<double>(k) / steps));
+        }
+        if (Status st = paint::validate(stroke); !st.is_ok()) {
+            return invalid_argument(flag + " " + path + ": path " + std::to_string(i) + ": " +
+                                    st.message());
+        }
+        strokes.push_back(std::move(stroke));
+    }
+    return strokes;
+}
+
+}  // namespace
+
+Status check_stroke_file(const std::string& flag, const std::string& path) {
+    if (has_extension(path, ".json") || has_extension(path, ".svg")) return Status::ok();
+    return invalid_argument(flag + " " + path + ": must be a .json or .svg file");
+}
+
+Result<std::vector<paint::Stroke>> read_strokes(const std::string& flag, const std::string& path,
+                                                int width, int height) {
+    EXEMPLAR_RETURN_IF_ERROR(check_stroke_file(flag, path));
+    return has_extension(path, ".json") ? read_json_strokes(flag, path)
+                                        : read_svg_strokes(flag, path, width, height);
+}
+
+}  // namespace exemplar::cli
