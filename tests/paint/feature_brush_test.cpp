@@ -267,7 +267,7 @@ double mean_jump_step(const BrushStroke& stroke, float spacing) {
     return total / std::max(jumps, 1);
 }
 
-// Measured: mean step 0.051 with blending, 0.138 without.
+// Measured: mean step 0.050 with blending, 0.138 without.
 TEST(BrushStroke, BlendingLowersTheColourJumpAtDiscontinuities) {
     const Image palette = line_palette(0.5f);
     FeatureBrushOptions sharp;

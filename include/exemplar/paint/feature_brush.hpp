@@ -63,8 +63,8 @@ struct FeatureBrushOptions {
     /// (the target's spacing is scaled by brush width / selection width). Default 2; 0.5..64.
     float sample_spacing_px = 2.0f;
     /// Half-length, in target pixels along the path, of the base-layer blend across each jump of
-    /// the walk. 0 turns the blending off. Default 8; 0..256.
-    float blend_radius_px = 8.0f;
+    /// the walk. 0 turns the blending off. Default 16; 0..256.
+    float blend_radius_px = 16.0f;
     /// σ of the bilateral filter's spatial Gaussian that makes the base layer, in palette pixels.
     /// Default 4; 0.5..64.
     float base_sigma_px = 4.0f;
