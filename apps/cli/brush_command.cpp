@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/paint/feature_brush.hpp"
+#include "option_help.hpp"
 #include "output_files.hpp"
 #include "stroke_files.hpp"
 
@@ -44,17 +45,12 @@ BrushCommand::BrushCommand(CLI::App& parent) {
     app_->add_option("--seed", seed_, "Random seed of the walk; default 1");
     app_->add_flag("--snap,!--no-snap", snap_,
                    "Snap the feature's rough path onto the palette's edge (default on)");
-    const paint::FeatureBrushOptions defaults;
-    for (const paint::FeatureBrushOptionSpec& spec : paint::feature_brush_option_specs()) {
-        std::string value = std::to_string(paint::get_option(defaults, spec));
-        while (value.back() == '0') value.pop_back();
-        if (value.back() == '.') value.pop_back();
-        const std::string doc = std::string(spec.doc) + " [" +
-                                (spec.unit.empty() ? "" : std::string(spec.unit) + ", ") +
-                                "default " + value + "]";
-        numeric_flags_[std::string(spec.name)] = app_->add_option(
-            "--" + std::string(spec.name), numeric_values_[std::string(spec.name)], doc);
-    }
+    add_table_flags(
+        *app_, paint::feature_brush_option_specs(), paint::FeatureBrushOptions{},
+        [](const paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec) {
+            return paint::get_option(o, spec);
+        },
+        numeric_values_, numeric_flags_);
     app_->add_option("--threads", threads_, "Threads (0 = all cores); the result is the same");
     app_->add_flag("--quiet,-q", quiet_, "Do not print the output path");
 }
@@ -62,12 +58,12 @@ BrushCommand::BrushCommand(CLI::App& parent) {
 Status BrushCommand::run(const Streams& streams) const {
     // Checks that need no file.
     paint::FeatureBrushOptions options;
-    for (const paint::FeatureBrushOptionSpec& spec : paint::feature_brush_option_specs()) {
-        const std::string name(spec.name);
-        if (numeric_flags_.at(name)->count() == 0) continue;
-        if (Status s = paint::set_option(options, spec, numeric_values_.at(name)); !s.is_ok())
-            return invalid_argument("--" + s.message());
-    }
+    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
+        options, paint::feature_brush_option_specs(),
+        [](paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec, double value) {
+            return paint::set_option(o, spec, value);
+        },
+        numeric_values_, numeric_flags_));
     auto walk = paint::parse_walk_mode(walk_);
     if (!walk.ok()) return invalid_argument("--" + walk.status().message());
     options.walk = *walk;
@@ -83,14 +79,7 @@ Status BrushCommand::run(const Streams& streams) const {
     }
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file("--feature", feature_));
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file("--path", path_));
-    if (canvas_.empty() && (width_ <= 0 || height_ <= 0)) {
-        return invalid_argument("--width/--height: " + std::to_string(width_) + "x" +
-                                std::to_string(height_) +
-                                " is invalid (both must be > 0, or give --canvas)");
-    }
-    if (width_ > 32768 || height_ > 32768) {
-        return invalid_argument("--width/--height: at most 32768 px");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_canvas_size(canvas_, width_, height_));
     EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", output_));
     EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, Image(1, 1, 4), {}));
 
@@ -102,23 +91,10 @@ Status BrushCommand::run(const Streams& streams) const {
         return invalid_argument("--palette " + palette_ + ": has " + std::to_string(channels) +
                                 " channels (must be grey, RGB or RGBA)");
     }
-    Image background;
-    int width = width_, height = height_;
-    if (!canvas_.empty()) {
-        auto bg = load_image(canvas_);
-        if (!bg.ok()) return bg.status();
-        if (bg->channels() != 3 && bg->channels() != 4) {
-            return invalid_argument("--canvas " + canvas_ + ": must be RGB or RGBA");
-        }
-        if ((width > 0 && width != bg->width()) || (height > 0 && height != bg->height())) {
-            return invalid_argument("--canvas " + canvas_ + ": is " + std::to_string(bg->width()) +
-                                    "x" + std::to_string(bg->height()) + " but --width/--height " +
-                                    std::to_string(width) + "x" + std::to_string(height));
-        }
-        width = bg->width();
-        height = bg->height();
-        background = std::move(bg).value();
-    }
+    auto canvas_file = load_canvas(canvas_, width_, height_);
+    if (!canvas_file.ok()) return canvas_file.status();
+    const int width = canvas_file->width, height = canvas_file->height;
+    const Image& background = canvas_file->background;
     auto features = read_strokes("--feature", feature_, palette->width(), palette->height());
     if (!features.ok()) return features.status();
     if (features->size() != 1) {

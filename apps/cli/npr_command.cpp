@@ -96,16 +96,12 @@ NprCommand::NprCommand(CLI::App& parent) {
                    "Draw the renderer's `lines` buffer (silhouettes, creases) in ink (default on)");
     app_->add_flag("--tone-correction,!--no-tone-correction", tone_correction_,
                    "Blur, subtract and re-threshold so the local tone matches (default on)");
-    const npr::NprOptions defaults;
-    for (const npr::NprOptionSpec& spec : npr::npr_option_specs()) {
-        const std::string name(spec.name);
-        const std::string unit = spec.unit.empty() ? "" : " " + std::string(spec.unit);
-        numeric_flags_[name] =
-            app_->add_option("--" + name, numeric_values_[name],
-                             std::string(spec.doc) + " [" + format_number(spec.min) + ".." +
-                                 format_number(spec.max) + unit + ", default " +
-                                 format_number(npr::get_option(defaults, spec)) + "]");
-    }
+    add_table_flags(
+        *app_, npr::npr_option_specs(), npr::NprOptions{},
+        [](const npr::NprOptions& o, const npr::NprOptionSpec& spec) {
+            return npr::get_option(o, spec);
+        },
+        numeric_values_, numeric_flags_);
     app_->add_option("--mp4", mp4_, "Also write the range as an MP4 (even frame sizes)");
     app_->add_option("--fps", fps_, "Frames per second of the MP4 (default 24)");
     app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
@@ -121,13 +117,12 @@ Status NprCommand::run(const Streams& streams) {
     auto style = npr::parse_style(style_);
     if (!style.ok()) return invalid_argument("--" + style.status().message());
     options.style = *style;
-    for (const npr::NprOptionSpec& spec : npr::npr_option_specs()) {
-        const std::string name(spec.name);
-        if (numeric_flags_.at(name)->count() == 0) continue;
-        if (const Status set = npr::set_option(options, spec, numeric_values_.at(name));
-            !set.is_ok())
-            return invalid_argument("--" + set.message());
-    }
+    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
+        options, npr::npr_option_specs(),
+        [](npr::NprOptions& o, const npr::NprOptionSpec& spec, double value) {
+            return npr::set_option(o, spec, value);
+        },
+        numeric_values_, numeric_flags_));
     options.tone = tone_;
     options.orientation = orientation_;
     options.lines = lines_;

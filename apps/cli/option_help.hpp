@@ -2,8 +2,12 @@
 // Help text of the numeric synthesis options, generated from synthesis_option_specs(). The same
 // strings appear in `exemplar stylize --help` and in docs/cli.md (a test keeps them in step).
 
+#include <CLI/CLI.hpp>
+#include <map>
+#include <span>
 #include <string>
 
+#include "exemplar/core/status.hpp"
 #include "exemplar/synth/options.hpp"
 
 namespace exemplar::cli {
@@ -42,5 +46,37 @@ std::string quality_flags(Quality quality);
 /// The expert options as a help section ("Search tuning (experts) ..." with one
 /// "  --name TYPE  description" entry each), for `--help-all`.
 std::string expert_options_help();
+
+/// Adds one flag per entry of a module's option table (npr, brush): `--<name>` with help
+/// "<doc> [<min>..<max> <unit>, default <default>]", storing into values[name]; flags[name] is
+/// the flag (its count says whether it was given). `get(defaults, spec)` reads a default.
+template <class Options, class Spec, class Get>
+void add_table_flags(CLI::App& app, std::span<const Spec> specs, const Options& defaults, Get get,
+                     std::map<std::string, double>& values,
+                     std::map<std::string, CLI::Option*>& flags) {
+    for (const Spec& spec : specs) {
+        const std::string name(spec.name);
+        const std::string unit = spec.unit.empty() ? "" : " " + std::string(spec.unit);
+        flags[name] = app.add_option("--" + name, values[name],
+                                     std::string(spec.doc) + " [" + format_number(spec.min) + ".." +
+                                         format_number(spec.max) + unit + ", default " +
+                                         format_number(get(defaults, spec)) + "]");
+    }
+}
+
+/// Sets the table options whose flags were given (see add_table_flags) with `set(options, spec,
+/// value)`; its error gets the flag's "--" in front.
+template <class Options, class Spec, class Set>
+Status set_given_table_flags(Options& options, std::span<const Spec> specs, Set set,
+                             const std::map<std::string, double>& values,
+                             const std::map<std::string, CLI::Option*>& flags) {
+    for (const Spec& spec : specs) {
+        const std::string name(spec.name);
+        if (flags.at(name)->count() == 0) continue;
+        if (const Status s = set(options, spec, values.at(name)); !s.is_ok())
+            return invalid_argument("--" + s.message());
+    }
+    return Status::ok();
+}
 
 }  // namespace exemplar::cli

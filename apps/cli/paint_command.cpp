@@ -62,14 +62,7 @@ Status PaintCommand::run(const Streams& streams) const {
                                 " is invalid (must be >= 0)");
     }
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file("--strokes", strokes_));
-    if (canvas_.empty() && (width_ <= 0 || height_ <= 0)) {
-        return invalid_argument("--width/--height: " + std::to_string(width_) + "x" +
-                                std::to_string(height_) +
-                                " is invalid (both must be > 0, or give --canvas)");
-    }
-    if (width_ > 32768 || height_ > 32768) {
-        return invalid_argument("--width/--height: at most 32768 px");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_canvas_size(canvas_, width_, height_));
     EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", output_));
     EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, Image(1, 1, 4), {}));
     if (!save_directions_.empty()) {
@@ -111,23 +104,10 @@ Status PaintCommand::run(const Streams& streams) const {
         }
         source.directions = extract_channels(*field, std::max(angle, 0), 1);
     }
-    Image background;
-    int width = width_, height = height_;
-    if (!canvas_.empty()) {
-        auto bg = load_image(canvas_);
-        if (!bg.ok()) return bg.status();
-        if (bg->channels() != 3 && bg->channels() != 4) {
-            return invalid_argument("--canvas " + canvas_ + ": must be RGB or RGBA");
-        }
-        if ((width > 0 && width != bg->width()) || (height > 0 && height != bg->height())) {
-            return invalid_argument("--canvas " + canvas_ + ": is " + std::to_string(bg->width()) +
-                                    "x" + std::to_string(bg->height()) + " but --width/--height " +
-                                    std::to_string(width) + "x" + std::to_string(height));
-        }
-        width = bg->width();
-        height = bg->height();
-        background = std::move(bg).value();
-    }
+    auto canvas_file = load_canvas(canvas_, width_, height_);
+    if (!canvas_file.ok()) return canvas_file.status();
+    const int width = canvas_file->width, height = canvas_file->height;
+    const Image& background = canvas_file->background;
     auto strokes = read_strokes("--strokes", strokes_, width, height);
     if (!strokes.ok()) return strokes.status();
 

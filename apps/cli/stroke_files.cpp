@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "exemplar/io/image_io.hpp"
 #include "exemplar/sketch/svg.hpp"
 
 namespace exemplar::cli {
@@ -128,6 +129,34 @@ Result<std::vector<paint::Stroke>> read_strokes(const std::string& flag, const s
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file(flag, path));
     return has_extension(path, ".json") ? read_json_strokes(flag, path)
                                         : read_svg_strokes(flag, path, width, height);
+}
+
+Status check_canvas_size(const std::string& canvas, int width, int height) {
+    if (canvas.empty() && (width <= 0 || height <= 0)) {
+        return invalid_argument("--width/--height: " + std::to_string(width) + "x" +
+                                std::to_string(height) +
+                                " is invalid (both must be > 0, or give --canvas)");
+    }
+    if (width > 32768 || height > 32768) {
+        return invalid_argument("--width/--height: at most 32768 px");
+    }
+    return Status::ok();
+}
+
+Result<Canvas> load_canvas(const std::string& canvas, int width, int height) {
+    if (canvas.empty()) return Canvas{Image(), width, height};
+    auto bg = load_image(canvas);
+    if (!bg.ok()) return bg.status();
+    if (bg->channels() != 3 && bg->channels() != 4) {
+        return invalid_argument("--canvas " + canvas + ": must be RGB or RGBA");
+    }
+    if ((width > 0 && width != bg->width()) || (height > 0 && height != bg->height())) {
+        return invalid_argument("--canvas " + canvas + ": is " + std::to_string(bg->width()) + "x" +
+                                std::to_string(bg->height()) + " but --width/--height " +
+                                std::to_string(width) + "x" + std::to_string(height));
+    }
+    const int w = bg->width(), h = bg->height();
+    return Canvas{std::move(bg).value(), w, h};
 }
 
 }  // namespace exemplar::cli

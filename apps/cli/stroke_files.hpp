@@ -1,10 +1,12 @@
 #pragma once
-// Stroke files of `exemplar paint` and `exemplar brush`: the strokes JSON of docs/paint.md and
-// SVG drawings (through the sketch module's SVG reader), in canvas pixels.
+// Inputs of `exemplar paint` and `exemplar brush`: stroke files (the strokes JSON of
+// docs/paint.md and SVG drawings, through the sketch module's SVG reader, in canvas pixels) and
+// the canvas (its size and optional background).
 
 #include <string>
 #include <vector>
 
+#include "exemplar/core/image.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/paint/strokes.hpp"
 
@@ -20,5 +22,18 @@ Status check_stroke_file(const std::string& flag, const std::string& path);
 /// is validated; messages name `flag`, the file and the stroke or path index.
 Result<std::vector<paint::Stroke>> read_strokes(const std::string& flag, const std::string& path,
                                                 int width, int height);
+
+/// Checks --width/--height before any file is read: both > 0 unless a --canvas is given (whose
+/// size is then the default), at most 32768.
+Status check_canvas_size(const std::string& canvas, int width, int height);
+
+/// The canvas: the --canvas background (RGB or RGBA; none if `canvas` is empty) and the size,
+/// the background's (which --width/--height must match if given) or width × height.
+struct Canvas {
+    Image background;
+    int width = 0;
+    int height = 0;
+};
+Result<Canvas> load_canvas(const std::string& canvas, int width, int height);
 
 }  // namespace exemplar::cli

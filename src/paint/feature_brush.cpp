@@ -14,6 +14,7 @@
 #include <string>
 
 #include "exemplar/core/check.hpp"
+#include "exemplar/core/option_table.hpp"
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
 #include "exemplar/paint/paint.hpp"
@@ -62,13 +63,6 @@ const std::array<FeatureBrushOptionSpec, 11> kSpecs{{
      "iterations", 0, 10000, &O::snap_iterations},
 }};
 
-std::string format_number(double value) {
-    std::string s = std::to_string(value);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (s.back() == '.') s.pop_back();
-    return s;
-}
-
 void include(PixelRect& rect, const PixelRect& other) {
     if (other.empty()) return;
     if (rect.empty()) {
@@ -108,23 +102,11 @@ std::span<const FeatureBrushOptionSpec> feature_brush_option_specs() {
 }
 
 double get_option(const FeatureBrushOptions& options, const FeatureBrushOptionSpec& spec) {
-    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+    return get_table_option(options, spec);
 }
 
 Status set_option(FeatureBrushOptions& options, const FeatureBrushOptionSpec& spec, double value) {
-    const bool integral = std::holds_alternative<int O::*>(spec.field);
-    if (!(value >= spec.min && value <= spec.max) || (integral && value != std::floor(value))) {
-        return invalid_argument(std::string(spec.name) + ": " + format_number(value) +
-                                " is invalid (must be " + (integral ? "an integer, " : "") +
-                                format_number(spec.min) + ".." + format_number(spec.max) + ")");
-    }
-    std::visit(
-        [&](auto field) {
-            using T = std::remove_reference_t<decltype(options.*field)>;
-            options.*field = static_cast<T>(value);
-        },
-        spec.field);
-    return Status::ok();
+    return set_table_option(options, spec, value);
 }
 
 Status validate(const FeatureBrushOptions& options) {
