@@ -75,7 +75,7 @@ Status BrushCommand::run(const Streams& streams) const {
     if (app_->get_option("--brush-width")->count() > 0 &&
         !(brush_width_ > 0.0f && brush_width_ <= 4096.0f)) {
         return invalid_argument("--brush-width: " + std::to_string(brush_width_) +
-                                " is invalid (must be 0..4096, above 0)");
+                                " is invalid (must be > 0 and at most 4096)");
     }
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file("--feature", feature_));
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file("--path", path_));

@@ -353,6 +353,30 @@ TEST(LineFeature, RejectsBadSelections) {
     EXPECT_EQ(*parse_walk_mode("dp"), WalkMode::DynamicProgramming);
 }
 
+TEST(PaintFeature, GreyAndRgbaPalettesKeepTheirChannels) {
+    // Grey: replicated to RGB. RGBA: the palette's alpha times the coverage.
+    const Image rgb = line_palette();
+    Image grey(rgb.width(), rgb.height(), 1), rgba(rgb.width(), rgb.height(), 4);
+    for (int y = 0; y < rgb.height(); ++y) {
+        for (int x = 0; x < rgb.width(); ++x) {
+            grey.at(x, y, 0) = rgb.at(x, y, 1);
+            for (int c = 0; c < 3; ++c) rgba.at(x, y, c) = rgb.at(x, y, c);
+            rgba.at(x, y, 3) = 0.5f;
+        }
+    }
+    const std::vector<Stroke> path{Stroke{{{10.0f, 30.0f}, {290.0f, 30.0f}}, 32.0f, false}};
+    auto from_grey = LineFeature::create(grey, selection(), {}, 1);
+    auto from_rgba = LineFeature::create(rgba, selection(), {}, 1);
+    ASSERT_TRUE(from_grey.ok() && from_rgba.ok());
+    auto a = paint_feature(*from_grey, path, 300, 60, 0.0f, 1);
+    auto b = paint_feature(*from_rgba, path, 300, 60, 0.0f, 1);
+    ASSERT_TRUE(a.ok() && b.ok());
+    EXPECT_EQ(a->at(150, 30, 3), 1.0f);
+    EXPECT_EQ(a->at(150, 30, 0), a->at(150, 30, 2));
+    EXPECT_NEAR(b->at(150, 30, 3), 0.5f, 1e-6f);
+    EXPECT_EQ(b->at(150, 5, 3), 0.0f);  // outside the 32 px brush
+}
+
 TEST(PaintFeature, SameBytesForAnyThreadCount) {
     auto feature = LineFeature::create(line_palette(0.3f), selection(), {}, 0);
     ASSERT_TRUE(feature.ok());

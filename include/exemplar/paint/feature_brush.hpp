@@ -217,7 +217,9 @@ public:
     int settled_samples() const;
     /// The walk: one source sample index per target sample.
     std::span<const int> walk() const { return walk_; }
-    /// The target sample whose Voronoi cell holds pixel (x, y), or −1 outside the brush.
+    /// The target sample whose Voronoi cell holds pixel (x, y), or −1 where no sample is within
+    /// half the brush width + 1 px (pixels beyond the flat end caps keep their sample but stay
+    /// transparent).
     int nearest_sample(int x, int y) const;
     /// The target samples (positions and tangents), in path order.
     std::span<const PathSample> target_samples() const { return frames_; }
