@@ -66,6 +66,16 @@ TEST_F(Cli, BrushPaintsJsonAndSvgPaths) {
     EXPECT_EQ(over.at(2, 2, 3), 1.0f);
     EXPECT_EQ(over.at(2, 2, 1), 0.0f);
     EXPECT_GT(over.at(100, 32, 1), 0.1f);  // painted (grey) in the middle
+
+    // The feature as SVG, in palette pixels (the palette's size is its canvas).
+    std::ofstream(path("feature.svg"))
+        << R"(<svg xmlns="http://www.w3.org/2000/svg" width="120" height="48">)"
+        << R"(<path d="M 6 26 L 114 25" stroke-width="24"/></svg>)";
+    const CliRun from_svg =
+        run({"brush", "--palette", path("palette.png"), "--feature", path("feature.svg"), "--path",
+             path("path.json"), "--width", "200", "--height", "64", "-o", path("from_svg.png")});
+    ASSERT_EQ(from_svg.code, 0) << from_svg.err;
+    EXPECT_EQ(read("from_svg.png").at(80, 40, 3), 1.0f);
 }
 
 TEST_F(Cli, BrushRejectsBadInputs) {
