@@ -78,6 +78,31 @@ TEST_F(Cli, BrushPaintsJsonAndSvgPaths) {
     EXPECT_EQ(read("from_svg.png").at(80, 40, 3), 1.0f);
 }
 
+// examples/feature (its README): the bundled palette, feature and paths give the picture
+// committed there, wherever the strokes are opaque (the picture has a paper colour under them;
+// an alpha of 0.999 reads back as 1 from the 8-bit PNG, hence one grey level of tolerance).
+TEST_F(Cli, BrushBundledExampleGivesItsPicture) {
+    const std::string dir = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/feature/";
+    const CliRun r = run({"brush", "--palette", dir + "scream_railing.png", "--feature",
+                          dir + "railing.json", "--path", dir + "waves.json", "--width", "800",
+                          "--height", "260", "-o", path("waves.png"), "-q", "--threads", "2"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Image out = read("waves.png");
+    const Result<Image> picture = load_image(dir + "waves.png");
+    ASSERT_TRUE(picture.ok()) << picture.status().message();
+    ASSERT_TRUE(out.same_size(*picture));
+    int opaque = 0;
+    for (int y = 0; y < out.height(); ++y) {
+        for (int x = 0; x < out.width(); ++x) {
+            if (out.at(x, y, 3) < 1.0f) continue;
+            ++opaque;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(out.at(x, y, c), picture->at(x, y, c), 1.5f / 255.0f) << x << ", " << y;
+        }
+    }
+    EXPECT_GT(opaque, 20000);
+}
+
 TEST_F(Cli, BrushRejectsBadInputs) {
     write("palette.png", band_palette());
     const std::string pal = path("palette.png"), feat = path("f.json"), p = path("p.json");
