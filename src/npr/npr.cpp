@@ -79,10 +79,11 @@ Status set_option(NprOptions& options, const NprOptionSpec& spec, double value) 
 }
 
 Status validate(const NprOptions& options) {
-    for (const NprOptionSpec& spec : kSpecs) {
-        NprOptions copy = options;
-        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
-    }
+    EXEMPLAR_RETURN_IF_ERROR(
+        validate_table_options(options, std::span<const NprOptionSpec>(kSpecs),
+                               [](NprOptions& o, const NprOptionSpec& spec, double value) {
+                                   return set_option(o, spec, value);
+                               }));
     if (options.style == Style::Pattern && options.tone)
         return invalid_argument("tone: not used by style pattern (it shows no tone)");
     if (options.tone && options.tone->empty())

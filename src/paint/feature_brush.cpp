@@ -110,10 +110,10 @@ Status set_option(FeatureBrushOptions& options, const FeatureBrushOptionSpec& sp
 }
 
 Status validate(const FeatureBrushOptions& options) {
-    for (const FeatureBrushOptionSpec& spec : kSpecs) {
-        FeatureBrushOptions copy = options;
-        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
-    }
+    EXEMPLAR_RETURN_IF_ERROR(
+        validate_table_options(options, std::span<const FeatureBrushOptionSpec>(kSpecs),
+                               [](FeatureBrushOptions& o, const FeatureBrushOptionSpec& spec,
+                                  double value) { return set_option(o, spec, value); }));
     return parse_walk_mode(to_string(options.walk)).status();
 }
 

@@ -7,6 +7,7 @@
 /// set a field through an entry with the same range check and message everywhere.
 
 #include <cmath>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -54,6 +55,17 @@ Status set_table_option(Options& options, const Spec& spec, double value, bool o
     EXEMPLAR_RETURN_IF_ERROR(check_option_value(spec.name, value, spec.min, spec.max,
                                                 is_integral_option<Options>(spec), odd));
     assign_table_option(options, spec, value);
+    return Status::ok();
+}
+
+/// Checks every entry's current value with `set(copy, spec, value)` (the module's set_option, so
+/// its own rules, such as odd patch sizes, apply) on a copy of `options`: the first error.
+template <class Options, class Spec, class Set>
+Status validate_table_options(const Options& options, std::span<const Spec> specs, Set set) {
+    for (const Spec& spec : specs) {
+        Options copy = options;
+        EXEMPLAR_RETURN_IF_ERROR(set(copy, spec, get_table_option(options, spec)));
+    }
     return Status::ok();
 }
 
