@@ -12,7 +12,7 @@ namespace exemplar::plugin::opencv {
 
 Result<const Entry*> kernels() {
     if (exemplar_opencv_entry != nullptr) return exemplar_opencv_entry();
-    return load<Entry>({kPluginFileName, kEntrySymbol, kAbiVersion, "OpenCV operations"});
+    return load<Entry>({kPluginFileName, kEntrySymbol, kAbiVersion, "OpenCV"});
 }
 
 }  // namespace exemplar::plugin::opencv

@@ -72,7 +72,7 @@ struct Entry {
 };
 
 /// The OpenCV operations: linked in, or the plugin loaded on first use. Unsupported
-/// `OpenCV operations are not available (libexemplar_opencv.so: <reason>)` without it.
+/// `OpenCV is not available (libexemplar_opencv.so: <reason>)` without it.
 Result<const Entry*> kernels();
 
 }  // namespace exemplar::plugin::opencv
