@@ -263,7 +263,7 @@ TEST_F(Plugins, TheCommandLinksNoneOfTheirLibraries) {
         return r.out;
     };
     const std::string command = needed(kExemplar);
-    for (const char* library : {"libopencv_", "libembree", "libcairo"}) {
+    for (const char* library : {"libopencv_", "libembree", "libcairo", "libOpenEXR"}) {
         EXPECT_EQ(command.find(library), std::string::npos) << library;
     }
     const fs::path folder = fs::path(kPlugin).parent_path();
@@ -272,6 +272,8 @@ TEST_F(Plugins, TheCommandLinksNoneOfTheirLibraries) {
     EXPECT_NE(needed((folder / "libexemplar_render_embree.so").string()).find("libembree3"),
               std::string::npos);
     EXPECT_NE(needed((folder / "libexemplar_cairo.so").string()).find("libcairo"),
+              std::string::npos);
+    EXPECT_NE(needed((folder / "libexemplar_openexr.so").string()).find("libOpenEXR"),
               std::string::npos);
 }
 
@@ -295,6 +297,13 @@ TEST_F(Plugins, LoadedOnFirstUseOnly) {
     ASSERT_TRUE(buffers.ok()) << buffers.status().message();
     EXPECT_TRUE(mapped("libexemplar_render_embree"));
     EXPECT_TRUE(mapped("libembree3"));
+
+    ASSERT_FALSE(mapped("libexemplar_openexr")) << "loaded before any EXR file";
+    ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.png")).is_ok());
+    EXPECT_FALSE(mapped("libexemplar_openexr")) << "PNG files need no OpenEXR";
+    ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.exr")).is_ok());
+    EXPECT_TRUE(mapped("libexemplar_openexr"));
+    EXPECT_TRUE(mapped("libOpenEXR"));
 }
 
 TEST_F(Plugins, PlainVerbsNeedNoneAndOthersFailWithOneLine) {
