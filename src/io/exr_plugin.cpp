@@ -1,7 +1,7 @@
 // OpenEXR through the OpenEXR library: any number of named channels, half or float (uint
 // channels are read as float), scanline or tiled, the data window of the first part. Written
-// files are scanline, ZIP-compressed. Built as the plugin libexemplar_openexr.so (exr_backend.hpp
-// says why); it links no exemplar library.
+// files are scanline, ZIP-compressed. Built as the plugin libexemplar_openexr.so
+// (codec_plugin.hpp says why); it links no exemplar library.
 
 #include <Imath/half.h>
 #include <ImfChannelList.h>
@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "exr_backend.hpp"
+#include "codec_plugin.hpp"
 
-namespace exemplar::io_detail::exr {
+namespace exemplar::io_detail::codec_plugin {
 
 namespace {
 
@@ -132,7 +132,8 @@ Status read(const std::string& file, const std::vector<std::string>& channels, A
 }
 
 Status write(const float* values, int width, int height, const std::vector<std::string>& names,
-             const std::string& file, bool half) {
+             const std::string& file, const std::string&, PixelFormat format) {
+    const bool half = format != PixelFormat::Float;
     Imf::Header header(width, height);
     header.compression() = Imf::ZIP_COMPRESSION;
     const std::size_t count =
@@ -161,11 +162,11 @@ Status write(const float* values, int width, int height, const std::vector<std::
 constexpr Entry kEntry{kAbiVersion, &channel_names, &read, &write};
 
 }  // namespace
-}  // namespace exemplar::io_detail::exr
+}  // namespace exemplar::io_detail::codec_plugin
 
-// The plugin's one exported symbol (exr::kEntrySymbol); also linked into libexemplar.so and the
-// Python module, where codec_exr.cpp calls it directly.
-extern "C" __attribute__((visibility("default"))) const exemplar::io_detail::exr::Entry*
+// The plugin's one exported symbol; also linked into libexemplar.so and the Python module,
+// where codec_plugins.cpp calls it directly.
+extern "C" __attribute__((visibility("default"))) const exemplar::io_detail::codec_plugin::Entry*
 exemplar_openexr_entry() {
-    return &exemplar::io_detail::exr::kEntry;
+    return &exemplar::io_detail::codec_plugin::kEntry;
 }

@@ -263,7 +263,7 @@ TEST_F(Plugins, TheCommandLinksNoneOfTheirLibraries) {
         return r.out;
     };
     const std::string command = needed(kExemplar);
-    for (const char* library : {"libopencv_", "libembree", "libcairo", "libOpenEXR"}) {
+    for (const char* library : {"libopencv_", "libembree", "libcairo", "libOpenEXR", "libtiff"}) {
         EXPECT_EQ(command.find(library), std::string::npos) << library;
     }
     const fs::path folder = fs::path(kPlugin).parent_path();
@@ -275,6 +275,7 @@ TEST_F(Plugins, TheCommandLinksNoneOfTheirLibraries) {
               std::string::npos);
     EXPECT_NE(needed((folder / "libexemplar_openexr.so").string()).find("libOpenEXR"),
               std::string::npos);
+    EXPECT_NE(needed((folder / "libexemplar_tiff.so").string()).find("libtiff"), std::string::npos);
 }
 
 // ctest runs every test in a fresh process, so nothing was loaded before.
@@ -299,11 +300,15 @@ TEST_F(Plugins, LoadedOnFirstUseOnly) {
     EXPECT_TRUE(mapped("libembree3"));
 
     ASSERT_FALSE(mapped("libexemplar_openexr")) << "loaded before any EXR file";
+    ASSERT_FALSE(mapped("libexemplar_tiff")) << "loaded before any TIFF file";
     ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.png")).is_ok());
     EXPECT_FALSE(mapped("libexemplar_openexr")) << "PNG files need no OpenEXR";
     ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.exr")).is_ok());
     EXPECT_TRUE(mapped("libexemplar_openexr"));
     EXPECT_TRUE(mapped("libOpenEXR"));
+    EXPECT_FALSE(mapped("libexemplar_tiff")) << "EXR files need no libtiff";
+    ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.tif")).is_ok());
+    EXPECT_TRUE(mapped("libexemplar_tiff"));
 }
 
 TEST_F(Plugins, PlainVerbsNeedNoneAndOthersFailWithOneLine) {
