@@ -22,7 +22,8 @@ function(exemplar_add_plugin name)
     CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
   target_link_libraries(${name}_objects PUBLIC ${ARG_LIBS} PRIVATE exemplar::warnings)
   # Interface headers may use exemplar's public types (Status); plugins link no exemplar library.
-  target_include_directories(${name}_objects PRIVATE ${PROJECT_SOURCE_DIR}/include)
+  target_include_directories(${name}_objects PRIVATE ${PROJECT_SOURCE_DIR}/include
+                             ${PROJECT_SOURCE_DIR}/src/plugin)
   add_library(${name} MODULE)
   target_link_libraries(${name} PRIVATE ${name}_objects)
   set_target_properties(${name} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})

@@ -7,18 +7,22 @@
 // (src/plugin/plugin_loader.hpp; codec_plugins.cpp); libexemplar.so and the Python module link
 // them in. Errors are Status values (header-only); OpenEXR's own errors are exceptions, caught by
 // image_io.cpp as for every codec. Both sides are compiled from this header by one build;
-// kAbiVersion rejects a plugin from another build. The plugins link no exemplar library.
+// abi_version rejects a plugin from another build. The plugins link no exemplar library.
 
 #include <string>
 #include <vector>
 
 #include "exemplar/core/status.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "plugin_loader.hpp"
 
 namespace exemplar::io_detail::codec_plugin {
 
-/// Raise whenever the types below change.
-inline constexpr int kAbiVersion = 1;
+/// The plugins; raise abi_version whenever the types below change.
+inline constexpr plugin::PluginSpec kOpenExr{"libexemplar_openexr.so", "exemplar_openexr_entry", 1,
+                                             "OpenEXR"};
+inline constexpr plugin::PluginSpec kTiff{"libexemplar_tiff.so", "exemplar_tiff_entry", 1,
+                                          "libtiff"};
 
 /// Memory for `width` x `height` pixels of `channels` interleaved floats, from the caller.
 using Allocate = float* (*)(void* context, int width, int height, int channels);

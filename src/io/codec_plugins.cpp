@@ -5,7 +5,6 @@
 
 #include "codec_plugin.hpp"
 #include "codecs.hpp"
-#include "plugin_loader.hpp"
 
 // Defined by exr_plugin.cpp and tiff_plugin.cpp where they are linked in; null in the
 // `exemplar` executable.
@@ -22,14 +21,9 @@ using codec_plugin::Entry;
 
 // The plugin of `codec` (Exr or Tiff), or its error naming `file`.
 Result<const Entry*> plugin_for(Codec codec, const std::string& file) {
-    const bool exr = codec == Codec::Exr;
-    const auto linked_in = exr ? exemplar_openexr_entry : exemplar_tiff_entry;
-    if (linked_in != nullptr) return linked_in();
-    auto entry = plugin::load<Entry>(
-        exr ? plugin::PluginSpec{"libexemplar_openexr.so", "exemplar_openexr_entry",
-                                 codec_plugin::kAbiVersion, "OpenEXR"}
-            : plugin::PluginSpec{"libexemplar_tiff.so", "exemplar_tiff_entry",
-                                 codec_plugin::kAbiVersion, "libtiff"});
+    auto entry = codec == Codec::Exr
+                     ? plugin::linked_or_loaded(exemplar_openexr_entry, codec_plugin::kOpenExr)
+                     : plugin::linked_or_loaded(exemplar_tiff_entry, codec_plugin::kTiff);
     if (!entry.ok()) return Status(entry.status().code(), file + ": " + entry.status().message());
     return entry;
 }

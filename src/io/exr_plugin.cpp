@@ -159,7 +159,7 @@ Status write(const float* values, int width, int height, const std::vector<std::
     return Status::ok();
 }
 
-constexpr Entry kEntry{kAbiVersion, &channel_names, &read, &write};
+constexpr Entry kEntry{kOpenExr.abi_version, &channel_names, &read, &write};
 
 }  // namespace
 }  // namespace exemplar::io_detail::codec_plugin

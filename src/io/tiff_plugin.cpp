@@ -276,7 +276,7 @@ Status write(const float* values, int width, int height, const std::vector<std::
     return Status::ok();
 }
 
-constexpr Entry kEntry{kAbiVersion, nullptr, &read, &write};
+constexpr Entry kEntry{kTiff.abi_version, nullptr, &read, &write};
 
 }  // namespace
 }  // namespace exemplar::io_detail::codec_plugin

@@ -3,16 +3,13 @@
 
 #include "cairo_canvas.hpp"
 
-#include "plugin_loader.hpp"
-
 // Defined by cairo_plugin.cpp where that is linked in; null in the `exemplar` executable.
 extern "C" const exemplar::plugin::cairo::Entry* exemplar_cairo_entry() __attribute__((weak));
 
 namespace exemplar::plugin::cairo {
 
 Result<const Entry*> canvases() {
-    if (exemplar_cairo_entry != nullptr) return exemplar_cairo_entry();
-    return load<Entry>({kPluginFileName, kEntrySymbol, kAbiVersion, "Cairo"});
+    return linked_or_loaded(exemplar_cairo_entry, kPlugin);
 }
 
 }  // namespace exemplar::plugin::cairo

@@ -4,20 +4,19 @@
 // the only binary of the `exemplar` command that links Cairo and its chain (pixman, fontconfig,
 // freetype, X11/xcb: about 2.3 MB resident before main() in every process). libexemplar.so and
 // the Python module link it in. Both sides are compiled from this header by one build;
-// kAbiVersion rejects a plugin from another build.
+// kPlugin.abi_version rejects a plugin from another build.
 
 #include <cstdint>
 #include <memory>
 #include <string>
 
 #include "exemplar/core/status.hpp"
+#include "plugin_loader.hpp"
 
 namespace exemplar::plugin::cairo {
 
-/// Raise whenever the types below change.
-inline constexpr int kAbiVersion = 1;
-inline constexpr const char* kPluginFileName = "libexemplar_cairo.so";
-inline constexpr const char* kEntrySymbol = "exemplar_cairo_entry";
+/// Raise abi_version whenever the types below change.
+inline constexpr PluginSpec kPlugin{"libexemplar_cairo.so", "exemplar_cairo_entry", 1, "Cairo"};
 
 /// A Cairo surface and its context; each method is the Cairo call of the same name.
 class Canvas {

@@ -107,12 +107,12 @@ std::unique_ptr<Canvas> new_pdf(double width_pt, double height_pt, std::string* 
         cairo_pdf_surface_create_for_stream(&append, pdf, width_pt, height_pt), true);
 }
 
-constexpr Entry kEntry{kAbiVersion, &new_image, &new_pdf};
+constexpr Entry kEntry{kPlugin.abi_version, &new_image, &new_pdf};
 
 }  // namespace
 }  // namespace exemplar::plugin::cairo
 
-// The plugin's one exported symbol (cairo::kEntrySymbol); also linked into libexemplar.so and
+// The plugin's one exported symbol (cairo::kPlugin); also linked into libexemplar.so and
 // the Python module, where cairo::canvases() calls it directly.
 extern "C" __attribute__((visibility("default"))) const exemplar::plugin::cairo::Entry*
 exemplar_cairo_entry() {

@@ -3,16 +3,13 @@
 
 #include "opencv_kernels.hpp"
 
-#include "plugin_loader.hpp"
-
 // Defined by opencv_plugin.cpp where that is linked in; null in the `exemplar` executable.
 extern "C" const exemplar::plugin::opencv::Entry* exemplar_opencv_entry() __attribute__((weak));
 
 namespace exemplar::plugin::opencv {
 
 Result<const Entry*> kernels() {
-    if (exemplar_opencv_entry != nullptr) return exemplar_opencv_entry();
-    return load<Entry>({kPluginFileName, kEntrySymbol, kAbiVersion, "OpenCV"});
+    return linked_or_loaded(exemplar_opencv_entry, kPlugin);
 }
 
 }  // namespace exemplar::plugin::opencv

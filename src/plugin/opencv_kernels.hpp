@@ -9,19 +9,18 @@
 //
 // Buffers are row-major and tightly packed (`width` values per row, or `2 * width` for flow);
 // the caller allocates the outputs. Both sides are compiled from this header by one build;
-// kAbiVersion rejects a plugin from another build.
+// kPlugin.abi_version rejects a plugin from another build.
 
 #include <cstdint>
 #include <vector>
 
 #include "exemplar/core/status.hpp"
+#include "plugin_loader.hpp"
 
 namespace exemplar::plugin::opencv {
 
-/// Raise whenever the types below change.
-inline constexpr int kAbiVersion = 1;
-inline constexpr const char* kPluginFileName = "libexemplar_opencv.so";
-inline constexpr const char* kEntrySymbol = "exemplar_opencv_entry";
+/// Raise abi_version whenever the types below change.
+inline constexpr PluginSpec kPlugin{"libexemplar_opencv.so", "exemplar_opencv_entry", 1, "OpenCV"};
 
 /// One contour of a binary image (cv::findContours, RETR_TREE, CHAIN_APPROX_NONE): its moments
 /// m00 (area), m10, m01, its closed perimeter, and the hierarchy links (indices, -1 = none).

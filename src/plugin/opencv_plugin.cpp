@@ -121,15 +121,16 @@ void warp_perspective(const float* plane, int width, int height, const double ho
                         cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
 }
 
-constexpr Entry kEntry{
-    kAbiVersion,      &dis_flow, &distance_to_zero,   &nearest_zero_label, &clahe,    &sobel,
-    &edge_distance,   &blur3,    &adaptive_threshold, &otsu_threshold,     &contours, &perspective,
-    &warp_perspective};
+constexpr Entry kEntry{kPlugin.abi_version, &dis_flow, &distance_to_zero,
+                       &nearest_zero_label, &clahe,    &sobel,
+                       &edge_distance,      &blur3,    &adaptive_threshold,
+                       &otsu_threshold,     &contours, &perspective,
+                       &warp_perspective};
 
 }  // namespace
 }  // namespace exemplar::plugin::opencv
 
-// The plugin's one exported symbol (opencv::kEntrySymbol); also linked into libexemplar.so and
+// The plugin's one exported symbol (opencv::kPlugin); also linked into libexemplar.so and
 // the Python module, where opencv::kernels() calls it directly.
 extern "C" __attribute__((visibility("default"))) const exemplar::plugin::opencv::Entry*
 exemplar_opencv_entry() {

@@ -47,4 +47,13 @@ Result<const Entry*> load(const PluginSpec& spec) {
     return static_cast<const Entry*>(*entry);
 }
 
+/// The entry table from `linked_in`, the plugin's entry point, when the plugin's code is linked
+/// into this binary (libexemplar.so, the Python module: callers declare it as a weak symbol,
+/// null elsewhere), else `load<Entry>(spec)`.
+template <class Entry>
+Result<const Entry*> linked_or_loaded(const Entry* (*linked_in)(), const PluginSpec& spec) {
+    if (linked_in != nullptr) return linked_in();
+    return load<Entry>(spec);
+}
+
 }  // namespace exemplar::plugin

@@ -122,13 +122,13 @@ std::unique_ptr<RayScene> new_scene(const MeshArrays* meshes, std::size_t count)
     return std::make_unique<EmbreeScene>(meshes, count);
 }
 
-constexpr Entry kEntry{kAbiVersion, &new_scene};
+constexpr Entry kEntry{kPlugin.abi_version, &new_scene};
 
 }  // namespace
 
 }  // namespace exemplar::render::rays
 
-// The plugin's one exported symbol (rays::kEntrySymbol); also linked into libexemplar.so and
+// The plugin's one exported symbol (rays::kPlugin); also linked into libexemplar.so and
 // the Python module, where the renderer calls it directly.
 extern "C" __attribute__((visibility("default"))) const exemplar::render::rays::Entry*
 exemplar_render_embree_entry() {

@@ -3,19 +3,21 @@
 // (embree_plugin.cpp): the only code that uses Embree. Linking libembree3 costs every process
 // about 3 MB resident before main() runs, so `exemplar` loads the plugin on the first render
 // instead (plugin_loader.hpp); libexemplar.so and the Python module link it in. Both sides are
-// compiled from this header by one build; kAbiVersion rejects a plugin from another build.
+// compiled from this header by one build; kPlugin.abi_version rejects a plugin from another
+// build.
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include "plugin_loader.hpp"
+
 namespace exemplar::render::rays {
 
-/// Raise whenever the types below change.
-inline constexpr int kAbiVersion = 1;
-inline constexpr const char* kPluginFileName = "libexemplar_render_embree.so";
-inline constexpr const char* kEntrySymbol = "exemplar_render_embree_entry";
+/// Raise abi_version whenever the types below change.
+inline constexpr plugin::PluginSpec kPlugin{"libexemplar_render_embree.so",
+                                            "exemplar_render_embree_entry", 1, "rendering"};
 
 /// One triangle mesh: `vertex_count` xyz positions and `triangle_count` vertex index triples.
 struct MeshArrays {

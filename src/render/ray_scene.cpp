@@ -3,8 +3,6 @@
 
 #include "ray_scene.hpp"
 
-#include "plugin_loader.hpp"
-
 // Defined by embree_plugin.cpp where that is linked in; null in the `exemplar` executable.
 extern "C" const exemplar::render::rays::Entry* exemplar_render_embree_entry()
     __attribute__((weak));
@@ -14,9 +12,7 @@ namespace exemplar::render {
 namespace {
 
 Result<const rays::Entry*> backend() {
-    if (exemplar_render_embree_entry != nullptr) return exemplar_render_embree_entry();
-    return plugin::load<rays::Entry>(
-        {rays::kPluginFileName, rays::kEntrySymbol, rays::kAbiVersion, "rendering"});
+    return plugin::linked_or_loaded(exemplar_render_embree_entry, rays::kPlugin);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 //
 // Both sides are compiled from this header by the same build, so std::unique_ptr and
 // std::vector cross the boundary as they are; frames are plain buffers, as `exemplar` itself
-// does not link OpenCV (src/plugin/opencv_kernels.hpp). kCodecAbiVersion rejects a plugin left
+// does not link OpenCV (src/plugin/opencv_kernels.hpp). kPlugin.abi_version rejects a plugin left
 // over from a build with a different interface. The plugin is never unloaded (plugin_loader.hpp).
 
 #include <cstdint>
@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "plugin_loader.hpp"
+
 namespace exemplar::video::codec {
 
-/// Raise whenever the classes or `Entry` below change.
-inline constexpr int kCodecAbiVersion = 2;
-/// The plugin's file name and the C symbol it exports.
-inline constexpr const char* kPluginFileName = "libexemplar_video_mp4.so";
-inline constexpr const char* kEntrySymbol = "exemplar_video_codec_entry";
+/// The plugin; raise its abi_version whenever the classes or `Entry` below change.
+inline constexpr plugin::PluginSpec kPlugin{"libexemplar_video_mp4.so",
+                                            "exemplar_video_codec_entry", 2, "video support"};
 
 /// A decoded frame: `channels` (1, 3 or 4) interleaved floats per pixel in OpenCV's order (blue
 /// first), scaled from 8 or 16 bits to [0, 1].
@@ -69,7 +69,7 @@ struct Entry {
     std::unique_ptr<VideoWriter> (*new_writer)();
 };
 
-/// The type of the function the plugin exports as `kEntrySymbol` (C linkage).
+/// The type of the function the plugin exports as `kPlugin.entry_symbol` (C linkage).
 using EntryFunction = const Entry* (*)();
 
 }  // namespace exemplar::video::codec

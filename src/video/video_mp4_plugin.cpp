@@ -59,13 +59,13 @@ std::unique_ptr<VideoWriter> new_writer() {
     return std::make_unique<Mp4vWriter>();
 }
 
-constexpr Entry kEntry{kCodecAbiVersion, &new_reader, &new_writer};
+constexpr Entry kEntry{kPlugin.abi_version, &new_reader, &new_writer};
 
 }  // namespace
 }  // namespace exemplar::video::codec
 
 // The one exported symbol (the library is built with hidden visibility); its name is
-// codec::kEntrySymbol.
+// codec::kPlugin.entry_symbol.
 extern "C" __attribute__((visibility("default"))) const exemplar::video::codec::Entry*
 exemplar_video_codec_entry() {
     return &exemplar::video::codec::kEntry;

@@ -2,12 +2,10 @@
 
 #include "video_plugin.hpp"
 
-#include "plugin_loader.hpp"
-
 namespace exemplar::video::codec {
 
 Result<const Entry*> load_plugin() {
-    return plugin::load<Entry>({kPluginFileName, kEntrySymbol, kCodecAbiVersion, "video support"});
+    return plugin::load<Entry>(kPlugin);
 }
 
 }  // namespace exemplar::video::codec
