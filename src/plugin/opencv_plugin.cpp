@@ -88,7 +88,7 @@ void otsu_threshold(const std::uint8_t* grey, int width, int height, std::uint8_
 void contours(const std::uint8_t* binary, int width, int height, std::vector<Contour>* out) {
     std::vector<std::vector<cv::Point>> found;
     std::vector<cv::Vec4i> hierarchy;
-    // findContours may modify its input before OpenCV 3.2; 4.x leaves it, but keep a copy safe.
+    // A copy: the caller's buffer is const, and older OpenCV wrote into findContours' input.
     cv::findContours(bytes(binary, width, height).clone(), found, hierarchy, cv::RETR_TREE,
                      cv::CHAIN_APPROX_NONE);
     out->assign(found.size(), Contour{});

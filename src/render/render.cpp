@@ -301,9 +301,9 @@ Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& 
                                        const RunContext& context, std::vector<CentreHit>* hits) {
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
     EXEMPLAR_RETURN_IF_ERROR(check_scene(scene));
-    auto rays = build_ray_scene(scene);
-    if (!rays.ok()) return rays.status();
-    const Tracer tracer(scene, **rays, options);
+    auto ray_scene = build_ray_scene(scene);
+    if (!ray_scene.ok()) return ray_scene.status();
+    const Tracer tracer(scene, **ray_scene, options);
     const CameraModel& camera = tracer.camera();
 
     const int w = options.width, h = options.height;
