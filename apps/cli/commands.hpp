@@ -335,13 +335,13 @@ private:
     std::string pattern_, frames_, output_, mp4_;
     double fps_ = 24.0;
     std::string style_ = "stipple";
-    std::string tone_ = "direct_diffuse";
+    std::optional<std::string> tone_;
     std::optional<std::string> orientation_;
     int first_ = 0;
     int last_ = 0;
-    int levels_ = 3;
-    int patch_size_ = 12;
-    float coherence_weight_ = 1.0f;
+    // The library's option table (levels, patch-size, coherence-weight), by name
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
     int threads_ = 0;
     std::uint64_t seed_ = 1;
     bool lines_ = true;

@@ -25,6 +25,7 @@ from ._exemplar import (
     InternalError,
     InvalidArgumentError,
     IoError,
+    NprState,
     Progress,
     StylizeResult,
     UnsupportedError,
@@ -35,14 +36,14 @@ from ._exemplar import (
     save_image,
 )
 from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
-from ._exemplar import _directions, _fluid_frame, _fluid_simulate, _noisy_frame, _paint
+from ._exemplar import _directions, _fluid_frame, _fluid_simulate, _noisy_frame, _npr_frame, _paint
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
-    "InvalidArgumentError", "IoError", "Progress", "StylizeResult", "UnsupportedError",
-    "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes", "directions", "flow",
-    "fluid_frame", "fluid_simulate", "load_image", "noisy_frame", "option_specs", "paint",
-    "render", "save_image", "stylit", "stylize",
+    "InvalidArgumentError", "IoError", "NprState", "Progress", "StylizeResult",
+    "UnsupportedError", "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes",
+    "directions", "flow", "fluid_frame", "fluid_simulate", "load_image", "noisy_frame",
+    "npr_frame", "option_specs", "paint", "render", "save_image", "stylit", "stylize",
 ]
 
 
@@ -96,6 +97,11 @@ def fluid_simulate(**options):
 @_signatures.decorate
 def noisy_frame(exemplar, reference, **options):
     return _noisy_frame(exemplar, reference, **options)
+
+
+@_signatures.decorate
+def npr_frame(pattern, buffers, **options):
+    return _npr_frame(pattern, buffers, **options)
 
 
 @_signatures.decorate

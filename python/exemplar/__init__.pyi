@@ -40,6 +40,11 @@ class StylizeResult:
     guide_channels: int
     explained_variance: float
 
+class NprState:
+    frame: int
+    levels: int
+    coords: list[numpy.ndarray]
+
 class BeautifyResult:
     svg: str
     paths: list[str]
@@ -828,6 +833,7 @@ def noisy_frame(
     lattice_spacing: float = 50.0,
     min_offset: float = 15.0,
     max_offset: float = 25.0,
+    coarse_weight: float = 0.5,
     seed: int = 1,
     filter: str = 'box',
     noise_map: Image | None = None,
@@ -874,6 +880,10 @@ def noisy_frame(
           the pre-deformation off. Range 0.0..1000.0 px.
       max_offset (float, default 25.0)
           Longest random move of a lattice point (chapter: 25). Range 0.0..1000.0 px.
+      coarse_weight (float, default 0.5)
+          Weight of the low-passed reference as a guide on every level (coarse consistency,
+          eq. 4.2, as a term of the patch distance); 0 = only the coarsest level starts from
+          it. Range 0.0..100.0.
       seed (int, default 1)
           Random seed: frame i depends only on (seed, i).
       filter (str, default 'box')
@@ -895,6 +905,92 @@ def noisy_frame(
           progress callback that returns False sets it too.
 
     Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def npr_frame(
+    pattern: Image,
+    buffers: dict[str, Image],
+    *,
+    previous: NprState | None = None,
+    frame: int = 0,
+    style: str = 'stipple',
+    tone: str | None = None,
+    orientation: str | None = None,
+    lines: bool = True,
+    tone_correction: bool = True,
+    levels: int = 3,
+    patch_size: int = 12,
+    coherence_weight: float = 1.0,
+    seed: int = 1,
+    linear_tone: bool | None = None,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> tuple[numpy.ndarray, NprState]:
+    """Image-space stippling, hatching or halftoning of a rendered animation (Image Space
+    Texture Synthesis for 3D NPR Animation): one frame of `exemplar npr`. The pattern's
+    coordinates are synthesized coarse to fine, following the renderer's exact motion from
+    the previous frame's state, then thresholded by the tone with tone correction, the
+    renderer's lines inked on top. Call it frame after frame, passing each returned state as
+    the next call's previous (the same seed and frame numbers give the CLI's bytes). Returns
+    (image, state): the frame, HxWx1 in the pattern's dtype (0 = ink, 1 = paper for the
+    thresholded styles), and an exemplar.NprState.
+
+    Parameters:
+      pattern (Image)
+          The example pattern: a stipple, hatching or halftone screen (grey, or RGB read as
+          Rec. 709 luma), treated as tileable.
+      buffers (dict[str, Image])
+          The frame's render buffers by name, as exemplar.render(scene, frame=n) returns
+          them or a frame folder of `exemplar render --frames` holds them (HxW or HxWxC).
+          Read: the tone buffer, the orientation buffer if used, backward_flow and
+          disocclusion with previous, lines; others are ignored.
+      previous (NprState | None, default None)
+          The previous frame's state (the second value an npr_frame returned); None = the
+          first frame. The pattern is prepared once and reused while it stays the same.
+      frame (int, default 0)
+          The frame's number (keys its randomness with the seed, as the CLI's frame numbers
+          do).
+      style (str, default 'stipple')
+          'stipple', 'halftone' (isotropic, thresholded), 'hatch' (oriented, thresholded) or
+          'pattern' (the synthesized pattern, no tone).
+      tone (str | None, default None)
+          Buffer giving the tone (its luma, sRGB-encoded); None = 'direct_diffuse'. Not for
+          style 'pattern'.
+      orientation (str | None, default None)
+          Buffer giving the pattern's orientation (radians), or 'none'; None = 'orientation'
+          for style 'hatch', 'none' otherwise.
+      lines (bool, default True)
+          Ink the renderer's lines buffer (silhouettes, creases).
+      tone_correction (bool, default True)
+          Blur, subtract and re-threshold so the local tone matches (s6.0.1).
+      levels (int, default 3)
+          Pyramid levels of the coordinate synthesis (the paper's L + 1). The pattern needs
+          patch-size x 2^(levels-1) pixels on a side. Range 1..6.
+      patch_size (int, default 12)
+          Initialization patch in coarsest-level pixels (the paper's 10-14); larger keeps
+          longer stretches of the pattern together. Range 3..32 px.
+      coherence_weight (float, default 1.0)
+          beta: weight of the temporal coherence term against the texture term (weight 1).
+          Higher = steadier elements, which then grow and shrink with a camera zoom. Range
+          0.0..100.0.
+      seed (int, default 1)
+          Random seed (same seed, same output).
+      linear_tone (bool | None, default None)
+          Whether the tone buffer holds linear light (sRGB-encoded first, as the CLI does
+          with EXR buffers); None = float32 arrays are linear (as render() returns them),
+          uint8 arrays encoded (as 8-bit PNG buffers).
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns tuple[numpy.ndarray, NprState]. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
 def directions(

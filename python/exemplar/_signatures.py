@@ -33,6 +33,7 @@ _IMAGE = "Image"
 _SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option table
 _FLUID = "fluid"  # marker: the fluid option table (patch_size, temporal_weight, ...)
 _NOISY = "noisy"  # marker: the noisy option table (noise, level_ratio, ...)
+_NPR = "npr"  # marker: the npr option table (levels, patch_size, coherence_weight)
 _RUN = [
     Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
     Param("progress", "Callable[[Progress], bool | None] | None",
@@ -312,6 +313,54 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "numpy.ndarray",
     ),
+    "npr_frame": (
+        "Image-space stippling, hatching or halftoning of a rendered animation (Image Space "
+        "Texture Synthesis for 3D NPR Animation): one frame of `exemplar npr`. The pattern's "
+        "coordinates are synthesized coarse to fine, following the renderer's exact motion from "
+        "the previous frame's state, then thresholded by the tone with tone correction, the "
+        "renderer's lines inked on top. Call it frame after frame, passing each returned state "
+        "as the next call's previous (the same seed and frame numbers give the CLI's bytes). "
+        "Returns (image, state): the frame, HxWx1 in the pattern's dtype (0 = ink, 1 = paper "
+        "for the thresholded styles), and an exemplar.NprState.",
+        [
+            Param("pattern", _IMAGE, "The example pattern: a stipple, hatching or halftone "
+                  "screen (grey, or RGB read as Rec. 709 luma), treated as tileable.",
+                  positional=True),
+            Param("buffers", "dict[str, Image]",
+                  "The frame's render buffers by name, as exemplar.render(scene, frame=n) "
+                  "returns them or a frame folder of `exemplar render --frames` holds them "
+                  "(HxW or HxWxC). Read: the tone buffer, the orientation buffer if used, "
+                  "backward_flow and disocclusion with previous, lines; others are ignored.",
+                  positional=True),
+            Param("previous", "NprState | None",
+                  "The previous frame's state (the second value an npr_frame returned); None = "
+                  "the first frame. The pattern is prepared once and reused while it stays the "
+                  "same.", None),
+            Param("frame", "int", "The frame's number (keys its randomness with the seed, as "
+                  "the CLI's frame numbers do).", 0),
+            Param("style", "str",
+                  "'stipple', 'halftone' (isotropic, thresholded), 'hatch' (oriented, "
+                  "thresholded) or 'pattern' (the synthesized pattern, no tone).", "stipple"),
+            Param("tone", "str | None",
+                  "Buffer giving the tone (its luma, sRGB-encoded); None = 'direct_diffuse'. "
+                  "Not for style 'pattern'.", None),
+            Param("orientation", "str | None",
+                  "Buffer giving the pattern's orientation (radians), or 'none'; None = "
+                  "'orientation' for style 'hatch', 'none' otherwise.", None),
+            Param("lines", "bool", "Ink the renderer's lines buffer (silhouettes, creases).",
+                  True),
+            Param("tone_correction", "bool",
+                  "Blur, subtract and re-threshold so the local tone matches (s6.0.1).", True),
+            _NPR,
+            Param("seed", "int", "Random seed (same seed, same output).", 1),
+            Param("linear_tone", "bool | None",
+                  "Whether the tone buffer holds linear light (sRGB-encoded first, as the CLI "
+                  "does with EXR buffers); None = float32 arrays are linear (as render() returns "
+                  "them), uint8 arrays encoded (as 8-bit PNG buffers).", None),
+            *_RUN,
+        ],
+        "tuple[numpy.ndarray, NprState]",
+    ),
     "directions": (
         "Brushables' signed direction field of an exemplar (Lukac et al. 2015 s3.1): edge "
         "tangent flow from tangents whose signs were harmonized first. The CLI's "
@@ -391,7 +440,7 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
 
 def _verb_table_params(specs: list[dict[str, Any]], required: tuple[str, ...] = ()
                        ) -> list[Param]:
-    """A verb's own option table (fluid, noisy) as keyword parameters."""
+    """A verb's own option table (fluid, noisy, npr) as keyword parameters."""
     params = []
     for spec in specs:
         unit = f" {spec['unit']}" if spec["unit"] else ""
@@ -435,6 +484,8 @@ def _params(verb: str) -> list[Param]:
             # noise has no default on the CLI either: the noise level is the user's choice.
             noisy = _verb_table_params(_exemplar._noisy_option_specs(), required=("noise",))
             params += sorted(noisy, key=lambda p: p.default is not _REQUIRED)
+        elif param == _NPR:
+            params += _verb_table_params(_exemplar._npr_option_specs())
         else:
             params.append(param)
     return params
@@ -512,6 +563,11 @@ class StylizeResult:
     vote_size: int
     guide_channels: int
     explained_variance: float
+
+class NprState:
+    frame: int
+    levels: int
+    coords: list[numpy.ndarray]
 
 class BeautifyResult:
     svg: str

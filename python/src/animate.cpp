@@ -55,15 +55,6 @@ int int_keyword(py::dict& args, const char* name, int value) {
     return given.is_none() ? value : integer(given, name);
 }
 
-bool bool_keyword(py::dict& args, const char* name, bool value) {
-    const py::object given = pop(args, name);
-    if (given.is_none()) return value;
-    if (!py::isinstance<py::bool_>(given)) {
-        throw py::type_error(std::string(name) + ": must be a bool");
-    }
-    return given.cast<bool>();
-}
-
 // The job file's synthesis keys: the animation's quality preset, usage, then the table's options
 // (but `levels`, which is the solver's; the solver sets the engine's levels per call).
 SynthesisOptions pop_animate_synthesis(py::dict& args) {
@@ -104,8 +95,8 @@ py::list animate_py(const py::object& style_input, const py::object& style_outpu
     options.sweeps = int_keyword(args, "sweeps", options.sweeps);
     options.backward_em_iterations =
         int_keyword(args, "backward_em_iterations", options.backward_em_iterations);
-    options.orientation = bool_keyword(args, "orientation", options.orientation);
-    options.ribbons = bool_keyword(args, "ribbons", options.ribbons);
+    options.orientation = pop_bool(args, "orientation", options.orientation);
+    options.ribbons = pop_bool(args, "ribbons", options.ribbons);
     if (const py::object preset = pop(args, "flow_preset"); !preset.is_none()) {
         options.flow.preset = take(video::parse_flow_preset(text(preset, "flow_preset")));
     }

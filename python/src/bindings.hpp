@@ -28,6 +28,9 @@ void register_fluid(py::module_& module);
 /// noisy_frame and the noisy option table (noisy.cpp).
 void register_noisy(py::module_& module);
 
+/// npr_frame, its NprState and the npr option table (npr.cpp).
+void register_npr(py::module_& module);
+
 /// directions and paint (paint.cpp).
 void register_paint(py::module_& module);
 

@@ -32,16 +32,8 @@ py::dict flow_py(const py::object& from_frame, const py::object& to_frame, py::k
         throw InputError("epsilon: " + std::to_string(epsilon) +
                          " is invalid (must be > 0, in px^2)");
     }
-    const auto flag = [&](const char* name) {
-        const py::object given = pop(args, name);
-        if (given.is_none()) return false;
-        if (!py::isinstance<py::bool_>(given)) {
-            throw py::type_error(std::string(name) + ": must be a bool");
-        }
-        return given.cast<bool>();
-    };
-    const bool want_backward = flag("backward");
-    const bool want_occlusion = flag("occlusion");
+    const bool want_backward = pop_bool(args, "backward", false);
+    const bool want_occlusion = pop_bool(args, "occlusion", false);
     reject_unknown(args, "flow");
 
     const Image from = image_from_array(from_frame, "from_frame", Shape::Colour).image;

@@ -40,11 +40,7 @@ py::array fluid_frame_py(const py::object& exemplar, const py::object& target_al
                           return fluid::set_option(o, spec, value);
                       });
     pop_seed(args, options.synthesis.seed);
-    if (const py::object rotations = pop(args, "rotations"); !rotations.is_none()) {
-        if (!py::isinstance<py::bool_>(rotations))
-            throw py::type_error("rotations: must be a bool");
-        options.rotations = rotations.cast<bool>();
-    }
+    options.rotations = pop_bool(args, "rotations", options.rotations);
     if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
         const std::string value = text(usage, "usage");
         if (value != "uniform" && value != "none") {

@@ -50,6 +50,14 @@ int integer(const py::handle& value, const std::string& name) {
         std::clamp<long long>(v, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
 }
 
+bool pop_bool(py::dict& kwargs, const char* name, bool fallback) {
+    const py::object value = pop(kwargs, name);
+    if (value.is_none()) return fallback;
+    if (!py::isinstance<py::bool_>(value))
+        throw py::type_error(std::string(name) + ": must be a bool");
+    return value.cast<bool>();
+}
+
 double number(const py::handle& value, const std::string& name) {
     // bool is an int in Python; `patch_size=True` is a mistake, not 1.
     if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) ||

@@ -29,6 +29,10 @@ std::string text(const py::handle& value, const std::string& name);
 /// the library's range check names a value far out of range; TypeError otherwise.
 int integer(const py::handle& value, const std::string& name);
 
+/// Pops a bool keyword (True or False; not 0 or 1, TypeError otherwise), or `fallback` when it
+/// was not given or is None.
+bool pop_bool(py::dict& kwargs, const char* name, bool fallback);
+
 /// A number keyword (int, float or a numpy scalar; not bool or str); TypeError otherwise.
 double number(const py::handle& value, const std::string& name);
 

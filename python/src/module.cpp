@@ -51,6 +51,7 @@ PYBIND11_MODULE(_exemplar, module) {
     register_flow(module);
     register_fluid(module);
     register_noisy(module);
+    register_npr(module);
     register_paint(module);
     module.def("option_specs", &option_specs_for_python,
                "The synthesis options (the library's option table): a list of dicts with name, "

@@ -23,14 +23,6 @@ namespace exemplar::python {
 
 namespace {
 
-bool flag(py::dict& kwargs, const char* name, bool fallback) {
-    const py::object value = pop(kwargs, name);
-    if (value.is_none()) return fallback;
-    if (!py::isinstance<py::bool_>(value))
-        throw py::type_error(std::string(name) + ": must be a bool");
-    return value.cast<bool>();
-}
-
 template <typename T>
 void set_number(py::dict& kwargs, const char* name, T& field) {
     const py::object value = pop(kwargs, name);
@@ -48,7 +40,7 @@ py::array directions_py(const py::object& image, py::kwargs kwargs) {
     set_number(args, "radius", options.radius_px);
     set_number(args, "iterations", options.iterations);
     set_number(args, "gradient_sigma", options.gradient_sigma_px);
-    options.harmonize_signs = flag(args, "harmonize", true);
+    options.harmonize_signs = pop_bool(args, "harmonize", true);
     const int threads = threads_keyword(pop(args, "threads"));
     reject_unknown(args, "directions");
     check(paint::validate(options));

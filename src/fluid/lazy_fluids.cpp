@@ -24,6 +24,7 @@
 #include <string>
 
 #include "exemplar/core/check.hpp"
+#include "exemplar/core/option_table.hpp"
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -146,7 +147,7 @@ std::span<const FluidOptionSpec> fluid_option_specs() {
 }
 
 double get_option(const FluidOptions& options, const FluidOptionSpec& spec) {
-    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+    return get_table_option(options, spec);
 }
 
 Status set_option(FluidOptions& options, const FluidOptionSpec& spec, double value) {

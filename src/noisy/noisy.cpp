@@ -21,6 +21,7 @@
 #include <string>
 #include <utility>
 
+#include "exemplar/core/option_table.hpp"
 #include "exemplar/core/rng.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/noisy/mls.hpp"
@@ -32,7 +33,7 @@ namespace {
 
 using O = NoisyOptions;
 
-const std::array<NoisyOptionSpec, 8> kSpecs{{
+const std::array<NoisyOptionSpec, 9> kSpecs{{
     {"noise",
      "Low-pass strength f: width of the box separating the reference's low frequencies (kept) "
      "from the details (re-synthesized at random in every frame). Larger = more temporal "
@@ -57,6 +58,10 @@ const std::array<NoisyOptionSpec, 8> kSpecs{{
      "px", 0, 1000, &O::min_offset_px},
     {"max-offset", "Longest random move of a lattice point (chapter: 25).", "px", 0, 1000,
      &O::max_offset_px},
+    {"coarse-weight",
+     "Weight of the low-passed reference as a guide on every level (coarse consistency, eq. "
+     "4.2, as a term of the patch distance); 0 = only the coarsest level starts from it.",
+     "", 0, 100, &O::coarse_weight},
 }};
 
 bool same_name(std::string_view a, std::string_view b) {
@@ -66,15 +71,6 @@ bool same_name(std::string_view a, std::string_view b) {
         if (x != y) return false;
     }
     return true;
-}
-
-std::string format_number(double value) {
-    std::string s = std::to_string(value);
-    if (s.find('.') != std::string::npos) {
-        while (!s.empty() && s.back() == '0') s.pop_back();
-        if (!s.empty() && s.back() == '.') s.pop_back();
-    }
-    return s;
 }
 
 std::string size_str(const Image& image) {
@@ -133,31 +129,12 @@ const NoisyOptionSpec* find_noisy_option(std::string_view name) {
 }
 
 double get_option(const NoisyOptions& options, const NoisyOptionSpec& spec) {
-    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+    return get_table_option(options, spec);
 }
 
 Status set_option(NoisyOptions& options, const NoisyOptionSpec& spec, double value) {
-    const bool integral = !std::holds_alternative<float NoisyOptions::*>(spec.field);
-    const bool odd_rule = spec.name == "patch-size";
-    const bool bad = !std::isfinite(value) || value < spec.min || value > spec.max ||
-                     (integral && value != std::floor(value)) ||
-                     (odd_rule && static_cast<long long>(value) % 2 == 0);
-    if (bad) {
-        std::string message(spec.name);
-        message.append(": ").append(format_number(value)).append(" is invalid (must be ");
-        if (odd_rule) message.append("odd, ");
-        if (integral && !odd_rule) message.append("an integer, ");
-        message.append(format_number(spec.min)).append("..").append(format_number(spec.max));
-        message.append(")");
-        return invalid_argument(std::move(message));
-    }
-    std::visit(
-        [&](auto field) {
-            using T = std::remove_reference_t<decltype(options.*field)>;
-            options.*field = static_cast<T>(value);
-        },
-        spec.field);
-    return Status::ok();
+    // Patches are odd
+    return set_table_option(options, spec, value, spec.name == "patch-size");
 }
 
 Status validate(const NoisyOptions& options) {
@@ -167,9 +144,9 @@ Status validate(const NoisyOptions& options) {
         EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
     }
     if (options.min_offset_px > options.max_offset_px) {
-        return invalid_argument("min-offset: " + format_number(options.min_offset_px) +
+        return invalid_argument("min-offset: " + format_option_number(options.min_offset_px) +
                                 " is invalid (must be at most max-offset, " +
-                                format_number(options.max_offset_px) + ")");
+                                format_option_number(options.max_offset_px) + ")");
     }
     if (options.filter != LowPassFilter::Box && options.filter != LowPassFilter::Lanczos3) {
         return invalid_argument("filter: is invalid (must be one of box, lanczos3)");
@@ -231,7 +208,7 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
         }
         for (float v : frame.noise_map.data()) {
             if (!(v >= 0.0f && v <= 1.0f)) {
-                return invalid_argument("noise map: value " + format_number(v) +
+                return invalid_argument("noise map: value " + format_option_number(v) +
                                         " is invalid (must be 0..1)");
             }
         }
@@ -265,12 +242,12 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
     const int need = oriented ? 2 * static_cast<int>(std::ceil(radius * std::sqrt(2.0))) + 1
                               : options.patch_size;
     if (scaled_size(min_side, strengths.front()) < need) {
-        return invalid_argument("noise: " + format_number(options.noise) +
-                                " is too strong for the " + size_str(reference) +
-                                " reference and the " + size_str(source) +
-                                " source with patch-size " + std::to_string(options.patch_size) +
-                                (oriented ? " and rotated patches" : "") + " (at most " +
-                                format_number(std::floor(100.0 * min_side / need) / 100.0) + ")");
+        return invalid_argument(
+            "noise: " + format_option_number(options.noise) + " is too strong for the " +
+            size_str(reference) + " reference and the " + size_str(source) +
+            " source with patch-size " + std::to_string(options.patch_size) +
+            (oriented ? " and rotated patches" : "") + " (at most " +
+            format_option_number(std::floor(100.0 * min_side / need) / 100.0) + ")");
     }
 
     // Randomly pre-deform the source (§4.3.2) so features do not fuse between frames.
@@ -300,6 +277,13 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
     engine.usage = UsageStrategy::None;
     RunContext inner(threads);
     inner.cancel = context.cancel;
+
+    // The coarse-consistency guide pair: both low-passed at the full strength f.
+    Image source_low, reference_low;
+    if (options.coarse_weight > 0.0f) {
+        source_low = low_pass(deformed, options.noise, options.filter, threads);
+        reference_low = low_pass(reference, options.noise, options.filter, threads);
+    }
 
     // Coarse to fine; the coarsest target level is the low-passed reference (eq. 4.2).
     const int levels = static_cast<int>(strengths.size());
@@ -349,6 +333,22 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
         input.target_height = th;
         input.initial_target = std::move(start);
         if (!all_active) input.target_mask = std::move(active);
+        if (options.coarse_weight > 0.0f) {
+            GuidePair coarse;
+            coarse.name = "low-passed reference";
+            coarse.source = resize(source_low, input.style.width(), input.style.height(),
+                                   ResampleFilter::Gaussian, threads);
+            coarse.target = resize(reference_low, tw, th, ResampleFilter::Gaussian, threads);
+            coarse.weight = options.coarse_weight;
+            // A pixel of lower noise m(p) < 1 follows h_{f m(p)} * R, which h_f * R would pull
+            // towards blur; it starts from the reference on a finer level instead, so the
+            // guide weighs it by m(p) (0 = held by that start alone).
+            if (!frame.noise_map.empty()) {
+                coarse.target_weight_map =
+                    resize(frame.noise_map, tw, th, ResampleFilter::Box, threads);
+            }
+            input.guides.push_back(std::move(coarse));
+        }
         if (oriented) {
             input.source_orientation = resize(deformed_orientation, input.style.width(),
                                               input.style.height(), ResampleFilter::Nearest, 1);

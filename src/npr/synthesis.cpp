@@ -246,15 +246,18 @@ Advected advect(const Image& previous, const LevelBuffers& b, int dims) {
 
 // Correction (§5.2.4): per pixel, the best of the coherence candidates and the advected
 // previous coordinates for texture_weight·E_texture + coherence_weight·E_coherence.
-void correct(Field& field, const Image& stack, const LevelBuffers& b, const Field* previous,
-             const Advected& advected, const SynthesisOptions& options) {
+// Cancelled if the context's token is set before a sub-pass.
+Status correct(Field& field, const Image& stack, const LevelBuffers& b, const Field* previous,
+               const Advected& advected, const SynthesisOptions& options,
+               const RunContext& context) {
     const int dims = stack.channels();
     const float h = static_cast<float>(b.spacing);
     for (int pass = 0; pass < options.correction_passes; ++pass)
         for (int sub = 0; sub < 4; ++sub) {
+            if (context.cancelled()) return cancelled();
             // Pixels of one parity read only pixels of other parities (3x3), so updating them
             // in place is independent of the order and of the thread count.
-            parallel_for(0, b.height, options.threads, [&](int y) {
+            parallel_for(0, b.height, context.threads, [&](int y) {
                 if (y % 2 != sub / 2) return;
                 std::vector<float> current(9 * static_cast<std::size_t>(dims));
                 std::vector<float> prior(9 * static_cast<std::size_t>(dims));
@@ -355,6 +358,7 @@ void correct(Field& field, const Image& stack, const LevelBuffers& b, const Fiel
                 }
             });
         }
+    return Status::ok();
 }
 
 Image appearance_image(const Field& field, const Image& stack) {
@@ -445,16 +449,16 @@ Status validate(const SynthesisOptions& options) {
     if (!(options.coherence_weight >= 0.0f && options.coherence_weight <= 100.0f))
         return invalid_argument("coherence_weight: " + std::to_string(options.coherence_weight) +
                                 " is invalid (must be in [0, 100])");
-    if (options.threads < 0)
-        return invalid_argument("threads: " + std::to_string(options.threads) +
-                                " is invalid (must be >= 0)");
     return Status::ok();
 }
 
 Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& input,
                                     const FrameState* previous, int frame_index,
-                                    const SynthesisOptions& options) {
+                                    const SynthesisOptions& options, const RunContext& context) {
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    if (context.threads < 0)
+        return invalid_argument("threads: " + std::to_string(context.threads) +
+                                " is invalid (must be >= 0)");
     if (pattern.stack.empty()) return invalid_argument("pattern: not prepared");
     const int levels = static_cast<int>(pattern.stack.size());
     const int min_size = 1 << (levels - 1);
@@ -476,6 +480,9 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
     state.appearance.resize(static_cast<std::size_t>(levels));
     Field field;
     LevelBuffers buffers;
+    // Progress: the share of the pixels of all levels done (level l has 4^-l of the finest's)
+    double work_total = 0.0, work_done = 0.0;
+    for (int level = 0; level < levels; ++level) work_total += std::ldexp(1.0, -2 * level);
     for (int level = levels - 1; level >= 0; --level) {
         const Image& stack = pattern.stack[static_cast<std::size_t>(level)];
         buffers = sample_level(input, level);
@@ -490,12 +497,16 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
             advected = advect(previous->appearance[static_cast<std::size_t>(level)], buffers,
                               stack.channels());
         }
-        correct(field, stack, buffers, use_previous ? &previous_field : nullptr, advected, options);
+        EXEMPLAR_RETURN_IF_ERROR(correct(field, stack, buffers,
+                                         use_previous ? &previous_field : nullptr, advected,
+                                         options, context));
         state.coords[static_cast<std::size_t>(level)] = coords_image(field);
         state.appearance[static_cast<std::size_t>(level)] = appearance_image(field, stack);
+        work_done += std::ldexp(1.0, -2 * level);
+        context.report({"synthesis", levels - 1 - level, levels, 0, 0, work_done / work_total});
     }
     state.screen =
-        render_screen(field, buffers, pattern.screen, options.blend_coordinates, options.threads);
+        render_screen(field, buffers, pattern.screen, options.blend_coordinates, context.threads);
     return state;
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "exemplar/core/check.hpp"
+#include "exemplar/core/option_table.hpp"
 
 namespace exemplar {
 
@@ -204,7 +205,7 @@ std::span<const OptionSpec> synthesis_option_specs() {
 }
 
 double get_option(const SynthesisOptions& options, const OptionSpec& spec) {
-    return std::visit([&](auto field) { return static_cast<double>(options.*field); }, spec.field);
+    return get_table_option(options, spec);
 }
 
 Status set_option(SynthesisOptions& options, const OptionSpec& spec, double value) {
@@ -223,12 +224,7 @@ Status set_option(SynthesisOptions& options, const OptionSpec& spec, double valu
         message.append(")");
         return invalid_argument(std::move(message));
     }
-    std::visit(
-        [&](auto field) {
-            using T = std::remove_reference_t<decltype(options.*field)>;
-            options.*field = static_cast<T>(value);
-        },
-        spec.field);
+    assign_table_option(options, spec, value);
     return Status::ok();
 }
 

@@ -155,6 +155,58 @@ TEST_F(FluidCli, JobFileGivesTheSameFramesAsFlags) {
     EXPECT_EQ(typo.err, "exemplar: " + path("typo.json") + ": unknown key 'tempral-weight'\n");
 }
 
+// examples/fluid/job.json with the bundled ink exemplar (README of examples/fluid), its
+// simulation paths and range overridden by flags: the output is RGBA ink where the plume is and
+// clear where it is not.
+TEST_F(FluidCli, BundledInkExampleRunsOnAPlume) {
+    const std::string job = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/fluid/job.json";
+    const CliRun r = run({"fluid",
+                          "--config",
+                          job,
+                          "--alpha",
+                          path("sim/alpha/%04d.png"),
+                          "--motion",
+                          path("sim/motion/%04d.flo"),
+                          "--first",
+                          "0",
+                          "--last",
+                          "5",
+                          "--output",
+                          path("ink/%04d.png"),
+                          "--mp4",
+                          "",
+                          "--blur-radius",
+                          "1.5",
+                          "-j",
+                          "2",
+                          "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Result<Image> out = load_image(path("ink/0005.png"));
+    const Result<Image> target = load_image(path("sim/alpha/0005.png"));
+    ASSERT_TRUE(out.ok() && target.ok());
+    ASSERT_EQ(out->channels(), 4);
+    double inside = 0, outside = 0;
+    int inside_n = 0, outside_n = 0;
+    for (int y = 0; y < target->height(); ++y) {
+        for (int x = 0; x < target->width(); ++x) {
+            const float t = target->at(x, y, 0), a = out->at(x, y, 3);
+            if (t >= 0.5f) {
+                inside += a;
+                ++inside_n;
+            } else if (t == 0.0f) {
+                outside += a;
+                ++outside_n;
+            }
+        }
+    }
+    ASSERT_GT(inside_n, 20);
+    ASSERT_GT(outside_n, 500);
+    std::printf("mean alpha inside the plume %.3f, outside %.4f\n", inside / inside_n,
+                outside / outside_n);
+    EXPECT_GT(inside / inside_n, 0.3);
+    EXPECT_LT(outside / outside_n, 0.02);
+}
+
 TEST_F(FluidCli, MissingAlphaFrameFailsBeforeAnyOutput) {
     fs::remove(path("sim/alpha/0004.png"));
     const CliRun r = run(args());

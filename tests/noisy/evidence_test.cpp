@@ -14,6 +14,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -43,14 +44,16 @@ const Image& reference() {
 // Frames 0..count-1 of the static reference at strength f with an optional noise map named
 // `map_name` (cached: several tests share them; a longer cached run serves shorter requests).
 std::vector<Image> frames(float noise, int count, const Image& noise_map = {},
-                          const std::string& map_name = "") {
-    static std::map<std::pair<float, std::string>, std::vector<Image>> cache;
-    std::vector<Image>& out = cache[{noise, map_name}];
+                          const std::string& map_name = "",
+                          float coarse_weight = NoisyOptions{}.coarse_weight) {
+    static std::map<std::tuple<float, std::string, float>, std::vector<Image>> cache;
+    std::vector<Image>& out = cache[{noise, map_name, coarse_weight}];
     if (static_cast<int>(out.size()) >= count) return {out.begin(), out.begin() + count};
     out.clear();
     NoisyOptions options;
     options.noise = noise;
     options.patch_size = kPatch;
+    options.coarse_weight = coarse_weight;
     // Half the chapter's EM and PatchMatch iterations keep the ~100 frames of these tests to
     // seconds; the criteria concern the pyramid and the randomization, not the convergence.
     options.em_iterations = 2;
@@ -165,14 +168,22 @@ TEST(NoisyEvidence, TemporalEnergyRisesWithTheStrength) {
 
 TEST(NoisyEvidence, EveryFrameKeepsTheReferencesLowFrequencies) {
     // Coarse consistency (eq. 4.2): every frame's low-pass at strength f is close to the
-    // reference's, relative to the reference's own contrast at that scale. Measured: 0.39
-    // (f = 2) and 0.42 (f = 3) of the contrast on these 64x64 frames, where the medium's own
-    // blotches (its low frequencies) are a large part of each 5f-pixel patch.
+    // reference's, relative to the reference's own contrast at that scale. Measured with the
+    // default coarse-consistency guide (coarse-weight 0.5): 0.25 (f = 2) and 0.22 (f = 3) of the
+    // contrast on these 64x64 frames; with the chapter's algorithm (coarse-weight 0, eq. 4.2
+    // only through the coarsest level's start) 0.39 and 0.42: the levels after the start drift
+    // away from it.
     for (float f : {2.0f, 3.0f}) {
         const auto [worst, contrast] = low_pass_distance(frames(f, f == 3.0f ? 32 : 6), f);
-        std::printf("f = %g: worst low-pass RMS difference %.4f, reference contrast %.4f\n", f,
-                    worst, contrast);
-        EXPECT_LT(worst, 0.5 * contrast) << "f = " << f;
+        const auto [chapter_worst, chapter_contrast] =
+            low_pass_distance(frames(f, 6, {}, "", 0.0f), f);
+        std::printf(
+            "f = %g: worst low-pass RMS difference %.4f (coarse-weight 0: %.4f), reference "
+            "contrast %.4f\n",
+            f, worst, chapter_worst, contrast);
+        EXPECT_LT(worst, 0.3 * contrast) << "f = " << f;
+        EXPECT_LT(chapter_worst, 0.5 * contrast) << "f = " << f;
+        EXPECT_LT(worst, 0.75 * chapter_worst) << "f = " << f;
     }
 }
 
@@ -196,11 +207,11 @@ TEST(NoisyEvidence, ZeroNoiseMapKeepsTheReferencesLowFrequencies) {
 
 TEST(NoisyEvidence, NoiseMapLowersTheNoiseOnlyWhereItIsLow) {
     // Map 0 on the left half, 1 on the right; f = 6. Compared over the left and right thirds
-    // (away from the seam) with f = 6 everywhere: the left loses nearly all of its energy
-    // (measured: 4% of it left), the right keeps several times the left's. Not met: the right
-    // keeping all of the uniform run's energy (measured 40%): on 64x64 frames the coarse
-    // levels of f = 6 are 11-20 px wide, so every patch there overlaps the half held at the
-    // reference; the test asserts what is met.
+    // (away from the seam) with f = 6 everywhere and with f = 1 (the least noise there is):
+    // the left falls to the energy of f = 1 (measured 1.13x of it; 16% of the uniform run's),
+    // the right keeps several times the left's and most of the uniform run's (measured 67%;
+    // 40% without the coarse-consistency guide: on 64x64 frames the coarse levels of f = 6 are
+    // 11-20 px wide, so every patch there overlaps the half held at the reference).
     Image half(kSize, kSize, 1, 1.0f);
     for (int y = 0; y < kSize; ++y) {
         for (int x = 0; x < kSize / 2; ++x) half.at(x, y, 0) = 0.0f;
@@ -212,11 +223,13 @@ TEST(NoisyEvidence, NoiseMapLowersTheNoiseOnlyWhereItIsLow) {
     const double mapped_right = testing::temporal_energy(mapped, kSize - third, 0, kSize, kSize);
     const double uniform_left = testing::temporal_energy(uniform, 0, 0, third, kSize);
     const double uniform_right = testing::temporal_energy(uniform, kSize - third, 0, kSize, kSize);
-    std::printf("energy left/right: map %.3e / %.3e, uniform %.3e / %.3e\n", mapped_left,
-                mapped_right, uniform_left, uniform_right);
-    EXPECT_LT(mapped_left, 0.1 * uniform_left);
+    const double least_left = testing::temporal_energy(frames(1.0f, 6), 0, 0, third, kSize);
+    std::printf("energy left/right: map %.3e / %.3e, uniform %.3e / %.3e, f = 1 left %.3e\n",
+                mapped_left, mapped_right, uniform_left, uniform_right, least_left);
+    EXPECT_LT(mapped_left, 1.35 * least_left);
+    EXPECT_LT(mapped_left, 0.25 * uniform_left);
     EXPECT_GT(mapped_right, 4.0 * mapped_left);
-    EXPECT_GT(mapped_right, 0.2 * uniform_right);
+    EXPECT_GT(mapped_right, 0.5 * uniform_right);
 }
 
 }  // namespace

@@ -57,6 +57,7 @@ TEST(NoisyOptions, DefaultsAreTheChaptersAndRangesAreChecked) {
     EXPECT_FLOAT_EQ(defaults.min_offset_px, 15.0f);
     EXPECT_FLOAT_EQ(defaults.max_offset_px, 25.0f);
     EXPECT_EQ(defaults.filter, LowPassFilter::Box);
+    EXPECT_FLOAT_EQ(defaults.coarse_weight, 0.5f);  // ours (docs/noisy.md); 0 = the chapter's
     EXPECT_TRUE(validate(defaults).ok());
 
     NoisyOptions options;
@@ -64,6 +65,8 @@ TEST(NoisyOptions, DefaultsAreTheChaptersAndRangesAreChecked) {
     EXPECT_EQ(bad_noise.message(), "noise: -1 is invalid (must be 0..256)");
     const Status even = set_option(options, *find_noisy_option("patch_size"), 6.0);
     EXPECT_EQ(even.message(), "patch-size: 6 is invalid (must be odd, 3..31)");
+    const Status bad_weight = set_option(options, *find_noisy_option("coarse-weight"), -0.5);
+    EXPECT_EQ(bad_weight.message(), "coarse-weight: -0.5 is invalid (must be 0..100)");
     options.min_offset_px = 30.0f;
     EXPECT_EQ(validate(options).message(),
               "min-offset: 30 is invalid (must be at most max-offset, 25)");

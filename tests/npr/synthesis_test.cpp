@@ -88,10 +88,11 @@ TEST(NprSynthesis, IsBitIdenticalForOneAndTwoThreads) {
     second.orientation = first.orientation;
     Image screens[2], coords[2];
     for (int t = 0; t < 2; ++t) {
-        options.threads = t + 1;
-        const Result<FrameState> a = synthesize_frame(pattern, first, nullptr, 0, options);
+        const RunContext context(t + 1);
+        const Result<FrameState> a = synthesize_frame(pattern, first, nullptr, 0, options, context);
         ASSERT_TRUE(a.ok()) << a.status().message();
-        const Result<FrameState> b = synthesize_frame(pattern, second, &a.value(), 1, options);
+        const Result<FrameState> b =
+            synthesize_frame(pattern, second, &a.value(), 1, options, context);
         ASSERT_TRUE(b.ok()) << b.status().message();
         screens[t] = b->screen;
         coords[t] = b->coords[0];
@@ -105,19 +106,20 @@ TEST(NprSynthesis, IsBitIdenticalForOneAndTwoThreads) {
 TEST(NprSynthesis, FollowsExactMotionFarBetterThanIndependentFrames) {
     const Pattern pattern = prepared(testing::stipple_pattern(64, 6.0f));
     SynthesisOptions options;
-    options.threads = 2;
+    const RunContext context(2);
     constexpr int kFrames = 5, kWidth = 96, kHeight = 64, kMx = 2, kMy = 1;
     FrameInput first;
     first.width = kWidth;
     first.height = kHeight;
     const FrameInput moving = translating_frame(kWidth, kHeight, kMx, kMy);
-    Result<FrameState> coherent = synthesize_frame(pattern, first, nullptr, 0, options);
-    Result<FrameState> independent = synthesize_frame(pattern, first, nullptr, 0, options);
+    Result<FrameState> coherent = synthesize_frame(pattern, first, nullptr, 0, options, context);
+    Result<FrameState> independent = synthesize_frame(pattern, first, nullptr, 0, options, context);
     ASSERT_TRUE(coherent.ok() && independent.ok());
     double coherent_error = 0.0, independent_error = 0.0;
     for (int t = 1; t < kFrames; ++t) {
-        Result<FrameState> next = synthesize_frame(pattern, moving, &coherent.value(), t, options);
-        Result<FrameState> alone = synthesize_frame(pattern, first, nullptr, t, options);
+        Result<FrameState> next =
+            synthesize_frame(pattern, moving, &coherent.value(), t, options, context);
+        Result<FrameState> alone = synthesize_frame(pattern, first, nullptr, t, options, context);
         ASSERT_TRUE(next.ok() && alone.ok());
         coherent_error += temporal_error(coherent->screen, next->screen, kMx, kMy);
         independent_error += temporal_error(independent->screen, alone->screen, kMx, kMy);
@@ -137,13 +139,14 @@ TEST(NprSynthesis, AnisotropicPatternFollowsTheOrientationBuffer) {
     // Horizontal hatching; the output's stripes must turn with the orientation buffer
     const Pattern pattern = prepared(testing::hatching_pattern(64, 8, 2.5f));
     SynthesisOptions options;
-    options.threads = 2;
+    const RunContext context(2);
     for (const float angle : {0.0f, kPi / 4, kPi / 2, 2.0f}) {
         FrameInput input;
         input.width = 96;
         input.height = 64;
         input.orientation = Image(96, 64, 1, angle);
-        const Result<FrameState> frame = synthesize_frame(pattern, input, nullptr, 0, options);
+        const Result<FrameState> frame =
+            synthesize_frame(pattern, input, nullptr, 0, options, context);
         ASSERT_TRUE(frame.ok()) << frame.status().message();
         const float measured = dominant_angle(frame->screen);
         std::printf("orientation %.3f rad: output stripes at %.3f rad\n", angle, measured);
@@ -154,11 +157,11 @@ TEST(NprSynthesis, AnisotropicPatternFollowsTheOrientationBuffer) {
 TEST(NprSynthesis, HalftoneReproducesTheToneBetterAfterToneCorrection) {
     const Pattern pattern = prepared(testing::stipple_pattern(64, 5.0f));
     SynthesisOptions options;
-    options.threads = 2;
+    const RunContext context(2);
     FrameInput input;
     input.width = 96;
     input.height = 64;
-    const Result<FrameState> frame = synthesize_frame(pattern, input, nullptr, 0, options);
+    const Result<FrameState> frame = synthesize_frame(pattern, input, nullptr, 0, options, context);
     ASSERT_TRUE(frame.ok()) << frame.status().message();
     // Shading: a left-to-right ramp with a darker disc
     Image tone(96, 64, 1);
@@ -263,7 +266,7 @@ float element_size(const Image& screen) {
 TEST(NprSynthesis, ElementSizeStaysConstantUnderA2xCameraZoomAtLowCoherenceWeight) {
     const Pattern pattern = prepared(testing::stipple_pattern(64, 6.0f));
     SynthesisOptions options;
-    options.threads = 2;
+    const RunContext context(2);
     options.coherence_weight = 0.2f;
     constexpr int kFrames = 6, kWidth = 128, kHeight = 96;
     const float cx = (kWidth - 1) / 2.0f, cy = (kHeight - 1) / 2.0f;
@@ -271,7 +274,7 @@ TEST(NprSynthesis, ElementSizeStaysConstantUnderA2xCameraZoomAtLowCoherenceWeigh
     FrameInput first;
     first.width = kWidth;
     first.height = kHeight;
-    Result<FrameState> state = synthesize_frame(pattern, first, nullptr, 0, options);
+    Result<FrameState> state = synthesize_frame(pattern, first, nullptr, 0, options, context);
     ASSERT_TRUE(state.ok());
     const Image first_screen = state->screen;
     for (int t = 1; t < kFrames; ++t) {
@@ -284,7 +287,8 @@ TEST(NprSynthesis, ElementSizeStaysConstantUnderA2xCameraZoomAtLowCoherenceWeigh
                 input.backward_flow.at(x, y, 0) = (static_cast<float>(x) - cx) * (ratio - 1.0f);
                 input.backward_flow.at(x, y, 1) = (static_cast<float>(y) - cy) * (ratio - 1.0f);
             }
-        Result<FrameState> next = synthesize_frame(pattern, input, &state.value(), t, options);
+        Result<FrameState> next =
+            synthesize_frame(pattern, input, &state.value(), t, options, context);
         ASSERT_TRUE(next.ok());
         state = std::move(next);
     }

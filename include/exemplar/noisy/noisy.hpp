@@ -62,6 +62,12 @@ struct NoisyOptions {
     /// min ≤ max.
     float min_offset_px = 15.0f;
     float max_offset_px = 25.0f;  ///< See min_offset_px (chapter: 25).
+    /// Weight of the coarse-consistency guide (eq. 4.2 as a term of the patch distance): on
+    /// every level, the low-passed reference h_f * R_i and the low-passed deformed source
+    /// h_f * S are a guide pair, so the re-synthesized details stay where the reference's low
+    /// frequencies put them. 0 = the chapter's algorithm, which enforces eq. 4.2 only through
+    /// the coarsest level's start. Range 0..100.
+    float coarse_weight = 0.5f;
     /// Random seed: frame i uses randomness keyed by (seed, i) only, so any frame can be
     /// re-made alone.
     std::uint64_t seed = 1;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "exemplar/core/image.hpp"
+#include "exemplar/core/run_context.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/npr/pattern.hpp"
 
@@ -50,8 +51,6 @@ struct SynthesisOptions {
     bool blend_coordinates = true;
     /// Seed of the keyed random generator. Default 1.
     std::uint64_t seed = 1;
-    /// Threads: 0 = all cores, 1 = inline. Results do not depend on it.
-    int threads = 0;
 };
 
 /// Checks every option; InvalidArgument naming the first bad one and its range.
@@ -84,10 +83,14 @@ struct FrameState {
 
 /// Synthesizes one frame. `previous` (may be null) is the previous frame's state, used where
 /// `input.backward_flow` is given. InvalidArgument if the options are invalid, the buffers do
-/// not match width x height, or the frame is smaller than 2^(levels-1) on a side.
+/// not match width x height, or the frame is smaller than 2^(levels-1) on a side. Threads:
+/// context.threads (0 = all cores, 1 = inline; results do not depend on it); progress events
+/// ("synthesis") after each level, with `fraction` the share of the pixels done; Cancelled when
+/// context.cancel is set (checked before each correction sub-pass).
 Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& input,
                                     const FrameState* previous, int frame_index,
-                                    const SynthesisOptions& options);
+                                    const SynthesisOptions& options,
+                                    const RunContext& context = {});
 
 /// The coordinates of every level packed into one image of the finest level's size (channels
 /// x0, y0, x1, y1, ...; level l in the top-left ceil(W / 2^l) x ceil(H / 2^l) pixels), to store

@@ -1,0 +1,204 @@
+// The styles of image-space NPR: tone, orientation, thresholding with tone correction and line
+// inking around the coordinate synthesis ("Image Space Texture Synthesis for 3D NPR Animation"
+// §6: halftoning, §6.0.1 tone correction, §6.0.2 silhouettes). Deviation: the silhouettes are
+// the renderer's `lines` buffer inked as it is, not eroded by paper noise.
+
+#include "exemplar/npr/npr.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+
+#include "exemplar/core/option_table.hpp"
+#include "exemplar/render/render.hpp"
+
+namespace exemplar::npr {
+
+namespace {
+
+using O = NprOptions;
+
+const std::array<NprOptionSpec, 3> kSpecs{{
+    {"levels",
+     "Pyramid levels of the coordinate synthesis (the paper's L + 1). The pattern needs "
+     "patch-size x 2^(levels-1) pixels on a side.",
+     "", 1, 6, &O::levels},
+    {"patch-size",
+     "Initialization patch in coarsest-level pixels (the paper's 10-14); larger keeps longer "
+     "stretches of the pattern together.",
+     "px", 3, 32, &O::patch_size},
+    {"coherence-weight",
+     "beta: weight of the temporal coherence term against the texture term (weight 1). Higher "
+     "= steadier elements, which then grow and shrink with a camera zoom.",
+     "", 0, 100, &O::coherence_weight},
+}};
+
+std::string size_text(const Image& image) {
+    return std::to_string(image.width()) + "x" + std::to_string(image.height());
+}
+
+// How many channels a style reads from a buffer.
+int channels_used(BufferRole role) {
+    return role == BufferRole::BackwardFlow ? 2 : 1;
+}
+
+bool thresholded(Style style) {
+    return style != Style::Pattern;
+}
+
+}  // namespace
+
+std::string_view to_string(Style style) {
+    switch (style) {
+        case Style::Stipple: return "stipple";
+        case Style::Halftone: return "halftone";
+        case Style::Hatch: return "hatch";
+        case Style::Pattern: return "pattern";
+    }
+    return "stipple";
+}
+
+Result<Style> parse_style(std::string_view name) {
+    for (Style style : {Style::Stipple, Style::Halftone, Style::Hatch, Style::Pattern})
+        if (name == to_string(style)) return style;
+    return invalid_argument("style: '" + std::string(name) +
+                            "' is invalid (must be one of stipple, hatch, halftone, pattern)");
+}
+
+std::span<const NprOptionSpec> npr_option_specs() {
+    return kSpecs;
+}
+
+double get_option(const NprOptions& options, const NprOptionSpec& spec) {
+    return get_table_option(options, spec);
+}
+
+Status set_option(NprOptions& options, const NprOptionSpec& spec, double value) {
+    return set_table_option(options, spec, value);
+}
+
+Status validate(const NprOptions& options) {
+    for (const NprOptionSpec& spec : kSpecs) {
+        NprOptions copy = options;
+        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
+    }
+    if (options.style == Style::Pattern && options.tone)
+        return invalid_argument("tone: not used by style pattern (it shows no tone)");
+    if (options.tone && options.tone->empty())
+        return invalid_argument("tone: the buffer name is empty");
+    if (options.orientation && options.orientation->empty())
+        return invalid_argument("orientation: the buffer name is empty (none = no orientation)");
+    return Status::ok();
+}
+
+Result<Pattern> prepare_pattern(const Image& pattern, const NprOptions& options,
+                                const RunContext& context) {
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    PatternOptions pattern_options;
+    pattern_options.levels = options.levels;
+    // The coarsest level's patches span patch-size x 2^(levels-1) pattern pixels
+    const int min_size = options.patch_size << (options.levels - 1);
+    return prepare_pattern(pattern, pattern_options, min_size, context.threads);
+}
+
+std::vector<BufferNeed> needed_buffers(const NprOptions& options, bool continues) {
+    std::vector<BufferNeed> needs;
+    if (thresholded(options.style))
+        needs.push_back({BufferRole::Tone, options.tone.value_or("direct_diffuse")});
+    const std::string orientation =
+        options.orientation.value_or(options.style == Style::Hatch ? "orientation" : "none");
+    if (orientation != "none") needs.push_back({BufferRole::Orientation, orientation});
+    if (continues) {
+        needs.push_back({BufferRole::BackwardFlow, "backward_flow"});
+        needs.push_back({BufferRole::Disocclusion, "disocclusion"});
+    }
+    // Without other buffers `lines` gives the frame's size (the renderer always writes it)
+    if (options.lines || needs.empty()) needs.push_back({BufferRole::Lines, "lines"});
+    return needs;
+}
+
+Image& NprFrame::operator[](BufferRole role) {
+    return const_cast<Image&>(std::as_const(*this)[role]);
+}
+
+const Image& NprFrame::operator[](BufferRole role) const {
+    switch (role) {
+        case BufferRole::Tone: return tone;
+        case BufferRole::Orientation: return orientation;
+        case BufferRole::BackwardFlow: return backward_flow;
+        case BufferRole::Disocclusion: return disocclusion;
+        case BufferRole::Lines: return lines;
+    }
+    return tone;
+}
+
+Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& frame,
+                                     const FrameState* previous, int frame_index,
+                                     const NprOptions& options, const RunContext& context) {
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    if (static_cast<int>(pattern.stack.size()) != options.levels)
+        return invalid_argument("pattern: prepared with " + std::to_string(pattern.stack.size()) +
+                                " levels but levels is " + std::to_string(options.levels));
+
+    // The buffers: each needed one given, with its channels, all of the first one's size
+    const std::vector<BufferNeed> needs = needed_buffers(options, previous != nullptr);
+    FrameInput input;
+    for (const BufferNeed& need : needs) {
+        const Image& image = frame[need.role];
+        if (image.empty()) return invalid_argument("missing buffer '" + need.name + "'");
+        if (image.channels() < channels_used(need.role))
+            return invalid_argument("buffer '" + need.name + "' has " +
+                                    std::to_string(image.channels()) + " channels (needs " +
+                                    std::to_string(channels_used(need.role)) + ")");
+        if (input.width == 0) {
+            input.width = image.width();
+            input.height = image.height();
+        } else if (image.width() != input.width || image.height() != input.height) {
+            return invalid_argument("buffer '" + need.name + "' is " + size_text(image) +
+                                    " but the frames are " + std::to_string(input.width) + "x" +
+                                    std::to_string(input.height));
+        }
+        if (need.role == BufferRole::Orientation)
+            input.orientation = extract_channels(image, 0, 1);
+        else if (need.role == BufferRole::BackwardFlow)
+            input.backward_flow = extract_channels(image, 0, 2);
+        else if (need.role == BufferRole::Disocclusion)
+            input.disocclusion = extract_channels(image, 0, 1);
+    }
+    if (previous != nullptr && !previous->coords.empty() &&
+        (previous->coords[0].width() != input.width ||
+         previous->coords[0].height() != input.height))
+        return invalid_argument("frame size differs from the previous frame's (" +
+                                size_text(previous->coords[0]) + ")");
+
+    // Synthesize the screen
+    SynthesisOptions synthesis;
+    synthesis.init_patch_size = options.patch_size;
+    synthesis.coherence_weight = options.coherence_weight;
+    synthesis.seed = options.seed;
+    auto state = synthesize_frame(pattern, input, previous, frame_index, synthesis, context);
+    if (!state.ok()) return state.status();
+
+    // Threshold it against the tone (luma of the sRGB-encoded buffer, in [0, 1])
+    NprFrameResult result;
+    if (thresholded(options.style)) {
+        Image tone = to_grey(frame.tone_linear ? render::encode_srgb(frame.tone) : frame.tone);
+        for (float& v : tone.data()) v = std::clamp(v, 0.0f, 1.0f);
+        HalftoneOptions halftone_options;
+        halftone_options.tone_correction = options.tone_correction;
+        result.image = halftone(state->screen, tone, halftone_options, context.threads);
+    } else {
+        result.image = state->screen;
+    }
+    // Ink the lines
+    if (options.lines) {
+        for (int y = 0; y < result.image.height(); ++y)
+            for (int x = 0; x < result.image.width(); ++x)
+                if (frame.lines.at(x, y, 0) > 0.5f) result.image.at(x, y, 0) = 0.0f;
+    }
+    result.state = std::move(state).value();
+    return result;
+}
+
+}  // namespace exemplar::npr

@@ -1,0 +1,249 @@
+// The styles around the coordinate synthesis (npr::stylize_frame): the option table, which
+// buffers a frame reads, thresholding against the tone (linear or encoded), line inking,
+// buffer errors named, determinism, progress and cancellation.
+#include "exemplar/npr/npr.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "exemplar/render/render.hpp"
+#include "npr_patterns.hpp"
+
+namespace exemplar::npr {
+namespace {
+
+constexpr int kWidth = 48, kHeight = 32;
+
+Pattern prepared(const NprOptions& options) {
+    Result<Pattern> pattern = prepare_pattern(testing::stipple_pattern(64, 5.0f), options);
+    EXPECT_TRUE(pattern.ok()) << pattern.status().message();
+    return std::move(pattern).value();
+}
+
+// A linear-light tone ramp from dark (left) to light (right), 3 channels as render's.
+Image tone_ramp() {
+    Image tone(kWidth, kHeight, 3);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            for (int c = 0; c < 3; ++c)
+                tone.at(x, y, c) = static_cast<float>(x) / static_cast<float>(kWidth - 1);
+    return tone;
+}
+
+// A vertical line at x = 20.
+Image lines() {
+    Image image(kWidth, kHeight, 1);
+    for (int y = 0; y < kHeight; ++y) image.at(20, y, 0) = 1.0f;
+    return image;
+}
+
+// The frame after one whose content moved right by 2 px.
+NprFrame moved_frame() {
+    NprFrame frame;
+    frame.tone = tone_ramp();
+    frame.tone_linear = true;
+    frame.lines = lines();
+    frame.backward_flow = Image(kWidth, kHeight, 2);
+    frame.disocclusion = Image(kWidth, kHeight, 1);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            frame.backward_flow.at(x, y, 0) = -2.0f;
+            frame.disocclusion.at(x, y, 0) = x < 2 ? 1.0f : 0.0f;
+        }
+    return frame;
+}
+
+std::vector<float> pixels(const Image& image) {
+    return {image.data().begin(), image.data().end()};
+}
+
+std::vector<std::string> names(const std::vector<BufferNeed>& needs) {
+    std::vector<std::string> out;
+    for (const BufferNeed& need : needs) out.push_back(need.name);
+    return out;
+}
+
+TEST(NprStyle, OptionTableChecksRangesAndTheToneAgainstTheStyle) {
+    NprOptions options;
+    const auto specs = npr_option_specs();
+    ASSERT_EQ(specs.size(), 3u);
+    EXPECT_EQ(get_option(options, specs[0]), 3.0);  // levels
+    Status status = set_option(options, specs[0], 9);
+    EXPECT_EQ(status.message(), "levels: 9 is invalid (must be an integer, 1..6)");
+    status = set_option(options, specs[1], 12.5);
+    EXPECT_EQ(status.message(), "patch-size: 12.5 is invalid (must be an integer, 3..32)");
+    ASSERT_TRUE(set_option(options, specs[2], 0.25).is_ok());
+    EXPECT_FLOAT_EQ(options.coherence_weight, 0.25f);
+    EXPECT_TRUE(validate(options).is_ok());
+    options.levels = 0;
+    EXPECT_EQ(validate(options).message(), "levels: 0 is invalid (must be an integer, 1..6)");
+    options = {};
+    options.style = Style::Pattern;
+    options.tone = "fullgi";
+    EXPECT_EQ(validate(options).message(), "tone: not used by style pattern (it shows no tone)");
+    EXPECT_EQ(parse_style("crosshatch").status().message(),
+              "style: 'crosshatch' is invalid (must be one of stipple, hatch, halftone, pattern)");
+    for (Style style : {Style::Stipple, Style::Halftone, Style::Hatch, Style::Pattern})
+        EXPECT_EQ(*parse_style(to_string(style)), style);
+}
+
+TEST(NprStyle, NeedsTheBuffersTheStyleReads) {
+    NprOptions options;
+    using V = std::vector<std::string>;
+    EXPECT_EQ(names(needed_buffers(options, false)), (V{"direct_diffuse", "lines"}));
+    EXPECT_EQ(names(needed_buffers(options, true)),
+              (V{"direct_diffuse", "backward_flow", "disocclusion", "lines"}));
+    options.style = Style::Hatch;
+    options.tone = "fullgi";
+    EXPECT_EQ(names(needed_buffers(options, false)), (V{"fullgi", "orientation", "lines"}));
+    options.orientation = "none";
+    options.lines = false;
+    EXPECT_EQ(names(needed_buffers(options, false)), (V{"fullgi"}));
+    // The pattern style without lines reads `lines` for the frame's size only
+    options = {};
+    options.style = Style::Pattern;
+    options.lines = false;
+    EXPECT_EQ(names(needed_buffers(options, false)), (V{"lines"}));
+    EXPECT_EQ(names(needed_buffers(options, true)), (V{"backward_flow", "disocclusion"}));
+    EXPECT_EQ(needed_buffers(options, true)[0].role, BufferRole::BackwardFlow);
+}
+
+TEST(NprStyle, ThresholdsTheToneAndInksTheLines) {
+    const NprOptions options;
+    const Pattern pattern = prepared(options);
+    NprFrame frame;
+    frame.tone = tone_ramp();
+    frame.tone_linear = true;
+    frame.lines = lines();
+    const Result<NprFrameResult> result = stylize_frame(pattern, frame, nullptr, 0, options);
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    const Image& image = result->image;
+    ASSERT_EQ(image.width(), kWidth);
+    ASSERT_EQ(image.channels(), 1);
+    // Ink and paper only; the line inked; more ink in the dark half than in the light half
+    int dark_ink = 0, light_ink = 0;
+    for (int y = 0; y < kHeight; ++y) {
+        EXPECT_EQ(image.at(20, y, 0), 0.0f);
+        for (int x = 0; x < kWidth; ++x) {
+            const float v = image.at(x, y, 0);
+            ASSERT_TRUE(v == 0.0f || v == 1.0f) << v;
+            if (x == 20) continue;
+            (x < kWidth / 2 ? dark_ink : light_ink) += v == 0.0f;
+        }
+    }
+    EXPECT_GT(dark_ink, 2 * light_ink);
+    EXPECT_EQ(result->state.coords.size(), 3u);
+    // A linear tone is sRGB-encoded first: the same as the encoded buffer given as such
+    NprFrame encoded = frame;
+    encoded.tone = render::encode_srgb(frame.tone);
+    encoded.tone_linear = false;
+    const Result<NprFrameResult> same = stylize_frame(pattern, encoded, nullptr, 0, options);
+    ASSERT_TRUE(same.ok());
+    EXPECT_EQ(pixels(same->image), pixels(image));
+    const Result<NprFrameResult> raw =
+        stylize_frame(pattern, {frame.tone, false, {}, {}, {}, frame.lines}, nullptr, 0, options);
+    ASSERT_TRUE(raw.ok());
+    EXPECT_NE(pixels(raw->image), pixels(image));
+}
+
+TEST(NprStyle, PatternStyleIsTheSynthesizedScreen) {
+    NprOptions options;
+    options.style = Style::Pattern;
+    options.lines = false;
+    const Pattern pattern = prepared(options);
+    NprFrame frame;
+    frame.lines = lines();  // only its size is read
+    const Result<NprFrameResult> result = stylize_frame(pattern, frame, nullptr, 3, options);
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    EXPECT_EQ(pixels(result->image), pixels(result->state.screen));
+    int grey = 0;
+    for (float v : pixels(result->image)) grey += v > 0.0f && v < 1.0f;
+    EXPECT_GT(grey, 0);
+}
+
+TEST(NprStyle, ContinuesFromThePreviousStateIdenticallyForOneAndTwoThreads) {
+    const NprOptions options;
+    const Pattern pattern = prepared(options);
+    std::vector<float> images[2];
+    for (int t = 0; t < 2; ++t) {
+        const RunContext context(t + 1);
+        NprFrame first = moved_frame();
+        first.backward_flow = {};  // ignored without a previous frame anyway
+        const Result<NprFrameResult> a =
+            stylize_frame(pattern, first, nullptr, 0, options, context);
+        ASSERT_TRUE(a.ok()) << a.status().message();
+        const Result<NprFrameResult> b =
+            stylize_frame(pattern, moved_frame(), &a->state, 1, options, context);
+        ASSERT_TRUE(b.ok()) << b.status().message();
+        images[t] = pixels(b->image);
+    }
+    EXPECT_EQ(images[0], images[1]);
+}
+
+TEST(NprStyle, NamesMissingAndMismatchedBuffers) {
+    NprOptions options;
+    const Pattern pattern = prepared(options);
+    NprFrame frame = moved_frame();
+    frame.lines = {};
+    EXPECT_EQ(stylize_frame(pattern, frame, nullptr, 0, options).status().message(),
+              "missing buffer 'lines'");
+    frame = moved_frame();
+    frame.lines = Image(kWidth + 1, kHeight, 1);
+    EXPECT_EQ(stylize_frame(pattern, frame, nullptr, 0, options).status().message(),
+              "buffer 'lines' is 49x32 but the frames are 48x32");
+    // A previous frame needs the backward flow
+    frame = moved_frame();
+    const Result<NprFrameResult> first = stylize_frame(pattern, frame, nullptr, 0, options);
+    ASSERT_TRUE(first.ok());
+    frame.backward_flow = {};
+    EXPECT_EQ(stylize_frame(pattern, frame, &first->state, 1, options).status().message(),
+              "missing buffer 'backward_flow'");
+    frame = moved_frame();
+    frame.backward_flow = Image(kWidth, kHeight, 1);
+    EXPECT_EQ(stylize_frame(pattern, frame, &first->state, 1, options).status().message(),
+              "buffer 'backward_flow' has 1 channels (needs 2)");
+    // Another frame size than the previous frame's
+    NprFrame larger;
+    larger.tone = Image(kWidth * 2, kHeight, 1);
+    larger.lines = Image(kWidth * 2, kHeight, 1);
+    larger.backward_flow = Image(kWidth * 2, kHeight, 2);
+    larger.disocclusion = Image(kWidth * 2, kHeight, 1);
+    EXPECT_EQ(stylize_frame(pattern, larger, &first->state, 1, options).status().message(),
+              "frame size differs from the previous frame's (48x32)");
+    // A pattern prepared for other levels
+    NprOptions two = options;
+    two.levels = 2;
+    EXPECT_EQ(stylize_frame(pattern, moved_frame(), nullptr, 0, two).status().message(),
+              "pattern: prepared with 3 levels but levels is 2");
+    // Too small a pattern for the patch size and levels
+    EXPECT_EQ(prepare_pattern(testing::halftone_pattern(16, 8), options).status().message(),
+              "pattern: 16x16 is too small (needs at least 48x48 for the patch size)");
+}
+
+TEST(NprStyle, ReportsProgressPerLevelAndStopsWhenCancelled) {
+    const NprOptions options;
+    const Pattern pattern = prepared(options);
+    std::vector<double> fractions;
+    RunContext context(1);
+    context.progress = [&](const ProgressEvent& event) {
+        EXPECT_EQ(event.stage, "synthesis");
+        EXPECT_EQ(event.levels, 3);
+        fractions.push_back(event.fraction);
+    };
+    ASSERT_TRUE(stylize_frame(pattern, moved_frame(), nullptr, 0, options, context).ok());
+    ASSERT_EQ(fractions.size(), 3u);
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+    EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+    CancelToken token;
+    token.cancel();
+    context.cancel = &token;
+    const Result<NprFrameResult> stopped =
+        stylize_frame(pattern, moved_frame(), nullptr, 0, options, context);
+    EXPECT_EQ(stopped.status().code(), ErrorCode::Cancelled);
+}
+
+}  // namespace
+}  // namespace exemplar::npr
