@@ -5,9 +5,12 @@
 # .so's, resolved by the dynamic loader (and by apt for the .deb).
 include(CMakePackageConfigHelpers)
 
-set(EXEMPLAR_MODULES exemplar_core exemplar_io exemplar_filters exemplar_synth exemplar_render
-    exemplar_stylit exemplar_video exemplar_sketch exemplar_animate exemplar_fluid exemplar_noisy
-    exemplar_paint exemplar_npr)
+set(EXEMPLAR_MODULES exemplar_core exemplar_plugin exemplar_io exemplar_filters exemplar_synth
+    exemplar_render exemplar_stylit exemplar_video exemplar_sketch exemplar_animate exemplar_fluid
+    exemplar_noisy exemplar_paint exemplar_npr)
+# The bundled plugins' code is linked in too (cmake/plugins.cmake): a program using the library
+# calls it directly; only the `exemplar` command loads plugins.
+get_property(EXEMPLAR_BUNDLED_PLUGINS GLOBAL PROPERTY EXEMPLAR_BUNDLED_PLUGINS)
 # The modules' object files, and the modules themselves for their dependencies (the linker
 # takes nothing from their archives: the objects already define every symbol).
 set(EXEMPLAR_OBJECTS)
@@ -17,6 +20,9 @@ endforeach()
 add_library(exemplar_library SHARED ${EXEMPLAR_OBJECTS})
 add_library(exemplar::exemplar ALIAS exemplar_library)
 target_link_libraries(exemplar_library PRIVATE ${EXEMPLAR_MODULES})
+foreach(plugin IN LISTS EXEMPLAR_BUNDLED_PLUGINS)
+  target_link_libraries(exemplar_library PRIVATE ${plugin}_objects)
+endforeach()
 target_include_directories(exemplar_library PUBLIC
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)

@@ -2,10 +2,12 @@
 // layer's background (Fig. 10), composited back to front.
 
 #include <algorithm>
-#include <opencv2/imgproc.hpp>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "exemplar/animate/animate.hpp"
+#include "opencv_kernels.hpp"
 
 namespace exemplar::animate {
 
@@ -18,10 +20,10 @@ Result<Image> extrapolate_flow(const Image& flow, const Image& coverage) {
     const int w = flow.width(), h = flow.height();
     // distanceTransform with labels: every pixel gets the label of its nearest zero pixel;
     // covered pixels are the zeros, each its own label.
-    cv::Mat outside(h, w, CV_8UC1);
+    std::vector<std::uint8_t> outside(static_cast<std::size_t>(w) * h);
     int covered = 0;
     for (int y = 0; y < h; ++y) {
-        auto* row = outside.ptr<std::uint8_t>(y);
+        std::uint8_t* row = outside.data() + static_cast<std::size_t>(y) * w;
         for (int x = 0; x < w; ++x) {
             const bool in = coverage.at(x, y, 0) > 0.5f;
             row[x] = in ? 0 : 255;
@@ -29,21 +31,24 @@ Result<Image> extrapolate_flow(const Image& flow, const Image& coverage) {
         }
     }
     if (covered == 0 || covered == w * h) return flow;
-    cv::Mat distance, labels;
-    cv::distanceTransform(outside, distance, labels, cv::DIST_L2, cv::DIST_MASK_5,
-                          cv::DIST_LABEL_PIXEL);
+    auto opencv = plugin::opencv::kernels();
+    if (!opencv.ok()) {
+        return Status(opencv.status().code(), "extrapolate flow: " + opencv.status().message());
+    }
+    std::vector<int> labels(outside.size());
+    (*opencv)->nearest_zero_label(outside.data(), w, h, labels.data());
     // Label k (1-based) is the k-th zero pixel in row-major order.
     std::vector<int> pixel_of_label(static_cast<std::size_t>(covered) + 1, 0);
     int k = 0;
     for (int y = 0; y < h; ++y) {
-        const auto* row = outside.ptr<std::uint8_t>(y);
+        const std::uint8_t* row = outside.data() + static_cast<std::size_t>(y) * w;
         for (int x = 0; x < w; ++x) {
             if (row[x] == 0) pixel_of_label[static_cast<std::size_t>(++k)] = y * w + x;
         }
     }
     Image out = flow;
     for (int y = 0; y < h; ++y) {
-        const auto* label = labels.ptr<int>(y);
+        const int* label = labels.data() + static_cast<std::size_t>(y) * w;
         for (int x = 0; x < w; ++x) {
             if (coverage.at(x, y, 0) > 0.5f) continue;
             const int p = pixel_of_label[static_cast<std::size_t>(label[x])];

@@ -1,11 +1,15 @@
-// Bounded distance transform of line drawings (Bénard et al. 2013 §3.2, g_dt) with OpenCV.
+// Bounded distance transform of line drawings (Bénard et al. 2013 §3.2, g_dt) with OpenCV
+// (through its plugin, src/plugin/opencv_kernels.hpp).
 
 #include "exemplar/animate/lines.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
+#include <cstdint>
 #include <string>
+#include <vector>
+
+#include "opencv_kernels.hpp"
 
 namespace exemplar::animate {
 
@@ -16,20 +20,21 @@ Result<Image> line_distance(const Image& lines, float max_distance_px) {
                                 " is invalid (must be > 0 px)");
     }
     // distanceTransform measures the distance to the nearest zero pixel: lines become 0.
-    cv::Mat binary(lines.height(), lines.width(), CV_8UC1);
-    for (int y = 0; y < lines.height(); ++y) {
-        auto* row = binary.ptr<std::uint8_t>(y);
-        for (int x = 0; x < lines.width(); ++x) row[x] = lines.at(x, y, 0) < 0.5f ? 0 : 255;
+    const int w = lines.width(), h = lines.height();
+    std::vector<std::uint8_t> binary(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) binary[y * w + x] = lines.at(x, y, 0) < 0.5f ? 0 : 255;
     }
-    Image out(lines.width(), lines.height(), 1, 1.0f);
+    Image out(w, h, 1, 1.0f);
     out.set_channel_names({"line_distance"});
-    if (cv::countNonZero(binary) == static_cast<int>(binary.total())) return out;  // no line
-    cv::Mat distance;
-    cv::distanceTransform(binary, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE, CV_32F);
-    for (int y = 0; y < lines.height(); ++y) {
-        const float* row = distance.ptr<float>(y);
-        for (int x = 0; x < lines.width(); ++x) {
-            out.at(x, y, 0) = std::min(row[x], max_distance_px) / max_distance_px;
+    if (std::find(binary.begin(), binary.end(), 0) == binary.end()) return out;  // no line
+    auto opencv = plugin::opencv::kernels();
+    if (!opencv.ok()) return Status(opencv.status().code(), "lines: " + opencv.status().message());
+    std::vector<float> distance(binary.size());
+    (*opencv)->distance_to_zero(binary.data(), w, h, distance.data());
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            out.at(x, y, 0) = std::min(distance[y * w + x], max_distance_px) / max_distance_px;
         }
     }
     return out;

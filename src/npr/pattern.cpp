@@ -8,27 +8,30 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 #include <string>
+#include <vector>
 
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/filters/resample.hpp"
+#include "opencv_kernels.hpp"
 
 namespace exemplar::npr {
 namespace {
 
-cv::Mat to_mat(const Image& grey) {
-    cv::Mat mat(grey.height(), grey.width(), CV_32F);
-    for (int y = 0; y < grey.height(); ++y)
-        for (int x = 0; x < grey.width(); ++x) mat.at<float>(y, x) = grey.at(x, y, 0);
-    return mat;
+// One channel of `width` x `height` floats, scaled.
+Image from_values(const std::vector<float>& values, int width, int height, float scale) {
+    Image image(width, height, 1);
+    const std::span<float> out = image.data();
+    for (std::size_t i = 0; i < values.size(); ++i) out[i] = values[i] * scale;
+    return image;
 }
 
-Image from_mat(const cv::Mat& mat, float scale) {
-    Image image(mat.cols, mat.rows, 1);
-    for (int y = 0; y < mat.rows; ++y)
-        for (int x = 0; x < mat.cols; ++x) image.at(x, y, 0) = mat.at<float>(y, x) * scale;
-    return image;
+// The OpenCV operations (a plugin, loaded on first use), or their error named for the pattern.
+Result<const plugin::opencv::Entry*> opencv_kernels() {
+    auto opencv = plugin::opencv::kernels();
+    if (!opencv.ok())
+        return Status(opencv.status().code(), "pattern: " + opencv.status().message());
+    return opencv;
 }
 
 int wrap(int v, int n) {
@@ -65,14 +68,13 @@ Image to_grey(const Image& image) {
     return grey;
 }
 
-Image equalize_clahe(const Image& grey, float clip_limit, int tiles) {
-    cv::Mat bytes;
-    to_mat(grey).convertTo(bytes, CV_8U, 255.0, 0.5);
-    cv::Mat equalized;
-    cv::createCLAHE(clip_limit, cv::Size(tiles, tiles))->apply(bytes, equalized);
-    cv::Mat floats;
-    equalized.convertTo(floats, CV_32F);
-    return from_mat(floats, 1.0f / 255.0f);
+Result<Image> equalize_clahe(const Image& grey, float clip_limit, int tiles) {
+    auto opencv = opencv_kernels();
+    if (!opencv.ok()) return opencv.status();
+    std::vector<float> equalized(grey.data().size());
+    (*opencv)->clahe(grey.data().data(), grey.width(), grey.height(), clip_limit, tiles,
+                     equalized.data());
+    return from_values(equalized, grey.width(), grey.height(), 1.0f / 255.0f);
 }
 
 Result<Pattern> prepare_pattern(const Image& pattern, const PatternOptions& options, int min_size,
@@ -91,38 +93,51 @@ Result<Pattern> prepare_pattern(const Image& pattern, const PatternOptions& opti
     Pattern result;
     Image grey = to_grey(pattern);
     for (float& v : grey.data()) v = std::clamp(v, 0.0f, 1.0f);
-    result.screen = options.equalize
-                        ? equalize_clahe(grey, options.clahe_clip_limit, options.clahe_tiles)
-                        : grey;
+    if (options.equalize) {
+        auto equalized = equalize_clahe(grey, options.clahe_clip_limit, options.clahe_tiles);
+        if (!equalized.ok()) return equalized.status();
+        result.screen = std::move(equalized).value();
+    } else {
+        result.screen = grey;
+    }
 
     // Feature channels P' = pattern + optional features
     std::vector<Image> channels{result.screen};
-    const cv::Mat screen_mat = to_mat(result.screen);
-    cv::Mat dx, dy;
-    if (options.gradients || options.structure_tensor) {
-        cv::Sobel(screen_mat, dx, CV_32F, 1, 0, 3, 0.25);
-        cv::Sobel(screen_mat, dy, CV_32F, 0, 1, 3, 0.25);
-    }
-    if (options.edge_distance) {
-        cv::Mat bytes, edges, not_edges, distance;
-        screen_mat.convertTo(bytes, CV_8U, 255.0, 0.5);
-        cv::Canny(bytes, edges, 50, 150);
-        cv::bitwise_not(edges, not_edges);
-        cv::distanceTransform(not_edges, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-        double max_distance = 0.0;
-        cv::minMaxLoc(distance, nullptr, &max_distance);
-        channels.push_back(
-            from_mat(distance, max_distance > 0.0 ? static_cast<float>(1.0 / max_distance) : 0.f));
+    const float* screen = result.screen.data().data();
+    const std::size_t pixels = result.screen.data().size();
+    std::vector<float> dx, dy;
+    if (options.gradients || options.structure_tensor || options.edge_distance) {
+        auto opencv = opencv_kernels();
+        if (!opencv.ok()) return opencv.status();
+        if (options.gradients || options.structure_tensor) {
+            dx.resize(pixels);
+            dy.resize(pixels);
+            (*opencv)->sobel(screen, width, height, dx.data(), dy.data());
+        }
+        if (options.edge_distance) {
+            std::vector<float> distance(pixels);
+            (*opencv)->edge_distance(screen, width, height, distance.data());
+            double max_distance = 0.0;
+            for (const float d : distance) max_distance = std::max(max_distance, double{d});
+            channels.push_back(
+                from_values(distance, width, height,
+                            max_distance > 0.0 ? static_cast<float>(1.0 / max_distance) : 0.f));
+        }
     }
     if (options.gradients) {
-        channels.push_back(from_mat(dx, 1.0f));
-        channels.push_back(from_mat(dy, 1.0f));
+        channels.push_back(from_values(dx, width, height, 1.0f));
+        channels.push_back(from_values(dy, width, height, 1.0f));
     }
     if (options.structure_tensor) {
         // Scaled by 4 so that a unit step's products are of the order of the other channels
-        channels.push_back(from_mat(dx.mul(dx), 4.0f));
-        channels.push_back(from_mat(dx.mul(dy), 4.0f));
-        channels.push_back(from_mat(dy.mul(dy), 4.0f));
+        const auto product = [&](const std::vector<float>& a, const std::vector<float>& b) {
+            std::vector<float> out(pixels);
+            for (std::size_t i = 0; i < pixels; ++i) out[i] = a[i] * b[i];
+            return from_values(out, width, height, 4.0f);
+        };
+        channels.push_back(product(dx, dx));
+        channels.push_back(product(dx, dy));
+        channels.push_back(product(dy, dy));
     }
     std::vector<const Image*> pointers;
     for (const Image& c : channels) pointers.push_back(&c);

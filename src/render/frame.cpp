@@ -34,8 +34,9 @@ struct Motion {
 
 // Where the point seen through pixel centre (cx, cy) lands in `other` (scene, BVH and camera of
 // frame t±1), and whether it is visible there.
-Motion motion_to(const Scene& other, RTCScene handle, const CameraModel& camera, int width,
-                 int height, float cx, float cy, const CentreHit& hit, const Vec3& sky_direction) {
+Motion motion_to(const Scene& other, const rays::RayScene& handle, const CameraModel& camera,
+                 int width, int height, float cx, float cy, const CentreHit& hit,
+                 const Vec3& sky_direction) {
     Motion m;
     float px = 0.0f, py = 0.0f;
     if (hit.mesh < 0) {
@@ -149,9 +150,10 @@ Result<RenderBuffers> render_frame(const Animation& animation, int frame,
     if (!rendered.ok()) return rendered.status();
     RenderBuffers out = std::move(rendered).value();
 
-    const EmbreeScene previous(scenes[0]), next(scenes[2]);
-    if (!previous.error().empty()) return Status(ErrorCode::Internal, previous.error());
-    if (!next.error().empty()) return Status(ErrorCode::Internal, next.error());
+    auto previous = build_ray_scene(scenes[0]);
+    if (!previous.ok()) return previous.status();
+    auto next = build_ray_scene(scenes[2]);
+    if (!next.ok()) return next.status();
     const int w = options.width, h = options.height;
     const CameraModel camera_previous(scenes[0].camera, w, h), camera(scenes[1].camera, w, h),
         camera_next(scenes[2].camera, w, h);
@@ -166,9 +168,9 @@ Result<RenderBuffers> render_frame(const Animation& animation, int frame,
             const float cx = static_cast<float>(x) + 0.5f, cy = static_cast<float>(y) + 0.5f;
             const Vec3 sky = camera.ray(cx, cy);
             const Motion forward =
-                motion_to(scenes[2], next.handle(), camera_next, w, h, cx, cy, hit, sky);
+                motion_to(scenes[2], **next, camera_next, w, h, cx, cy, hit, sky);
             const Motion backward =
-                motion_to(scenes[0], previous.handle(), camera_previous, w, h, cx, cy, hit, sky);
+                motion_to(scenes[0], **previous, camera_previous, w, h, cx, cy, hit, sky);
             out.forward_flow.at(x, y, 0) = forward.u;
             out.forward_flow.at(x, y, 1) = forward.v;
             out.backward_flow.at(x, y, 0) = backward.u;

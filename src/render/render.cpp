@@ -12,9 +12,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "embree_scene.hpp"
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
+#include "ray_scene.hpp"
 #include "render_internal.hpp"
 #include "vec_math.hpp"
 
@@ -60,7 +60,7 @@ LightFrame light_frame(const AreaLight& light) {
 
 class Tracer {
 public:
-    Tracer(const Scene& scene, RTCScene handle, const RenderOptions& options)
+    Tracer(const Scene& scene, const rays::RayScene& handle, const RenderOptions& options)
         : scene_(scene),
           handle_(handle),
           options_(options),
@@ -219,7 +219,7 @@ private:
     }
 
     const Scene& scene_;
-    RTCScene handle_;
+    const rays::RayScene& handle_;
     const RenderOptions& options_;
     std::vector<LightFrame> lights_;
     CameraModel camera_;
@@ -301,9 +301,9 @@ Result<RenderBuffers> render_with_hits(const Scene& scene, const RenderOptions& 
                                        const RunContext& context, std::vector<CentreHit>* hits) {
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
     EXEMPLAR_RETURN_IF_ERROR(check_scene(scene));
-    const EmbreeScene embree(scene);
-    if (!embree.error().empty()) return Status(ErrorCode::Internal, embree.error());
-    const Tracer tracer(scene, embree.handle(), options);
+    auto ray_scene = build_ray_scene(scene);
+    if (!ray_scene.ok()) return ray_scene.status();
+    const Tracer tracer(scene, **ray_scene, options);
     const CameraModel& camera = tracer.camera();
 
     const int w = options.width, h = options.height;

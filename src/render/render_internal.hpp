@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "embree_scene.hpp"
 #include "exemplar/render/render.hpp"
+#include "ray_scene.hpp"
 
 namespace exemplar::render {
 

@@ -1,13 +1,14 @@
-// PNG rendering of stroke layers with Cairo (the examples' before/after pictures).
-
-#include <cairo.h>
+// PNG rendering of stroke layers with Cairo (the examples' before/after pictures), through its
+// plugin (src/plugin/cairo_canvas.hpp).
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "atomic_file.hpp"
+#include "cairo_canvas.hpp"
 #include "exemplar/sketch/svg.hpp"
 
 namespace exemplar::sketch {
@@ -15,7 +16,7 @@ namespace exemplar::sketch {
 namespace {
 
 // "black", "#rrggbb" and a few names the examples use; anything else draws black.
-void set_colour(cairo_t* cr, const std::string& colour, double opacity) {
+void set_colour(plugin::cairo::Canvas& canvas, const std::string& colour, double opacity) {
     double r = 0, g = 0, b = 0;
     unsigned value = 0;
     if (colour.size() == 7 && colour[0] == '#' &&
@@ -30,7 +31,7 @@ void set_colour(cairo_t* cr, const std::string& colour, double opacity) {
     } else if (colour == "gray" || colour == "grey") {
         r = g = b = 0.6;
     }
-    cairo_set_source_rgba(cr, r, g, b, opacity);
+    canvas.set_source_rgba(r, g, b, opacity);
 }
 
 }  // namespace
@@ -44,37 +45,31 @@ Status save_png(const Drawing& canvas, const std::vector<SvgLayer>& layers, cons
     const auto box = canvas_bounds(canvas, layers);
     const double scale = width_px / box[2];
     const int height_px = std::max(1, static_cast<int>(std::lround(box[3] * scale)));
-    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_px, height_px);
-    cairo_t* cr = cairo_create(surface);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_paint(cr);
-    cairo_scale(cr, scale, scale);
-    cairo_translate(cr, -box[0], -box[1]);
-    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    auto cairo = plugin::cairo::canvases();
+    if (!cairo.ok()) return Status(cairo.status().code(), path + ": " + cairo.status().message());
+    const std::unique_ptr<plugin::cairo::Canvas> cr = (*cairo)->new_image(width_px, height_px);
+    cr->set_source_rgb(1, 1, 1);
+    cr->paint();
+    cr->scale(scale, scale);
+    cr->translate(-box[0], -box[1]);
+    cr->set_round_lines();
     for (const SvgLayer& layer : layers) {
-        set_colour(cr, layer.stroke, layer.opacity);
-        cairo_set_line_width(cr, layer.stroke_width);
+        set_colour(*cr, layer.stroke, layer.opacity);
+        cr->set_line_width(layer.stroke_width);
         for (const Path& p : layer.paths) {
             if (p.empty()) continue;
-            cairo_new_path(cr);
-            cairo_move_to(cr, p.start().x, p.start().y);
+            cr->new_path();
+            cr->move_to(p.start().x, p.start().y);
             for (const Cubic& c : p.segments) {
-                cairo_curve_to(cr, c.c1.x, c.c1.y, c.c2.x, c.c2.y, c.p3.x, c.p3.y);
+                cr->curve_to(c.c1.x, c.c1.y, c.c2.x, c.c2.y, c.p3.x, c.p3.y);
             }
-            if (p.closed) cairo_close_path(cr);
-            cairo_stroke(cr);
+            if (p.closed) cr->close_path();
+            cr->stroke();
         }
     }
-    cairo_destroy(cr);
     io_detail::TempFile temp(path);
-    Status status = temp.status();
-    if (status.is_ok() &&
-        cairo_surface_write_to_png(surface, temp.path().c_str()) != CAIRO_STATUS_SUCCESS) {
-        status = io_error(path + ": cannot write the PNG");
-    }
-    cairo_surface_destroy(surface);
-    EXEMPLAR_RETURN_IF_ERROR(status);
+    EXEMPLAR_RETURN_IF_ERROR(temp.status());
+    if (!cr->write_png(temp.path())) return io_error(path + ": cannot write the PNG");
     return temp.commit();
 }
 

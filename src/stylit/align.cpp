@@ -1,17 +1,19 @@
 // Aligning a scan of a painted sheet to its render (Fišer et al. 2016, §8.3.1: "We align a photo
 // or scan of the painting with the original rendered image using the alignment marks"). The
 // paper gives no method; this is ours: bull's-eye marks found as chains of nested concentric
-// contours in an adaptively thresholded image, and a homography from their four centres.
+// contours in an adaptively thresholded image, and a homography from their four centres. The
+// image operations are OpenCV's, through its plugin (src/plugin/opencv_kernels.hpp).
 
 #include "exemplar/stylit/align.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
+#include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
+
+#include "opencv_kernels.hpp"
 
 namespace exemplar {
 
@@ -23,12 +25,14 @@ struct Candidate {
     int depth = 0;      // nested concentric contours, the outer one included
 };
 
-cv::Mat grey_bytes(const Image& scan) {
-    cv::Mat grey(scan.height(), scan.width(), CV_8UC1);
+namespace cvk = plugin::opencv;
+
+std::vector<std::uint8_t> grey_bytes(const Image& scan) {
+    std::vector<std::uint8_t> grey(static_cast<std::size_t>(scan.width()) * scan.height());
     const int channels = scan.channels();
     const int colour = channels == 2 || channels == 4 ? channels - 1 : channels;
     for (int y = 0; y < scan.height(); ++y) {
-        auto* row = grey.ptr<unsigned char>(y);
+        std::uint8_t* row = grey.data() + static_cast<std::size_t>(y) * scan.width();
         for (int x = 0; x < scan.width(); ++x) {
             const float* px = scan.pixel(x, y);
             float sum = 0.0f;
@@ -40,22 +44,20 @@ cv::Mat grey_bytes(const Image& scan) {
     return grey;
 }
 
-Point2 centroid(const std::vector<cv::Point>& contour, double& area) {
-    const cv::Moments m = cv::moments(contour);
-    area = m.m00;
-    if (m.m00 <= 0.0) return {};
-    return {m.m10 / m.m00, m.m01 / m.m00};
+Point2 centroid(const cvk::Contour& contour) {
+    if (contour.m00 <= 0.0) return {};
+    return {contour.m10 / contour.m00, contour.m01 / contour.m00};
 }
 
 // Bull's-eyes in one binary image (ink = 255): contours whose largest child is concentric, and
 // so on down the chain.
-std::vector<Candidate> find_candidates(const cv::Mat& binary) {
-    std::vector<std::vector<cv::Point>> contours;
-    std::vector<cv::Vec4i> hierarchy;
-    cv::findContours(binary, contours, hierarchy, cv::RETR_TREE, cv::CHAIN_APPROX_NONE);
+std::vector<Candidate> find_candidates(const std::vector<cvk::Contour>& contours) {
     std::vector<double> areas(contours.size());
     std::vector<Point2> centres(contours.size());
-    for (std::size_t i = 0; i < contours.size(); ++i) centres[i] = centroid(contours[i], areas[i]);
+    for (std::size_t i = 0; i < contours.size(); ++i) {
+        areas[i] = contours[i].m00;
+        centres[i] = centroid(contours[i]);
+    }
 
     std::vector<bool> used(contours.size(), false);
     std::vector<int> order(contours.size());
@@ -66,14 +68,15 @@ std::vector<Candidate> find_candidates(const cv::Mat& binary) {
     for (int outer : order) {
         if (used[outer] || areas[outer] < 40.0) continue;
         // Round enough: 4πA/P² is 1 for a disc and ~0.9 for a 2:1 ellipse; paint blobs are lower.
-        const double perimeter = cv::arcLength(contours[outer], true);
-        if (4.0 * CV_PI * areas[outer] / (perimeter * perimeter) < 0.75) continue;
-        const double radius = std::sqrt(areas[outer] / CV_PI);
+        const double perimeter = contours[outer].perimeter;
+        if (4.0 * std::numbers::pi * areas[outer] / (perimeter * perimeter) < 0.75) continue;
+        const double radius = std::sqrt(areas[outer] / std::numbers::pi);
         std::vector<int> chain = {outer};
         int current = outer;
         while (true) {
             int best = -1;
-            for (int child = hierarchy[current][2]; child >= 0; child = hierarchy[child][0]) {
+            for (int child = contours[current].first_child; child >= 0;
+                 child = contours[child].next) {
                 if (best < 0 || areas[child] > areas[best]) best = child;
             }
             if (best < 0 || areas[best] < 4.0) break;
@@ -137,7 +140,7 @@ Result<std::array<Point2, 4>> pick_marks(const std::vector<Candidate>& candidate
     std::sort(marks.begin(), marks.end(), [&](const Candidate& a, const Candidate& b) {
         const auto from_start = [&](const Candidate& m) {
             double d = angle(m) - start;
-            while (d < 0.0) d += 2.0 * CV_PI;
+            while (d < 0.0) d += 2.0 * std::numbers::pi;
             return d;
         };
         return from_start(a) < from_start(b);
@@ -155,22 +158,26 @@ Point2 apply_homography(const Homography& h, Point2 p) {
 
 Result<std::array<Point2, 4>> find_marks(const Image& scan) {
     if (scan.empty()) return invalid_argument("the scan is empty");
-    cv::Mat grey = grey_bytes(scan);
-    cv::GaussianBlur(grey, grey, cv::Size(3, 3), 0.0);
+    auto opencv = cvk::kernels();
+    if (!opencv.ok()) return Status(opencv.status().code(), "scan: " + opencv.status().message());
+    const int width = scan.width(), height = scan.height();
+    std::vector<std::uint8_t> grey = grey_bytes(scan);
+    (*opencv)->blur3(grey.data(), width, height);
 
     // Local thresholds at a few window sizes (marks are 2-8% of the sheet), then a global one.
     const int side = std::min(scan.width(), scan.height());
     Status last = invalid_argument("no alignment marks found");
     for (const double fraction : {0.08, 0.16, 0.04, 0.0}) {
-        cv::Mat binary;
+        std::vector<std::uint8_t> binary(grey.size());
         if (fraction > 0.0) {
             const int block = std::max(3, static_cast<int>(fraction * side) | 1);
-            cv::adaptiveThreshold(grey, binary, 255, cv::ADAPTIVE_THRESH_MEAN_C,
-                                  cv::THRESH_BINARY_INV, block, 12.0);
+            (*opencv)->adaptive_threshold(grey.data(), width, height, block, 12.0, binary.data());
         } else {
-            cv::threshold(grey, binary, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
+            (*opencv)->otsu_threshold(grey.data(), width, height, binary.data());
         }
-        auto marks = pick_marks(find_candidates(binary));
+        std::vector<cvk::Contour> contours;
+        (*opencv)->contours(binary.data(), width, height, &contours);
+        auto marks = pick_marks(find_candidates(contours));
         if (marks.ok()) return marks;
         last = marks.status();
     }
@@ -181,36 +188,37 @@ Result<AlignedScan> align_scan(const Image& scan, const SheetLayout& layout) {
     auto marks = find_marks(scan);
     if (!marks.ok()) return marks.status();
 
-    std::vector<cv::Point2f> from, to;
+    auto opencv = cvk::kernels();  // loaded by find_marks
+    float from[8], to[8];
     const std::array<Point2, 4> expected = layout.mark_centres();
     for (std::size_t i = 0; i < 4; ++i) {
-        from.emplace_back(static_cast<float>(expected[i].x), static_cast<float>(expected[i].y));
-        to.emplace_back(static_cast<float>((*marks)[i].x), static_cast<float>((*marks)[i].y));
+        from[2 * i] = static_cast<float>(expected[i].x);
+        from[2 * i + 1] = static_cast<float>(expected[i].y);
+        to[2 * i] = static_cast<float>((*marks)[i].x);
+        to[2 * i + 1] = static_cast<float>((*marks)[i].y);
     }
-    const cv::Mat h = cv::getPerspectiveTransform(from, to, cv::DECOMP_LU);
-    if (h.empty() || !std::isfinite(h.at<double>(2, 2)) || std::abs(cv::determinant(h)) < 1e-12) {
+    AlignedScan aligned;
+    double determinant = 0.0;
+    if (!(*opencv)->perspective(from, to, aligned.render_to_scan.data(), &determinant) ||
+        !std::isfinite(aligned.render_to_scan[8]) || std::abs(determinant) < 1e-12) {
         return invalid_argument("scan: the alignment marks are degenerate (collinear?)");
     }
-
-    AlignedScan aligned;
-    for (int i = 0; i < 9; ++i) aligned.render_to_scan[i] = h.at<double>(i / 3, i % 3);
     aligned.marks = *marks;
 
     // Resample every channel on the render grid (dst -> src through h: WARP_INVERSE_MAP).
     aligned.image = Image(layout.render_width, layout.render_height, scan.channels());
     aligned.image.set_channel_names(scan.channel_names());
-    cv::Mat plane(scan.height(), scan.width(), CV_32FC1);
-    cv::Mat warped;
+    const int w = layout.render_width, h = layout.render_height;
+    std::vector<float> plane(static_cast<std::size_t>(scan.width()) * scan.height());
+    std::vector<float> warped(static_cast<std::size_t>(w) * h);
     for (int c = 0; c < scan.channels(); ++c) {
         for (int y = 0; y < scan.height(); ++y) {
-            auto* row = plane.ptr<float>(y);
-            for (int x = 0; x < scan.width(); ++x) row[x] = scan.at(x, y, c);
+            for (int x = 0; x < scan.width(); ++x) plane[y * scan.width() + x] = scan.at(x, y, c);
         }
-        cv::warpPerspective(plane, warped, h, cv::Size(layout.render_width, layout.render_height),
-                            cv::INTER_LINEAR | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
-        for (int y = 0; y < layout.render_height; ++y) {
-            const auto* row = warped.ptr<float>(y);
-            for (int x = 0; x < layout.render_width; ++x) aligned.image.at(x, y, c) = row[x];
+        (*opencv)->warp_perspective(plane.data(), scan.width(), scan.height(),
+                                    aligned.render_to_scan.data(), w, h, warped.data());
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) aligned.image.at(x, y, c) = warped[y * w + x];
         }
     }
     return aligned;

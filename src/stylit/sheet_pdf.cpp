@@ -1,9 +1,7 @@
 // The painting sheet as a one-page PDF (Cairo's PDF surface), centred on the paper at a chosen
 // or the largest fitting resolution: the render as an image, the alignment marks as vector
-// paths (filled rings), so they print sharp whatever the printer's resolution.
-
-#include <cairo-pdf.h>
-#include <cairo.h>
+// paths (filled rings), so they print sharp whatever the printer's resolution. Cairo is called
+// through its plugin (src/plugin/cairo_canvas.hpp).
 
 #include <algorithm>
 #include <array>
@@ -12,8 +10,10 @@
 #include <memory>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 #include "atomic_file.hpp"
+#include "cairo_canvas.hpp"
 #include "exemplar/stylit/sheet.hpp"
 #include "marks.hpp"
 
@@ -32,11 +32,6 @@ struct Paper {
 constexpr Paper kPapers[] = {
     {"a4", 595.276, 841.890}, {"a3", 841.890, 1190.551}, {"letter", 612.0, 792.0}};
 
-cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
-    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-    return CAIRO_STATUS_SUCCESS;
-}
-
 // Writes `bytes` to `path` through a temporary file in the same folder (created if missing) and
 // a rename.
 Status write_atomically(const std::string& bytes, const std::string& path) {
@@ -53,25 +48,25 @@ Status write_atomically(const std::string& bytes, const std::string& path) {
 
 // The marks as filled paths, in sheet pixel coordinates: each black band is a disc with the
 // inner disc cut out (even-odd rule).
-void draw_marks(cairo_t* cr, const SheetLayout& layout) {
+void draw_marks(plugin::cairo::Canvas& canvas, const SheetLayout& layout) {
     const std::array<Point2, 4> centres = layout.mark_centres();
     const double radius = layout.mark_radius_px;
     // Pixel centres are at integers: pixel (0, 0) covers [0, 1] in Cairo's coordinates.
     const double shift = layout.margin_px + 0.5;
-    cairo_set_source_rgb(cr, 0.0, 0.0, 0.0);
-    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+    canvas.set_source_rgb(0.0, 0.0, 0.0);
+    canvas.set_even_odd_fill();
     for (std::size_t m = 0; m < centres.size(); ++m) {
         const double cx = centres[m].x + shift, cy = centres[m].y + shift;
         for (const marks::Band& band : marks::bands(m == 0)) {
-            cairo_new_path(cr);
-            cairo_arc(cr, cx, cy, band.outer * radius, 0.0, 2.0 * std::numbers::pi);
-            cairo_close_path(cr);
+            canvas.new_path();
+            canvas.arc(cx, cy, band.outer * radius, 0.0, 2.0 * std::numbers::pi);
+            canvas.close_path();
             if (band.inner > 0.0) {
-                cairo_new_sub_path(cr);
-                cairo_arc(cr, cx, cy, band.inner * radius, 0.0, 2.0 * std::numbers::pi);
-                cairo_close_path(cr);
+                canvas.new_sub_path();
+                canvas.arc(cx, cy, band.inner * radius, 0.0, 2.0 * std::numbers::pi);
+                canvas.close_path();
             }
-            cairo_fill(cr);
+            canvas.fill();
         }
     }
 }
@@ -121,22 +116,16 @@ Status save_sheet_pdf(const Image& content, const SheetLayout& layout, const std
         }
     }
 
-    // The render as an RGB24 Cairo image.
-    using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
-    SurfacePtr image(
-        cairo_image_surface_create(CAIRO_FORMAT_RGB24, content.width(), content.height()),
-        &cairo_surface_destroy);
-    if (cairo_surface_status(image.get()) != CAIRO_STATUS_SUCCESS) {
-        return io_error(path + ": cannot create the render image (Cairo)");
-    }
-    cairo_surface_flush(image.get());
-    unsigned char* bytes = cairo_image_surface_get_data(image.get());
-    const int stride = cairo_image_surface_get_stride(image.get());
+    auto cairo = plugin::cairo::canvases();
+    if (!cairo.ok()) return Status(cairo.status().code(), path + ": " + cairo.status().message());
+
+    // The render as 0x00RRGGBB pixels (Cairo's RGB24).
+    std::vector<std::uint32_t> pixels(static_cast<std::size_t>(content.width()) * content.height());
     const auto to_byte = [](float v) {
         return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
     };
     for (int y = 0; y < content.height(); ++y) {
-        auto* row = reinterpret_cast<std::uint32_t*>(bytes + static_cast<std::size_t>(y) * stride);
+        std::uint32_t* row = pixels.data() + static_cast<std::size_t>(y) * content.width();
         for (int x = 0; x < content.width(); ++x) {
             const float* px = content.pixel(x, y);
             const std::uint32_t r = to_byte(px[0]);
@@ -145,31 +134,23 @@ Status save_sheet_pdf(const Image& content, const SheetLayout& layout, const std
             row[x] = (r << 16) | (g << 8) | b;
         }
     }
-    cairo_surface_mark_dirty(image.get());
 
     // One page, the sheet centred: white paper, the render at the margin, the marks.
     std::string pdf;
     {
-        SurfacePtr surface(cairo_pdf_surface_create_for_stream(&append, &pdf, page_w, page_h),
-                           &cairo_surface_destroy);
-        cairo_t* cr = cairo_create(surface.get());
+        const std::unique_ptr<plugin::cairo::Canvas> cr = (*cairo)->new_pdf(page_w, page_h, &pdf);
         const double w = sheet_width * pt_per_px;
         const double h = sheet_height * pt_per_px;
-        cairo_translate(cr, (page_w - w) / 2.0, (page_h - h) / 2.0);
-        cairo_scale(cr, pt_per_px, pt_per_px);
-        cairo_set_source_surface(cr, image.get(), layout.margin_px, layout.margin_px);
-        cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
-        cairo_paint(cr);
-        draw_marks(cr, layout);
-        cairo_show_page(cr);
-        const cairo_status_t status = cairo_status(cr);
-        cairo_destroy(cr);
-        cairo_surface_finish(surface.get());
-        if (status != CAIRO_STATUS_SUCCESS ||
-            cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) {
-            return io_error(path + ": Cairo could not draw the PDF (" +
-                            cairo_status_to_string(status) + ")");
+        cr->translate((page_w - w) / 2.0, (page_h - h) / 2.0);
+        cr->scale(pt_per_px, pt_per_px);
+        if (!cr->paint_image(pixels.data(), content.width(), content.height(), layout.margin_px,
+                             layout.margin_px)) {
+            return io_error(path + ": cannot create the render image (Cairo)");
         }
+        draw_marks(*cr, layout);
+        const std::string error = cr->finish();
+        if (!error.empty())
+            return io_error(path + ": Cairo could not draw the PDF (" + error + ")");
     }
     return write_atomically(pdf, path);
 }

@@ -9,7 +9,6 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <system_error>
 
@@ -37,17 +36,15 @@ bool is_image_file(const fs::path& path) {
                        [&](const char* e) { return ext == e; });
 }
 
-// An 8/16-bit OpenCV frame (grey, BGR or BGRA) as a float RGB(A) image in [0, 1].
-Image from_mat(const cv::Mat& mat) {
-    const int channels = mat.channels();
-    const double scale = mat.depth() == CV_16U ? 1.0 / 65535.0 : 1.0 / 255.0;
-    cv::Mat values;
-    mat.convertTo(values, CV_MAKETYPE(CV_32F, channels), scale);
-    Image image(values.cols, values.rows, channels);
-    for (int y = 0; y < values.rows; ++y) {
-        const auto* row = values.ptr<float>(y);
+// A decoded frame (blue first) as a float RGB(A) image.
+Image from_decoded(const codec::DecodedFrame& frame) {
+    const int channels = frame.channels;
+    Image image(frame.width, frame.height, channels);
+    for (int y = 0; y < frame.height; ++y) {
+        const float* row =
+            frame.values.data() + static_cast<std::size_t>(y) * frame.width * channels;
         float* out = image.pixel(0, y);
-        for (int x = 0; x < values.cols; ++x) {
+        for (int x = 0; x < frame.width; ++x) {
             for (int c = 0; c < channels; ++c) {
                 // OpenCV stores blue first: swap to RGB.
                 const int from = channels >= 3 && c < 3 ? 2 - c : c;
@@ -213,14 +210,15 @@ Result<Image> FrameSequence::read(int index) {
             return io_error(fmt::format("{}: cannot decode", frame_name(decoder.next)));
         }
     }
-    cv::Mat mat;
-    if (!decoder.capture->retrieve(mat) || mat.empty()) {
-        return io_error(fmt::format("{}: cannot decode", frame_name(index)));
+    codec::DecodedFrame frame;
+    switch (decoder.capture->retrieve(frame)) {
+        case codec::Retrieved::Frame: break;
+        case codec::Retrieved::Nothing:
+            return io_error(fmt::format("{}: cannot decode", frame_name(index)));
+        case codec::Retrieved::UnsupportedSampleType:
+            return unsupported(fmt::format("{}: unsupported sample type", frame_name(index)));
     }
-    if (mat.depth() != CV_8U && mat.depth() != CV_16U) {
-        return unsupported(fmt::format("{}: unsupported sample type", frame_name(index)));
-    }
-    return from_mat(mat);
+    return from_decoded(frame);
 }
 
 Status write_frame(const Image& frame, const std::string& pattern, int number,
@@ -285,19 +283,19 @@ Status Mp4Writer::write(const Image& frame) {
             "{}: frame {} is {}x{} with {} channels (expected {}x{} with 1, 3 or 4)", state.path,
             state.frames, frame.width(), frame.height(), channels, state.width, state.height));
     }
-    cv::Mat bgr(state.height, state.width, CV_8UC3);
+    std::vector<std::uint8_t> bgr(static_cast<std::size_t>(state.width) * state.height * 3);
     for (int y = 0; y < state.height; ++y) {
-        auto* row = bgr.ptr<cv::Vec3b>(y);
+        std::uint8_t* row = bgr.data() + static_cast<std::size_t>(y) * state.width * 3;
         for (int x = 0; x < state.width; ++x) {
             const float* p = frame.pixel(x, y);
             for (int c = 0; c < 3; ++c) {
                 float v = channels == 1 ? p[0] : p[c];
                 v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
-                row[x][2 - c] = static_cast<unsigned char>(std::lround(v * 255.0f));
+                row[3 * x + 2 - c] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
             }
         }
     }
-    state.writer->write(bgr);
+    state.writer->write(bgr.data());
     ++state.frames;
     return Status::ok();
 }

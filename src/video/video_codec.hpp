@@ -7,21 +7,33 @@
 // touches a video. exemplar::video loads the plugin with dlopen on the first video read or write
 // instead (video_plugin.cpp), so only commands that use video files pay for the codecs.
 //
-// Both sides are compiled from this header by the same build and share one libopencv_core, so
-// cv::Mat and std::unique_ptr cross the boundary as they are; kCodecAbiVersion rejects a plugin
-// left over from a build with a different interface. The plugin is never unloaded.
+// Both sides are compiled from this header by the same build, so std::unique_ptr and
+// std::vector cross the boundary as they are; frames are plain buffers, as `exemplar` itself
+// does not link OpenCV (src/plugin/opencv_kernels.hpp). kPlugin.abi_version rejects a plugin left
+// over from a build with a different interface. The plugin is never unloaded (plugin_loader.hpp).
 
+#include <cstdint>
 #include <memory>
-#include <opencv2/core.hpp>
 #include <string>
+#include <vector>
+
+#include "plugin_loader.hpp"
 
 namespace exemplar::video::codec {
 
-/// Raise whenever the classes or `Entry` below change.
-inline constexpr int kCodecAbiVersion = 1;
-/// The plugin's file name and the C symbol it exports.
-inline constexpr const char* kPluginFileName = "libexemplar_video_mp4.so";
-inline constexpr const char* kEntrySymbol = "exemplar_video_codec_entry";
+/// The plugin; raise its abi_version whenever the classes or `Entry` below change.
+inline constexpr plugin::PluginSpec kPlugin{"libexemplar_video_mp4.so",
+                                            "exemplar_video_codec_entry", 2, "video support"};
+
+/// A decoded frame: `channels` (1, 3 or 4) interleaved floats per pixel in OpenCV's order (blue
+/// first), scaled from 8 or 16 bits to [0, 1].
+struct DecodedFrame {
+    int width = 0, height = 0, channels = 0;
+    std::vector<float> values;
+};
+
+/// What `VideoReader::retrieve` found.
+enum class Retrieved { Frame, Nothing, UnsupportedSampleType };
 
 /// A video decoder (cv::VideoCapture with the FFmpeg backend).
 class VideoReader {
@@ -32,8 +44,8 @@ public:
     virtual bool is_open() const = 0;
     /// Decodes the next frame; false at the end of the video or on a decoding error.
     virtual bool grab() = 0;
-    /// The frame decoded by the last `grab()`: 8 or 16 bits, grey, BGR or BGRA.
-    virtual bool retrieve(cv::Mat& frame) = 0;
+    /// The frame decoded by the last `grab()` (8 or 16 bits, grey, BGR or BGRA) as floats.
+    virtual Retrieved retrieve(DecodedFrame& frame) = 0;
     virtual void release() = 0;
 };
 
@@ -43,8 +55,8 @@ public:
     virtual ~VideoWriter() = default;
     /// Opens `path` for `width` x `height` colour frames at `fps`; false if the encoder is missing.
     virtual bool open(const std::string& path, double fps, int width, int height) = 0;
-    /// Appends one 8-bit BGR frame of the size given to `open`.
-    virtual void write(const cv::Mat& bgr) = 0;
+    /// Appends one frame of the size given to `open`: 3 bytes (blue, green, red) per pixel.
+    virtual void write(const std::uint8_t* bgr) = 0;
     /// Finishes the file.
     virtual void release() = 0;
 };
@@ -57,7 +69,7 @@ struct Entry {
     std::unique_ptr<VideoWriter> (*new_writer)();
 };
 
-/// The type of the function the plugin exports as `kEntrySymbol` (C linkage).
+/// The type of the function the plugin exports as `kPlugin.entry_symbol` (C linkage).
 using EntryFunction = const Entry* (*)();
 
 }  // namespace exemplar::video::codec

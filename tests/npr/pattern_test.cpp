@@ -35,7 +35,7 @@ TEST(NprPattern, ClaheFlattensTheHistogramOfALowContrastPattern) {
     for (float& v : pattern.data()) v = 0.4f + 0.2f * v;
     const PatternOptions defaults;
     const Image equalized =
-        equalize_clahe(pattern, defaults.clahe_clip_limit, defaults.clahe_tiles);
+        equalize_clahe(pattern, defaults.clahe_clip_limit, defaults.clahe_tiles).value();
     // Fraction of pixels per quarter of the range: far from flat before, close to flat after
     const auto quarters = [](const Image& image) {
         std::array<int, 4> bins{};

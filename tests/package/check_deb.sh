@@ -28,7 +28,10 @@ fi
 contents=$(dpkg-deb --contents "$deb")
 for file in ./usr/bin/exemplar ./usr/lib/libexemplar.so ./usr/include/exemplar/synth/synthesize.hpp \
   ./usr/lib/cmake/exemplar/exemplarConfig.cmake ./usr/lib/pkgconfig/exemplar.pc \
-  ./usr/lib/exemplar/libexemplar_video_mp4.so ./usr/share/man/man1/exemplar-stylize.1; do
+  ./usr/lib/exemplar/libexemplar_video_mp4.so ./usr/lib/exemplar/libexemplar_opencv.so \
+  ./usr/lib/exemplar/libexemplar_render_embree.so ./usr/lib/exemplar/libexemplar_cairo.so \
+  ./usr/lib/exemplar/libexemplar_openexr.so ./usr/lib/exemplar/libexemplar_tiff.so \
+  ./usr/share/man/man1/exemplar-stylize.1; do
   if ! grep -qF " $file" <<< "$contents"; then
     echo "check_deb: $deb has no $file" >&2
     exit 1

@@ -13,6 +13,19 @@ prefix=$work/prefix
 cmake --install "$build" --prefix "$prefix" > "$work/install.log"
 test -f "$prefix/include/exemplar/synth/synthesize.hpp"
 test -x "$prefix/bin/exemplar"
+# The installed command finds its plugins in lib/exemplar/: OpenCV (flow), Embree (render),
+# OpenEXR (the .exr), libtiff and Cairo (the sketch preview).
+(
+  unset EXEMPLAR_PLUGIN_DIR
+  "$prefix/bin/exemplar" --version > /dev/null
+  "$prefix/bin/exemplar" flow --from "$source/tests/data/flow/synthetic-img0.png" \
+    --to "$source/tests/data/flow/synthetic-img1.png" -o "$work/flow.flo" -q
+  "$prefix/bin/exemplar" render --scene sphere-on-table --width 16 --height 12 --spp 1 \
+    -o "$work/sphere.exr" -q
+  "$prefix/bin/exemplar" beautify "$source/examples/sketch/house.svg" -o "$work/house.svg" \
+    --preview "$work/house.png" -q
+  test -s "$work/flow.flo" && test -s "$work/sphere.exr" && test -s "$work/house.png"
+)
 # A manual page per verb, generated from the parser (apps/cli/man_main.cpp); man renders the
 # stylize page with its flags as typed.
 for page in exemplar exemplar-stylize exemplar-stylit exemplar-stylit-sheet exemplar-animate; do

@@ -2,6 +2,9 @@
 // that links OpenCV's videoio, loaded on the first video use only; found by the `exemplar`
 // executable beside it in the build tree and in lib/exemplar/ once installed; when it is missing,
 // video files fail with one line naming the file and image sequences work as before.
+// The other plugins (src/plugin/plugin_loader.hpp: OpenCV, Embree, Cairo) go through the same
+// loader: `exemplar` links none of their libraries, plain verbs run without any plugin, and a
+// command that needs a missing one fails with one line.
 //
 // The command-line cases run the real `exemplar` executable in a child process: the plugin is
 // loaded once per process, so a missing plugin can only be seen in a fresh one.
@@ -20,7 +23,10 @@
 #include <vector>
 
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/render/render.hpp"
+#include "exemplar/render/scene.hpp"
 #include "exemplar/video/frame_sequence.hpp"
+#include "exemplar/video/optical_flow.hpp"
 
 namespace exemplar::video {
 namespace {
@@ -29,6 +35,9 @@ namespace fs = std::filesystem;
 
 const std::string kExemplar = EXEMPLAR_BINARY;
 const std::string kPlugin = EXEMPLAR_PLUGIN;
+// The other plugins, built beside the codec's.
+const std::vector<std::string> kOtherPlugins = {
+    "libexemplar_opencv.so", "libexemplar_render_embree.so", "libexemplar_cairo.so"};
 
 std::string file_text(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -181,12 +190,16 @@ TEST_F(VideoPlugin, OnlyThePluginLinksVideoio) {
 }
 
 TEST_F(VideoPlugin, MissingPluginIsAOneLineErrorNamingTheVideo) {
-    fs::create_directories(path("no_plugins"));
-    const std::string env = "env EXEMPLAR_PLUGIN_DIR=" + quoted(path("no_plugins"));
+    // Every plugin but the codec (animate estimates flow with the OpenCV plugin).
+    fs::create_directories(path("no_codec"));
+    for (const std::string& name : kOtherPlugins) {
+        fs::create_symlink(fs::path(kPlugin).parent_path() / name, path("no_codec/" + name));
+    }
+    const std::string env = "env EXEMPLAR_PLUGIN_DIR=" + quoted(path("no_codec"));
     const std::string reason =
         "video support is not available (libexemplar_video_mp4.so: "
         "not found in " +
-        path("no_plugins") + " (set by EXEMPLAR_PLUGIN_DIR))";
+        path("no_codec") + " (set by EXEMPLAR_PLUGIN_DIR))";
 
     // Video frames: the error names the video, whatever its contents.
     std::ofstream(path("clip.mp4")) << "any bytes: the plugin is needed to look at them";
@@ -225,12 +238,105 @@ TEST_F(VideoPlugin, InstalledExecutableFindsThePluginInLibExemplar) {
     const fs::path installed = dir_ / "prefix" / "bin" / "exemplar";
     ASSERT_TRUE(fs::exists(installed)) << install.out;
     write_mp4("clip.mp4");
-    const ProcessRun r = run("env -u EXEMPLAR_PLUGIN_DIR", installed.string(),
-                             {"animate", job(path("clip.mp4"), path("out/result.mp4")), "-q"});
+    // animate estimates flow (the OpenCV plugin) and writes the MP4 (the codec plugin).
+    ProcessRun r = run("env -u EXEMPLAR_PLUGIN_DIR", installed.string(),
+                       {"animate", job(path("clip.mp4"), path("out/result.mp4")), "-q"});
     ASSERT_EQ(r.code, 0) << r.err;
     auto result = FrameSequence::from_video(path("out/result.mp4"));
     ASSERT_TRUE(result.ok()) << result.status().message();
     EXPECT_EQ(result->size(), 3);
+    // The renderer (the Embree plugin).
+    r = run("env -u EXEMPLAR_PLUGIN_DIR", installed.string(),
+            {"render", "--scene", "sphere-on-table", "--width", "16", "--height", "12", "--spp",
+             "1", "-o", path("out/sphere.exr"), "-q"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("out/sphere.exr")));
+}
+
+// The same fixture for the other plugins.
+using Plugins = VideoPlugin;
+
+TEST_F(Plugins, TheCommandLinksNoneOfTheirLibraries) {
+    const auto needed = [&](const std::string& binary) {
+        const ProcessRun r = run("env", "readelf", {"-d", binary});
+        EXPECT_EQ(r.code, 0) << r.err;
+        return r.out;
+    };
+    const std::string command = needed(kExemplar);
+    for (const char* library : {"libopencv_", "libembree", "libcairo", "libOpenEXR", "libtiff"}) {
+        EXPECT_EQ(command.find(library), std::string::npos) << library;
+    }
+    const fs::path folder = fs::path(kPlugin).parent_path();
+    EXPECT_NE(needed((folder / "libexemplar_opencv.so").string()).find("libopencv_video"),
+              std::string::npos);
+    EXPECT_NE(needed((folder / "libexemplar_render_embree.so").string()).find("libembree3"),
+              std::string::npos);
+    EXPECT_NE(needed((folder / "libexemplar_cairo.so").string()).find("libcairo"),
+              std::string::npos);
+    EXPECT_NE(needed((folder / "libexemplar_openexr.so").string()).find("libOpenEXR"),
+              std::string::npos);
+    EXPECT_NE(needed((folder / "libexemplar_tiff.so").string()).find("libtiff"), std::string::npos);
+}
+
+// ctest runs every test in a fresh process, so nothing was loaded before.
+TEST_F(Plugins, LoadedOnFirstUseOnly) {
+    ASSERT_FALSE(mapped("libexemplar_opencv")) << "loaded before any flow was estimated";
+    ASSERT_FALSE(mapped("libexemplar_render_embree")) << "loaded before any render";
+    auto flow = estimate_flow(frame(0), frame(1), {});
+    ASSERT_TRUE(flow.ok()) << flow.status().message();
+    EXPECT_TRUE(mapped("libexemplar_opencv"));
+    EXPECT_TRUE(mapped("libopencv_video"));
+    EXPECT_FALSE(mapped("libexemplar_render_embree")) << "flow needs no renderer";
+
+    auto scene = render::builtin_scene("sphere-on-table");
+    ASSERT_TRUE(scene.ok()) << scene.status().message();
+    render::RenderOptions options;
+    options.width = 16;
+    options.height = 12;
+    options.samples_per_pixel = 1;
+    auto buffers = render::render(*scene, options);
+    ASSERT_TRUE(buffers.ok()) << buffers.status().message();
+    EXPECT_TRUE(mapped("libexemplar_render_embree"));
+    EXPECT_TRUE(mapped("libembree3"));
+
+    ASSERT_FALSE(mapped("libexemplar_openexr")) << "loaded before any EXR file";
+    ASSERT_FALSE(mapped("libexemplar_tiff")) << "loaded before any TIFF file";
+    ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.png")).is_ok());
+    EXPECT_FALSE(mapped("libexemplar_openexr")) << "PNG files need no OpenEXR";
+    ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.exr")).is_ok());
+    EXPECT_TRUE(mapped("libexemplar_openexr"));
+    EXPECT_TRUE(mapped("libOpenEXR"));
+    EXPECT_FALSE(mapped("libexemplar_tiff")) << "EXR files need no libtiff";
+    ASSERT_TRUE(save_image(buffers->fullgi, path("fullgi.tif")).is_ok());
+    EXPECT_TRUE(mapped("libexemplar_tiff"));
+}
+
+TEST_F(Plugins, PlainVerbsNeedNoneAndOthersFailWithOneLine) {
+    fs::create_directories(path("none"));
+    const std::string env = "env EXEMPLAR_PLUGIN_DIR=" + quoted(path("none"));
+    const auto reason = [&](const std::string& file, const std::string& what) {
+        return what + " is not available (" + file + ": not found in " + path("none") +
+               " (set by EXEMPLAR_PLUGIN_DIR))";
+    };
+    write_pngs();
+    ProcessRun r = run(env, kExemplar,
+                       {"stylize", "--style", path("frames/00.png"), "--size", "16x12", "-o",
+                        path("out/stylized.png"), "-q"});
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(path("out/stylized.png")));
+
+    r = run(env, kExemplar,
+            {"flow", "--from", path("frames/00.png"), "--to", path("frames/01.png"), "-o",
+             path("out/f.flo"), "-q"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: optical flow: " + reason("libexemplar_opencv.so", "OpenCV") + "\n");
+
+    r = run(env, kExemplar,
+            {"render", "--scene", "sphere-on-table", "--width", "16", "--height", "12", "--spp",
+             "1", "-o", path("out/sphere.exr"), "-q"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + reason("libexemplar_render_embree.so", "rendering") + "\n");
+    EXPECT_FALSE(fs::exists(path("out/sphere.exr")));
 }
 
 }  // namespace

@@ -67,7 +67,8 @@ Result<Pattern> prepare_pattern(const Image& pattern, const PatternOptions& opti
 /// The grey version of `image` used by `prepare_pattern` (1 channel).
 Image to_grey(const Image& image);
 
-/// CLAHE of a grey image in [0, 1] (8-bit quantized for OpenCV, result in [0, 1]).
-Image equalize_clahe(const Image& grey, float clip_limit, int tiles);
+/// CLAHE of a grey image in [0, 1] (8-bit quantized for OpenCV, result in [0, 1]). Unsupported
+/// if OpenCV's plugin (libexemplar_opencv.so) cannot be loaded.
+Result<Image> equalize_clahe(const Image& grey, float clip_limit, int tiles);
 
 }  // namespace exemplar::npr

@@ -1,6 +1,7 @@
 // OpenEXR through the OpenEXR library: any number of named channels, half or float (uint
 // channels are read as float), scanline or tiled, the data window of the first part. Written
-// files are scanline, ZIP-compressed.
+// files are scanline, ZIP-compressed. Built as the plugin libexemplar_openexr.so
+// (codec_plugin.hpp says why); it links no exemplar library.
 
 #include <Imath/half.h>
 #include <ImfChannelList.h>
@@ -18,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "codecs.hpp"
+#include "codec_plugin.hpp"
 
-namespace exemplar::io_detail {
+namespace exemplar::io_detail::codec_plugin {
 
 namespace {
 
@@ -97,15 +98,14 @@ Status check_flat(const Imf::Header& header, const std::string& file) {
     return Status::ok();
 }
 
-}  // namespace
-
-Result<std::vector<std::string>> read_exr_channel_names(const std::string& file) {
+Result<std::vector<std::string>> channel_names(const std::string& file) {
     Imf::InputFile in(file.c_str());
     EXEMPLAR_RETURN_IF_ERROR(check_flat(in.header(), file));
     return ordered_names(in.header());
 }
 
-Result<Image> read_exr(const std::string& file, const std::vector<std::string>& channels) {
+Status read(const std::string& file, const std::vector<std::string>& channels, Allocate allocate,
+            void* context, std::vector<std::string>* names_read) {
     Imf::InputFile in(file.c_str());
     const Imf::Header& header = in.header();
     EXEMPLAR_RETURN_IF_ERROR(check_flat(header, file));
@@ -117,46 +117,56 @@ Result<Image> read_exr(const std::string& file, const std::vector<std::string>& 
         return io_error(fmt::format("{}: corrupt: image is {}x{} with {} channels", file, width,
                                     height, names.size()));
     }
-    Image image(width, height, static_cast<int>(names.size()));
+    float* values = allocate(context, width, height, static_cast<int>(names.size()));
     const std::size_t x_stride = sizeof(float) * names.size();
     const std::size_t y_stride = x_stride * static_cast<std::size_t>(width);
     Imf::FrameBuffer frame;
     for (std::size_t c = 0; c < names.size(); ++c) {
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.data().data() + c, window,
-                                                x_stride, y_stride));
+        frame.insert(names[c],
+                     Imf::Slice::Make(Imf::FLOAT, values + c, window, x_stride, y_stride));
     }
     in.setFrameBuffer(frame);
     in.readPixels(window.min.y, window.max.y);
-    image.set_channel_names(names);
-    return image;
-}
-
-Status write_exr(const Image& image, const std::string& file, const std::string&,
-                 PixelFormat format) {
-    Imf::Header header(image.width(), image.height());
-    header.compression() = Imf::ZIP_COMPRESSION;
-    const bool half = format != PixelFormat::Float;
-    // OpenEXR writes a slice only to a channel of its own type, so half channels are converted
-    // here (to the nearest half, as Imath rounds).
-    std::vector<Imath::half> halves;
-    if (half) halves.assign(image.data().begin(), image.data().end());
-    const std::size_t sample = half ? sizeof(Imath::half) : sizeof(float);
-    const std::size_t x_stride = sample * static_cast<std::size_t>(image.channels());
-    const std::size_t y_stride = x_stride * static_cast<std::size_t>(image.width());
-    char* base = half ? reinterpret_cast<char*>(halves.data())
-                      : const_cast<char*>(reinterpret_cast<const char*>(image.data().data()));
-    Imf::FrameBuffer frame;
-    for (int c = 0; c < image.channels(); ++c) {
-        const std::string& name = image.channel_names()[static_cast<std::size_t>(c)];
-        header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
-        frame.insert(name,
-                     Imf::Slice(half ? Imf::HALF : Imf::FLOAT,
-                                base + sample * static_cast<std::size_t>(c), x_stride, y_stride));
-    }
-    Imf::OutputFile out(file.c_str(), header);
-    out.setFrameBuffer(frame);
-    out.writePixels(image.height());
+    *names_read = names;
     return Status::ok();
 }
 
-}  // namespace exemplar::io_detail
+Status write(const float* values, int width, int height, const std::vector<std::string>& names,
+             const std::string& file, const std::string&, PixelFormat format) {
+    const bool half = format != PixelFormat::Float;
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const std::size_t count =
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * names.size();
+    // OpenEXR writes a slice only to a channel of its own type, so half channels are converted
+    // here (to the nearest half, as Imath rounds).
+    std::vector<Imath::half> halves;
+    if (half) halves.assign(values, values + count);
+    const std::size_t sample = half ? sizeof(Imath::half) : sizeof(float);
+    const std::size_t x_stride = sample * names.size();
+    const std::size_t y_stride = x_stride * static_cast<std::size_t>(width);
+    char* base = half ? reinterpret_cast<char*>(halves.data())
+                      : const_cast<char*>(reinterpret_cast<const char*>(values));
+    Imf::FrameBuffer frame;
+    for (std::size_t c = 0; c < names.size(); ++c) {
+        header.channels().insert(names[c], Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
+        frame.insert(names[c], Imf::Slice(half ? Imf::HALF : Imf::FLOAT, base + sample * c,
+                                          x_stride, y_stride));
+    }
+    Imf::OutputFile out(file.c_str(), header);
+    out.setFrameBuffer(frame);
+    out.writePixels(height);
+    return Status::ok();
+}
+
+constexpr Entry kEntry{kOpenExr.abi_version, &channel_names, &read, &write};
+
+}  // namespace
+}  // namespace exemplar::io_detail::codec_plugin
+
+// The plugin's one exported symbol; also linked into libexemplar.so and the Python module,
+// where codec_plugins.cpp calls it directly.
+extern "C" __attribute__((visibility("default"))) const exemplar::io_detail::codec_plugin::Entry*
+exemplar_openexr_entry() {
+    return &exemplar::io_detail::codec_plugin::kEntry;
+}

@@ -2,6 +2,8 @@
 // number of extra channels, contiguous or planar, strips or tiles. Other photometric
 // interpretations (palette, YCbCr, CMYK, bilevel) go through libtiff's RGBA reader (8-bit).
 // Written files are contiguous strips with Deflate compression and the matching predictor.
+// Built as the plugin libexemplar_tiff.so (codec_plugin.hpp says why); it links no exemplar
+// library.
 
 #include <Imath/half.h>
 #include <fmt/format.h>
@@ -13,9 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "codec_plugin.hpp"
 #include "codecs.hpp"
 
-namespace exemplar::io_detail {
+namespace exemplar::io_detail::codec_plugin {
 
 namespace {
 
@@ -97,7 +100,8 @@ std::vector<std::string> channel_names(int channels, int colour, bool alpha) {
     return names;
 }
 
-Result<Image> read_rgba(TiffFile& f, const std::string& file, int width, int height) {
+Status read_rgba(TiffFile& f, const std::string& file, int width, int height, Allocate allocate,
+                 void* context, std::vector<std::string>* names) {
     std::vector<std::uint32_t> raster(static_cast<std::size_t>(width) * height);
     if (!TIFFReadRGBAImageOriented(f.tiff, static_cast<std::uint32_t>(width),
                                    static_cast<std::uint32_t>(height), raster.data(),
@@ -109,20 +113,20 @@ Result<Image> read_rgba(TiffFile& f, const std::string& file, int width, int hei
     std::uint16_t* extra = nullptr;
     TIFFGetField(f.tiff, TIFFTAG_EXTRASAMPLES, &extra_count, &extra);
     const int channels = extra_count > 0 ? 4 : 3;
-    Image image(width, height, channels);
+    float* image = allocate(context, width, height, channels);
     for (std::size_t i = 0; i < raster.size(); ++i) {
         const std::uint32_t p = raster[i];
         const std::uint32_t values[4] = {TIFFGetR(p), TIFFGetG(p), TIFFGetB(p), TIFFGetA(p)};
         for (int c = 0; c < channels; ++c)
-            image.data()[i * channels + c] = static_cast<float>(values[c]) / 255.0f;
+            image[i * channels + c] = static_cast<float>(values[c]) / 255.0f;
     }
-    image.set_channel_names(channel_names(channels, 3, channels == 4));
-    return image;
+    *names = channel_names(channels, 3, channels == 4);
+    return Status::ok();
 }
 
-}  // namespace
-
-Result<Image> read_tiff(const std::string& file) {
+// Every channel (TIFF names none: `channels` is ignored, image_io.cpp selects afterwards).
+Status read(const std::string& file, const std::vector<std::string>&, Allocate allocate,
+            void* context, std::vector<std::string>* names) {
     TiffFile f;
     if (!f.open(file, "r")) {
         return io_error(
@@ -146,15 +150,15 @@ Result<Image> read_tiff(const std::string& file) {
                         channels >= colour &&
                         ((format == SAMPLEFORMAT_UINT && (bits == 8 || bits == 16 || bits == 32)) ||
                          (format == SAMPLEFORMAT_IEEEFP && (bits == 16 || bits == 32)));
-    if (!direct) return read_rgba(f, file, width, height);
+    if (!direct) return read_rgba(f, file, width, height, allocate, context, names);
 
     std::uint16_t extra_count = 0;
     std::uint16_t* extra = nullptr;
     TIFFGetField(f.tiff, TIFFTAG_EXTRASAMPLES, &extra_count, &extra);
     const bool alpha = extra_count > 0 &&
                        (extra[0] == EXTRASAMPLE_ASSOCALPHA || extra[0] == EXTRASAMPLE_UNASSALPHA);
-    Image image(width, height, channels);
-    image.set_channel_names(channel_names(channels, colour, alpha || channels == colour + 1));
+    float* image = allocate(context, width, height, channels);
+    *names = channel_names(channels, colour, alpha || channels == colour + 1);
     const bool tiled = TIFFIsTiled(f.tiff) != 0;
     const tmsize_t chunk_bytes = tiled ? TIFFTileSize(f.tiff) : TIFFStripSize(f.tiff);
     const std::uint32_t chunk_w = tiled ? field<std::uint32_t>(f.tiff, TIFFTAG_TILEWIDTH, 0)
@@ -191,7 +195,8 @@ Result<Image> read_tiff(const std::string& file) {
                         const std::size_t in =
                             (static_cast<std::size_t>(r) * chunk_w + col) * per_pixel;
                         float* out =
-                            image.pixel(static_cast<int>(x0 + col), static_cast<int>(y0 + r));
+                            image + ((static_cast<std::size_t>(y0 + r) * width + x0 + col) *
+                                     static_cast<std::size_t>(channels));
                         for (int s = 0; s < per_pixel; ++s) {
                             out[plane + s] = sample(buffer.data(), in + s, bits, format);
                         }
@@ -201,15 +206,15 @@ Result<Image> read_tiff(const std::string& file) {
         }
     }
     if (photometric == PHOTOMETRIC_MINISWHITE && format == SAMPLEFORMAT_UINT) {
-        for (std::size_t i = 0; i < image.pixel_count(); ++i)
-            image.data()[i * channels] = 1.0f - image.data()[i * channels];
+        const std::size_t pixels = static_cast<std::size_t>(width) * height;
+        for (std::size_t i = 0; i < pixels; ++i) image[i * channels] = 1.0f - image[i * channels];
     }
-    return image;
+    return Status::ok();
 }
 
-Status write_tiff(const Image& image, const std::string& file, const std::string& shown,
-                  PixelFormat format) {
-    const int channels = image.channels();
+Status write(const float* values, int width, int height, const std::vector<std::string>& names,
+             const std::string& file, const std::string& shown, PixelFormat format) {
+    const int channels = static_cast<int>(names.size());
     const int bits = format == PixelFormat::UInt8 ? 8 : format == PixelFormat::UInt16 ? 16 : 32;
     const bool floats = format == PixelFormat::Float;
     TiffFile f;
@@ -217,8 +222,8 @@ Status write_tiff(const Image& image, const std::string& file, const std::string
         return io_error(fmt::format("{}: cannot write: {}", shown, f.problem("cannot create")));
     }
     const int colour = channels >= 3 ? 3 : 1;
-    TIFFSetField(f.tiff, TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(image.width()));
-    TIFFSetField(f.tiff, TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(image.height()));
+    TIFFSetField(f.tiff, TIFFTAG_IMAGEWIDTH, static_cast<std::uint32_t>(width));
+    TIFFSetField(f.tiff, TIFFTAG_IMAGELENGTH, static_cast<std::uint32_t>(height));
     TIFFSetField(f.tiff, TIFFTAG_SAMPLESPERPIXEL, static_cast<std::uint16_t>(channels));
     TIFFSetField(f.tiff, TIFFTAG_BITSPERSAMPLE, static_cast<std::uint16_t>(bits));
     TIFFSetField(f.tiff, TIFFTAG_SAMPLEFORMAT,
@@ -237,17 +242,16 @@ Status write_tiff(const Image& image, const std::string& file, const std::string
         // The channel named "A" right after the colour channels is (unassociated) alpha.
         std::vector<std::uint16_t> extra(static_cast<std::size_t>(channels - colour),
                                          EXTRASAMPLE_UNSPECIFIED);
-        if (image.channel_names()[static_cast<std::size_t>(colour)] == "A")
-            extra[0] = EXTRASAMPLE_UNASSALPHA;
+        if (names[static_cast<std::size_t>(colour)] == "A") extra[0] = EXTRASAMPLE_UNASSALPHA;
         TIFFSetField(f.tiff, TIFFTAG_EXTRASAMPLES, static_cast<std::uint16_t>(extra.size()),
                      extra.data());
     }
     TIFFSetField(f.tiff, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(f.tiff, 0));
 
-    const std::size_t row_samples = static_cast<std::size_t>(image.width()) * channels;
+    const std::size_t row_samples = static_cast<std::size_t>(width) * channels;
     std::vector<unsigned char> row(row_samples * (bits / 8));
-    for (int y = 0; y < image.height(); ++y) {
-        const float* in = image.pixel(0, y);
+    for (int y = 0; y < height; ++y) {
+        const float* in = values + static_cast<std::size_t>(y) * row_samples;
         for (std::size_t i = 0; i < row_samples; ++i) {
             if (floats) {
                 std::memcpy(row.data() + 4 * i, in + i, 4);
@@ -272,4 +276,14 @@ Status write_tiff(const Image& image, const std::string& file, const std::string
     return Status::ok();
 }
 
-}  // namespace exemplar::io_detail
+constexpr Entry kEntry{kTiff.abi_version, nullptr, &read, &write};
+
+}  // namespace
+}  // namespace exemplar::io_detail::codec_plugin
+
+// The plugin's one exported symbol; also linked into libexemplar.so and the Python module,
+// where codec_plugins.cpp calls it directly.
+extern "C" __attribute__((visibility("default"))) const exemplar::io_detail::codec_plugin::Entry*
+exemplar_tiff_entry() {
+    return &exemplar::io_detail::codec_plugin::kEntry;
+}
