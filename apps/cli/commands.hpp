@@ -200,6 +200,7 @@ private:
     CLI::App* app_ = nullptr;
     std::string source_, source_mask_, source_directions_, strokes_, output_, canvas_;
     std::string save_directions_;
+    std::string usage_ = "none";
     int width_ = 0;
     int height_ = 0;
     paint::PaintOptions options_;

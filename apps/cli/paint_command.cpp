@@ -44,6 +44,13 @@ PaintCommand::PaintCommand(CLI::App& parent) {
                      "Weight of alpha against each colour channel (0..100); default 3");
     app_->add_option("--vote-coherence", options_.vote_coherence,
                      "Coherence range sigma_c^2 of the vote in px^2 (0 = off, ..100); default 2");
+    app_->add_option("--vote-histogram", options_.vote_histogram,
+                     "Colour-histogram weight of the vote: rarer exemplar colours are not "
+                     "averaged away (0 = off, ..100); default 1");
+    app_->add_option("--usage", usage_,
+                     "Patch usage: none (the paper's EM; default) or uniform (every exemplar "
+                     "patch about equally often: keeps sparse flecks; error-budget and occurrence "
+                     "as in stylize)");
     app_->add_option("--patch-size", options_.patch_size,
                      "Patch width in px (odd, 3..15); default 5");
     app_->add_option("--seed", options_.seed, "Random seed; default 1");
@@ -55,7 +62,11 @@ PaintCommand::PaintCommand(CLI::App& parent) {
 
 Status PaintCommand::run(const Streams& streams) const {
     // Checks that need no file.
-    if (Status s = paint::validate(options_); !s.is_ok())
+    paint::PaintOptions options = options_;
+    auto usage = parse_usage_strategy(usage_);
+    if (!usage.ok()) return invalid_argument("--" + usage.status().message());
+    options.usage = usage.value();
+    if (Status s = paint::validate(options); !s.is_ok())
         return invalid_argument("--" + s.message());
     if (threads_ < 0) {
         return invalid_argument("--threads: " + std::to_string(threads_) +
@@ -117,7 +128,7 @@ Status PaintCommand::run(const Streams& streams) const {
         auto changed = canvas.add_stroke(stroke);
         if (!changed.ok()) return changed.status();
     }
-    auto result = paint::paint(source, canvas, options_, RunContext(threads_));
+    auto result = paint::paint(source, canvas, options, RunContext(threads_));
     if (!result.ok()) return result.status();
     Image out = background.empty() ? std::move(result->image)
                                    : paint::composite_over(result->image, background);

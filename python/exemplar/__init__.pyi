@@ -96,6 +96,7 @@ def stylize(
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
     vote_coherence: float = 0.0,
+    vote_histogram: float = 0.0,
     style_weight: float = 1.0,
     falloff_sigma: float = 0.0,
     guide_pca: float = 0.0,
@@ -192,6 +193,11 @@ def stylize(
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
           coherent pieces of the exemplar outvote stray patches, but also thin strokes made
           of small pieces. 0 = off. Range 0.0..100.0 px^2.
+      vote_histogram (float, default 0.0)
+          Vote: each candidate value weighs 1 / (1 + k * excess), the excess being how much
+          more of its value (per channel, 32 bins) the current target holds than the
+          exemplar (Kopf et al. 2007; Brushables' w_h); rare exemplar colours are then not
+          averaged away. 0 = off. Range 0.0..100.0.
       style_weight (float, default 1.0)
           Weight of the style term (B' vs A') relative to the guides. Range 0.0..1000000.0.
       falloff_sigma (float, default 0.0)
@@ -296,6 +302,7 @@ def stylit(
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
     vote_coherence: float = 0.0,
+    vote_histogram: float = 0.0,
     style_weight: float = 1.0,
     falloff_sigma: float = 0.0,
     guide_pca: float = 0.0,
@@ -378,6 +385,11 @@ def stylit(
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
           coherent pieces of the exemplar outvote stray patches, but also thin strokes made
           of small pieces. 0 = off. Range 0.0..100.0 px^2.
+      vote_histogram (float, default 0.0)
+          Vote: each candidate value weighs 1 / (1 + k * excess), the excess being how much
+          more of its value (per channel, 32 bins) the current target holds than the
+          exemplar (Kopf et al. 2007; Brushables' w_h); rare exemplar colours are then not
+          averaged away. 0 = off. Range 0.0..100.0.
       style_weight (float, default 1.0)
           Weight of the style term (B' vs A') relative to the guides. Range 0.0..1000000.0.
       falloff_sigma (float, default 0.0)
@@ -508,6 +520,7 @@ def animate(
     final_pass_iterations: int = 1,
     final_vote_size: int = 0,
     vote_coherence: float = 0.0,
+    vote_histogram: float = 0.0,
     style_weight: float = 1.0,
     falloff_sigma: float = 0.0,
     guide_pca: float = 0.0,
@@ -616,6 +629,11 @@ def animate(
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
           coherent pieces of the exemplar outvote stray patches, but also thin strokes made
           of small pieces. 0 = off. Range 0.0..100.0 px^2.
+      vote_histogram (float, default 0.0)
+          Vote: each candidate value weighs 1 / (1 + k * excess), the excess being how much
+          more of its value (per channel, 32 bins) the current target holds than the
+          exemplar (Kopf et al. 2007; Brushables' w_h); rare exemplar colours are then not
+          averaged away. 0 = off. Range 0.0..100.0.
       style_weight (float, default 1.0)
           Weight of the style term (B' vs A') relative to the guides. Range 0.0..1000000.0.
       falloff_sigma (float, default 0.0)
@@ -1039,6 +1057,8 @@ def paint(
     shape_bins: int = 8,
     alpha_weight: float = 3.0,
     vote_coherence: float = 2.0,
+    vote_histogram: float = 1.0,
+    usage: str = 'none',
     patch_size: int = 5,
     seed: int = 1,
     threads: int = 0,
@@ -1079,6 +1099,12 @@ def paint(
           Weight of alpha against each colour channel (0..100).
       vote_coherence (float, default 2.0)
           Coherence range sigma_c^2 of the vote in px^2 (0 = off, ..100).
+      vote_histogram (float, default 1.0)
+          Colour-histogram weight of the vote: rarer exemplar colours are not averaged away
+          (0 = off, ..100).
+      usage (str, default 'none')
+          Patch usage: 'none' (the paper's EM) or 'uniform' (keeps sparse flecks; 'error-
+          budget', 'occurrence' as in stylize).
       patch_size (int, default 5)
           Patch width in px (odd, 3..15).
       seed (int, default 1)

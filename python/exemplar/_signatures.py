@@ -411,6 +411,10 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
                   "(0..100).", 3.0),
             Param("vote_coherence", "float", "Coherence range sigma_c^2 of the vote in px^2 "
                   "(0 = off, ..100).", 2.0),
+            Param("vote_histogram", "float", "Colour-histogram weight of the vote: rarer "
+                  "exemplar colours are not averaged away (0 = off, ..100).", 1.0),
+            Param("usage", "str", "Patch usage: 'none' (the paper's EM) or 'uniform' (keeps "
+                  "sparse flecks; 'error-budget', 'occurrence' as in stylize).", "none"),
             Param("patch_size", "int", "Patch width in px (odd, 3..15).", 5),
             Param("seed", "int", "Random seed.", 1),
             *_RUN,

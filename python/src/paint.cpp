@@ -107,6 +107,10 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
     set_number(args, "shape_bins", options.shape_bins);
     set_number(args, "alpha_weight", options.alpha_weight);
     set_number(args, "vote_coherence", options.vote_coherence);
+    set_number(args, "vote_histogram", options.vote_histogram);
+    if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
+        options.usage = take(parse_usage_strategy(text(usage, "usage")));
+    }
     set_number(args, "patch_size", options.patch_size);
     if (const py::object seed = pop(args, "seed"); !seed.is_none()) {
         const int value = integer(seed, "seed");

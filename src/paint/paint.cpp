@@ -194,7 +194,8 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     so.patch_size = options.patch_size;
     so.seed = options.seed;
     so.vote_coherence = options.vote_coherence;
-    so.usage = UsageStrategy::None;  // Wexler et al.'s EM, as in the paper
+    so.vote_histogram = options.vote_histogram;
+    so.usage = options.usage;  // default None: Wexler et al.'s EM, as in the paper
     auto synthesized = synthesize(std::move(in), so, context);
     if (!synthesized.ok()) return synthesized.status();
 
@@ -232,6 +233,10 @@ Status validate(const PaintOptions& o) {
     if (!(o.vote_coherence >= 0.0f && o.vote_coherence <= 100.0f)) {
         return invalid_argument("vote-coherence: " + std::to_string(o.vote_coherence) +
                                 " is invalid (must be 0..100 px^2)");
+    }
+    if (!(o.vote_histogram >= 0.0f && o.vote_histogram <= 100.0f)) {
+        return invalid_argument("vote-histogram: " + std::to_string(o.vote_histogram) +
+                                " is invalid (must be 0..100)");
     }
     if (o.patch_size < 3 || o.patch_size > 15 || o.patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(o.patch_size) +

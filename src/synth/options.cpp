@@ -106,7 +106,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 22> kSpecs{{
+const std::array<OptionSpec, 23> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -146,6 +146,11 @@ const std::array<OptionSpec, 22> kSpecs{{
      "(a Gaussian of their discrepancy with this variance; Brushables: 2); coherent pieces of "
      "the exemplar outvote stray patches, but also thin strokes made of small pieces. 0 = off.",
      "px^2", 0, 100, &O::vote_coherence},
+    {"vote-histogram",
+     "Vote: each candidate value weighs 1 / (1 + k * excess), the excess being how much more of "
+     "its value (per channel, 32 bins) the current target holds than the exemplar (Kopf et al. "
+     "2007; Brushables' w_h); rare exemplar colours are then not averaged away. 0 = off.",
+     "", 0, 100, &O::vote_histogram},
     {"style-weight", "Weight of the style term (B' vs A') relative to the guides.", "", 0, 1e6,
      &O::style_weight},
     {"falloff-sigma", "Gaussian fall-off of pixel weights inside a patch; 0 = all pixels equal.",

@@ -229,7 +229,7 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
                         (options.patch_size * options.patch_size);
-    std::vector<float> weights;
+    std::vector<float> weights, histogram;
     for (int it = 0; it < iterations; ++it) {
         if (tracker.context.cancelled()) {
             tracker.cancelled = true;
@@ -247,6 +247,12 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
         if (end_run && it + 1 == iterations) vp.footprint = last_vote_size(options, L.patch_size);
+        if (options.vote_histogram > 0.0f) {
+            // Against the histogram of the target as it stands before this vote.
+            histogram = synth::histogram_weights(L.source_style, current, L.target_active.data(),
+                                                 options.vote_histogram, threads);
+            vp.source_weights = histogram;
+        }
         synth::vote(nnf, L.source_style, vp, current, threads);
         set_target_style(L, current);
         tracker.step(L.index, it, iterations, work);

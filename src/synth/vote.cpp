@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -62,6 +64,59 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
     return weights;
 }
 
+std::vector<float> histogram_weights(const Image& source, const Image& target,
+                                     const std::uint8_t* target_pixels, float strength,
+                                     int threads) {
+    EXEMPLAR_CHECK_EQ(source.channels(), target.channels());
+    const int C = source.channels();
+    const std::size_t sn = source.pixel_count(), tn = target.pixel_count();
+    std::vector<float> lo(static_cast<std::size_t>(C)), scale(static_cast<std::size_t>(C));
+    for (int c = 0; c < C; ++c) {
+        float mn = std::numeric_limits<float>::max(), mx = std::numeric_limits<float>::lowest();
+        for (std::size_t i = 0; i < sn; ++i) {
+            mn = std::min(mn, source.data()[i * C + c]);
+            mx = std::max(mx, source.data()[i * C + c]);
+        }
+        lo[c] = mn;
+        scale[c] = mx > mn ? kHistogramBins / (mx - mn) : 0.0f;
+    }
+    auto bin = [&](float v, int c) {
+        return std::clamp(static_cast<int>((v - lo[c]) * scale[c]), 0, kHistogramBins - 1);
+    };
+    // Counts are integers, so the histograms do not depend on the order of summation.
+    std::vector<double> excess(static_cast<std::size_t>(C) * kHistogramBins, 0.0);
+    std::vector<std::int64_t> source_count(excess.size(), 0), target_count(excess.size(), 0);
+    std::int64_t target_total = 0;
+    for (std::size_t i = 0; i < sn; ++i) {
+        for (int c = 0; c < C; ++c)
+            ++source_count[c * kHistogramBins + bin(source.data()[i * C + c], c)];
+    }
+    for (std::size_t i = 0; i < tn; ++i) {
+        if (target_pixels != nullptr && !target_pixels[i]) continue;
+        ++target_total;
+        for (int c = 0; c < C; ++c)
+            ++target_count[c * kHistogramBins + bin(target.data()[i * C + c], c)];
+    }
+    std::vector<float> weights(sn, 1.0f);
+    if (target_total == 0 || sn == 0) return weights;
+    for (std::size_t b = 0; b < excess.size(); ++b) {
+        const double hs = static_cast<double>(source_count[b]) / static_cast<double>(sn);
+        const double ht = static_cast<double>(target_count[b]) / static_cast<double>(target_total);
+        excess[b] = std::max(0.0, (ht - hs) * kHistogramBins);
+    }
+    const int sw = source.width();
+    parallel_for(0, source.height(), threads, [&](int y) {
+        for (int x = 0; x < sw; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * sw + x;
+            double sum = 0.0;
+            for (int c = 0; c < C; ++c)
+                sum += excess[c * kHistogramBins + bin(source.data()[i * C + c], c)];
+            weights[i] = static_cast<float>(1.0 / (1.0 + strength * sum));
+        }
+    });
+    return weights;
+}
+
 namespace {
 
 // The vote with kChannels channels known at compile time (0 = any count, from the source), so
@@ -110,8 +165,16 @@ void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params
                     EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < source.width() &&
                                     sy < source.height());
                     const float* s = source.pixel(sx, sy);
-                    for (int c = 0; c < C; ++c) acc[static_cast<std::size_t>(c)] += weight * s[c];
-                    total += weight;
+                    const float vote_weight =
+                        params.source_weights.empty()
+                            ? weight
+                            : weight * params.source_weights[static_cast<std::size_t>(sy) *
+                                                                 source.width() +
+                                                             sx];
+                    for (int c = 0; c < C; ++c) {
+                        acc[static_cast<std::size_t>(c)] += vote_weight * s[c];
+                    }
+                    total += vote_weight;
                 }
             }
             return total;

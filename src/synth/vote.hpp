@@ -22,6 +22,9 @@ struct VoteParams {
     const std::uint8_t* fixed = nullptr;   ///< Pixels left untouched (nullptr = none).
     /// Optional weight of each target patch's vote (the weighted-vote hook; empty = 1).
     std::span<const float> patch_weights;
+    /// Optional weight of each source pixel's value, multiplied into every vote that reads it
+    /// (row-major on the source grid; empty = 1): the colour-histogram weight.
+    std::span<const float> source_weights;
     /// Clamp source reads to the source bounds (needed when the NNF comes from elsewhere).
     bool clamp_source = false;
 };
@@ -34,6 +37,17 @@ struct VoteParams {
 /// (Lukáč et al. 2015, eq. 6.8).
 std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
                                 float coherence, int threads);
+
+/// Colour-histogram weights (Kopf et al. 2007, the w_h of Lukáč et al. 2015 eq. 7), one per
+/// source pixel: 1 / (1 + strength * Σ_c max(0, H_t,c(v_c) − H_s,c(v_c))) for the pixel's value
+/// v, where H_s,c and H_t,c are channel c's histograms of `source` and of the `target` pixels
+/// marked in `target_pixels` (nullptr = all), with kHistogramBins bins spanning the source's
+/// range of the channel (values beyond it fall into the end bins), as densities (count / total
+/// * bins: 1 for a uniform spread). Deterministic; the same for any thread count.
+std::vector<float> histogram_weights(const Image& source, const Image& target,
+                                     const std::uint8_t* target_pixels, float strength,
+                                     int threads);
+inline constexpr int kHistogramBins = 32;
 
 /// Writes the vote into `out`, which must already have the NNF's size and the source's channel
 /// count. Pixels that receive no vote (or are fixed) keep their value.

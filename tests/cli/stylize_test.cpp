@@ -345,6 +345,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "coherence-sweeps: -1 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--vote-coherence", "101"}), 1,
                    "vote-coherence: 101 is invalid (must be 0..100)");
+    expect_failure(with(stylize_args(), {"--vote-histogram", "-1"}), 1,
+                   "vote-histogram: -1 is invalid (must be 0..100)");
     expect_failure(with(stylize_args(), {"--budget-focus", "1.5"}), 1,
                    "budget-focus: 1.5 is invalid (must be 0..1)");
     expect_failure(with(stylize_args(), {"--guide-pca", "-0.1"}), 1,

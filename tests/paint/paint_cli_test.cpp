@@ -99,6 +99,11 @@ TEST_F(Cli, PaintRejectsBadInputs) {
     expect_failure(args({"--width", "32"}), 1, "--width/--height");
     expect_failure(args({"--width", "32", "--height", "32", "--patch-size", "4"}), 1,
                    "--patch-size: 4");
+    expect_failure(args({"--width", "32", "--height", "32", "--vote-histogram", "-1"}), 1,
+                   "--vote-histogram: -1.000000 is invalid (must be 0..100)");
+    expect_failure(args({"--width", "32", "--height", "32", "--usage", "most"}), 1,
+                   "--usage: 'most' is invalid (must be one of none, uniform, error-budget, "
+                   "occurrence)");
     std::ofstream(path("bad.json")) << R"([{"points": [[2, 2]], "width": "wide"}])";
     expect_failure({"paint", "--source", src, "--strokes", path("bad.json"), "--width", "32",
                     "--height", "32"},

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace exemplar::synth {
 namespace {
@@ -41,6 +43,62 @@ TEST(VoteWeights, CoherenceCountsConsistentNeighbours) {
     const std::vector<float> near = vote_weights(off, nullptr, 5, 2.0f, 1);
     EXPECT_NEAR(near[4 * 20 + 4] / error_weight, 24.0f + std::exp(-0.25f), 1e-4f);
     EXPECT_EQ(vote_weights(nnf, nullptr, 5, 2.0f, 2), coherent);
+}
+
+// Colour histogram (Kopf et al. 2007, Brushables' w_h): a source half 0 and half 1 against a
+// target that is all 0. Bin 0 holds density 16 in the source (half of 32 bins' worth) and 32 in
+// the target, an excess of 16, so with strength k a 0-pixel weighs 1 / (1 + 16 k); the absent 1s
+// keep weight 1. The histograms count only the given target pixels; thread counts agree.
+TEST(VoteWeights, HistogramFavoursValuesTheTargetLacks) {
+    Image source(8, 4, 1, 0.0f);
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 4; x < 8; ++x) source.at(x, y, 0) = 1.0f;
+    }
+    Image target(6, 6, 1, 0.0f);
+    const std::vector<float> w = histogram_weights(source, target, nullptr, 0.5f, 1);
+    ASSERT_EQ(w.size(), 32u);
+    EXPECT_NEAR(w[0], 1.0f / 9.0f, 1e-6f);  // 1 / (1 + 0.5 * 16)
+    EXPECT_EQ(w[4], 1.0f);
+    EXPECT_EQ(histogram_weights(source, target, nullptr, 0.5f, 2), w);
+    // Only the marked target pixels count: marking just the half at 1 turns it around.
+    for (int y = 0; y < 6; ++y) {
+        for (int x = 3; x < 6; ++x) target.at(x, y, 0) = 1.0f;
+    }
+    std::vector<std::uint8_t> right(36, 0);
+    for (int y = 0; y < 6; ++y) {
+        for (int x = 3; x < 6; ++x) right[static_cast<std::size_t>(y) * 6 + x] = 1;
+    }
+    const std::vector<float> flipped = histogram_weights(source, target, right.data(), 0.5f, 1);
+    EXPECT_EQ(flipped[0], 1.0f);
+    EXPECT_NEAR(flipped[4], 1.0f / 9.0f, 1e-6f);
+    // Matching histograms: no excess anywhere, every weight 1.
+    for (float v : histogram_weights(source, target, nullptr, 3.0f, 1)) EXPECT_EQ(v, 1.0f);
+}
+
+// The source weights enter every vote that reads the pixel: a target pixel covered by patches
+// reading 0s and 1s averages to the share of the 1s' weight.
+TEST(Vote, SourceWeightsScaleEachCandidate) {
+    Image source(2, 1, 1, 0.0f);
+    source.at(1, 0, 0) = 1.0f;
+    Nnf nnf(3, 1);
+    nnf.at(0, 0) = Match{0, 0, 0.0f, 0.0f};
+    nnf.at(1, 0) = Match{1, 0, 0.0f, 0.0f};
+    nnf.at(2, 0) = Match{0, 0, 0.0f, 0.0f};
+    VoteParams params;
+    params.patch_size = 1;
+    Image plain(3, 1, 1, 0.5f), weighted(3, 1, 1, 0.5f);
+    vote(nnf, source, params, plain, 1);
+    EXPECT_EQ(plain.at(1, 0, 0), 1.0f);
+    const std::vector<float> weights{0.25f, 1.0f};
+    params.patch_size = 3;
+    params.clamp_source = true;
+    vote(nnf, source, params, plain, 1);
+    params.source_weights = weights;
+    vote(nnf, source, params, weighted, 1);
+    // Pixel 1 gathers the patches centred at 0, 1, 2: they read source 1, 1 and 0 (clamped
+    // and shifted reads); unweighted 2/3, weighted (1 + 1) / (1 + 1 + 0.25).
+    EXPECT_NEAR(plain.at(1, 0, 0), 2.0f / 3.0f, 1e-6f);
+    EXPECT_NEAR(weighted.at(1, 0, 0), 2.0f / 2.25f, 1e-6f);
 }
 
 }  // namespace

@@ -13,7 +13,8 @@
 ///   region, each in its own direction's frame, as a guide weighted λ / patch_size² (the guide's
 ///   squared differences are summed over the patch, ≈ patch_size² times the centre's, so the
 ///   total is ≈ λ·D_shape of eq. 4);
-/// - the coherence-weighted vote (eq. 8, σ_c² = `vote_coherence`);
+/// - the coherence-weighted vote (eq. 8, σ_c² = `vote_coherence`) and its colour-histogram
+///   weight (eq. 7, `vote_histogram`);
 /// - only exemplar patches centred on the exemplar's shape (alpha > 0 or the given mask) are used.
 /// An exemplar without a boundary (RGB, opaque, or a mask covering all of it) has no boundary
 /// effects to transfer: the whole canvas (on a repaint, the whole changed rectangle) is then
@@ -27,6 +28,7 @@
 #include "exemplar/core/status.hpp"
 #include "exemplar/paint/strokes.hpp"
 #include "exemplar/synth/nnf.hpp"
+#include "exemplar/synth/options.hpp"
 
 namespace exemplar::paint {
 
@@ -58,6 +60,18 @@ struct PaintOptions {
     /// σ_c², the coherence range of the coherence-weighted vote (eq. 8): default 2 (the paper);
     /// 0 turns the coherence weight off; range 0..100.
     float vote_coherence = 2.0f;
+    /// Strength k of the colour-histogram weight of the vote (eq. 7's w_h, after Kopf et al.
+    /// 2007; SynthesisOptions::vote_histogram): candidate colours the painting already holds more
+    /// of than the exemplar lose weight, so the exemplar's rarer colours are not averaged into
+    /// one mean tone. Default 1; 0 turns it off; range 0..100.
+    float vote_histogram = 1.0f;
+    /// Patch usage of the search. Default None: the paper's plain EM (Wexler et al. 2007),
+    /// which keeps textures whose colours are spread throughout (a painting's strokes) but
+    /// washes a texture of sparse flecks on a flat ground out to the ground, whatever the vote.
+    /// Uniform (LazyFluids) uses every exemplar patch about equally often in the painted region,
+    /// which keeps the flecks, and also places every part of the exemplar somewhere (a moon in
+    /// a sky). ErrorBudget and OccurrencePenalty are accepted as the engine's.
+    UsageStrategy usage = UsageStrategy::None;
     /// Patch width in pixels, odd, 3..15. Default 5 (the paper's 25-pixel patches).
     int patch_size = 5;
     /// Random seed; the same seed gives the same bytes for any thread count.

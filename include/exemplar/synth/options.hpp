@@ -121,6 +121,13 @@ struct SynthesisOptions {
     /// 0 = off (default: it also outvotes thin structures made of many small pieces, such as
     /// the strokes of the animation's line term; measurements in docs/PERFORMANCE.md).
     float vote_coherence = 0.0f;
+    /// Colour-histogram weight of the vote (Kopf et al. 2007; Brushables eq. 7, w_h): every
+    /// candidate value is weighed by 1 / (1 + k Σ_c max(0, H_target,c − H_source,c)) at its
+    /// own value, with k this strength and H the per-channel histograms (32 bins over the
+    /// source's range, as densities: 1 = uniform) of the style and of the current target. Values
+    /// the target already holds more of than the exemplar lose weight, so rare colours of the
+    /// exemplar (highlights, dark accents) are not averaged away. 0 = off (default).
+    float vote_histogram = 0.0f;
     /// Extra EM iterations with 3x3 patches after the finest level (ebsynth's "extrapass3x3").
     /// 0 = off (default): final_vote_size keeps the fine grain at a fraction of the cost.
     int final_pass_iterations = 0;
