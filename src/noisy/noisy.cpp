@@ -357,6 +357,13 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
         input.target_width = tw;
         input.target_height = th;
         input.initial_target = std::move(start);
+        // Patches that reach the source's border (read it repeated) are not used: the source
+        // mask leaves out its outermost pixels. Random-search candidates clamped onto the
+        // border are then rejected before their (slow, clamped) distance is computed.
+        input.source_mask = Image(input.style.width(), input.style.height(), 1, 0.0f);
+        for (int y = 1; y + 1 < input.style.height(); ++y) {
+            for (int x = 1; x + 1 < input.style.width(); ++x) input.source_mask.at(x, y, 0) = 1;
+        }
         if (!all_active) input.target_mask = std::move(active);
         if (options.coarse_weight > 0.0f) {
             GuidePair coarse;
