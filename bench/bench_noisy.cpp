@@ -13,7 +13,10 @@
 //   --out FILE         save the last frame
 //   --save-cel FILE    save the reference cel
 // Prints per run the wall and CPU time of the frame, and per pyramid level (strength, size)
-// the wall and CPU time it took. The machine may be shared: compare CPU times.
+// the wall and CPU time it took (the machine may be shared: compare CPU times); then the frame's
+// coarse consistency (RMS of h_f * T - h_f * R relative to the contrast of h_f * R), its detail
+// (mean squared pixel difference relative to the medium's) and, over the repeats (frames I,
+// I+1, ...), the temporal energy (mean variance across frames; the cel is static).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -63,6 +66,49 @@ Image cel(int width, int height) {
         }
     }
     return image;
+}
+
+// Mean over pixels and channels of the squared horizontal and vertical differences: the detail
+// a frame holds (plain nearest neighbours wash out towards 0).
+double gradient_energy(const Image& image) {
+    double sum = 0.0;
+    long count = 0;
+    for (int y = 0; y + 1 < image.height(); ++y) {
+        for (int x = 0; x + 1 < image.width(); ++x) {
+            for (int c = 0; c < image.channels(); ++c) {
+                const double dx = image.at(x + 1, y, c) - image.at(x, y, c);
+                const double dy = image.at(x, y + 1, c) - image.at(x, y, c);
+                sum += dx * dx + dy * dy;
+                ++count;
+            }
+        }
+    }
+    return sum / static_cast<double>(std::max(1L, count));
+}
+
+double rms_difference(const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double d = a.data()[i] - b.data()[i];
+        sum += d * d;
+    }
+    return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+// Mean over pixels and channels of the variance across frames.
+double temporal_energy(const std::vector<Image>& frames) {
+    const std::size_t n = frames.front().size();
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double mean = 0.0, square = 0.0;
+        for (const Image& f : frames) {
+            mean += f.data()[i];
+            square += static_cast<double>(f.data()[i]) * f.data()[i];
+        }
+        mean /= static_cast<double>(frames.size());
+        sum += square / static_cast<double>(frames.size()) - mean * mean;
+    }
+    return sum / static_cast<double>(n);
 }
 
 bool parse_options(int argc, char** argv, int first, Settings& settings) {
@@ -135,7 +181,23 @@ int main(int argc, char** argv) {
         level_strengths(settings.options.noise, settings.options.level_ratio);
     const double mpix = static_cast<double>(settings.width) * settings.height / 1e6;
 
-    Image last;
+    const Image reference_low = low_pass(reference, settings.options.noise, LowPassFilter::Box);
+    const std::vector<float> mean = [&] {
+        std::vector<float> m(3, 0.0f);
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0.0;
+            for (std::size_t i = c; i < reference_low.size(); i += 3)
+                sum += reference_low.data()[i];
+            m[static_cast<std::size_t>(c)] =
+                static_cast<float>(sum / static_cast<double>(reference_low.pixel_count()));
+        }
+        return m;
+    }();
+    Image flat = reference_low;
+    for (std::size_t i = 0; i < flat.size(); ++i) flat.data()[i] = mean[i % 3];
+    const double contrast = rms_difference(reference_low, flat);
+    const double medium_detail = gradient_energy(*medium);
+    std::vector<Image> frames;
     for (int r = 0; r < settings.repeats; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
         auto seconds = [&] {
@@ -172,11 +234,21 @@ int main(int argc, char** argv) {
             prev_wall = level_wall[k];
             prev_cpu = level_cpu[k];
         }
+        const double coarse =
+            rms_difference(low_pass(*frame, settings.options.noise, LowPassFilter::Box),
+                           reference_low) /
+            contrast;
+        std::printf("  low-pass distance %.3f of the contrast, detail %.3f of the medium's\n",
+                    coarse, gradient_energy(*frame) / medium_detail);
         std::fflush(stdout);
-        last = std::move(frame).value();
+        frames.push_back(std::move(frame).value());
+    }
+    if (frames.size() > 1) {
+        std::printf("temporal energy over %zu frames: %.3e\n", frames.size(),
+                    temporal_energy(frames));
     }
     if (!settings.out.empty()) {
-        const Status saved = save_image(last, settings.out);
+        const Status saved = save_image(frames.back(), settings.out);
         if (!saved.is_ok()) std::fprintf(stderr, "%s\n", saved.message().c_str());
     }
     return 0;
