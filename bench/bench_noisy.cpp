@@ -26,6 +26,7 @@
 #include "bench_args.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "procedural.hpp"
 
 using namespace exemplar;
 using namespace exemplar::noisy;
@@ -86,74 +87,45 @@ double gradient_energy(const Image& image) {
     return sum / static_cast<double>(std::max(1L, count));
 }
 
-double rms_difference(const Image& a, const Image& b) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const double d = a.data()[i] - b.data()[i];
-        sum += d * d;
-    }
-    return std::sqrt(sum / static_cast<double>(a.size()));
-}
-
-// Mean over pixels and channels of the variance across frames.
-double temporal_energy(const std::vector<Image>& frames) {
-    const std::size_t n = frames.front().size();
-    double sum = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        double mean = 0.0, square = 0.0;
-        for (const Image& f : frames) {
-            mean += f.data()[i];
-            square += static_cast<double>(f.data()[i]) * f.data()[i];
-        }
-        mean /= static_cast<double>(frames.size());
-        sum += square / static_cast<double>(frames.size()) - mean * mean;
-    }
-    return sum / static_cast<double>(n);
-}
-
 bool parse_options(int argc, char** argv, int first, Settings& settings) {
-    for (int i = first; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "%s: missing value\n", arg.c_str());
-            return false;
-        }
-        const std::string value = argv[++i];
-        Status status = Status::ok();
-        if (arg == "--noise") {
-            status = set_option(settings.options, *find_noisy_option("noise"), std::stod(value));
-        } else if (arg == "--set") {
-            const auto eq = value.find('=');
-            const NoisyOptionSpec* spec =
-                eq == std::string::npos ? nullptr : find_noisy_option(value.substr(0, eq));
-            if (spec == nullptr) {
-                std::fprintf(stderr, "unknown option in --set %s\n", value.c_str());
+    return bench::for_each_flag(
+        argc, argv, first, [&](const std::string& arg, const std::string& value) {
+            Status status = Status::ok();
+            if (arg == "--noise") {
+                status =
+                    set_option(settings.options, *find_noisy_option("noise"), std::stod(value));
+            } else if (arg == "--set") {
+                const auto eq = value.find('=');
+                const NoisyOptionSpec* spec =
+                    eq == std::string::npos ? nullptr : find_noisy_option(value.substr(0, eq));
+                if (spec == nullptr) {
+                    std::fprintf(stderr, "unknown option in --set %s\n", value.c_str());
+                    return false;
+                }
+                status = set_option(settings.options, *spec, std::stod(value.substr(eq + 1)));
+            } else if (arg == "--size") {
+                if (std::sscanf(value.c_str(), "%dx%d", &settings.width, &settings.height) != 2) {
+                    std::fprintf(stderr, "--size: '%s' is not WxH\n", value.c_str());
+                    return false;
+                }
+            } else if (arg == "--medium") {
+                settings.medium = value;
+            } else if (arg == "--frame") {
+                settings.frame = std::stoll(value);
+            } else if (arg == "--out") {
+                settings.out = value;
+            } else if (arg == "--save-cel") {
+                settings.save_cel = value;
+            } else {
+                std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
                 return false;
             }
-            status = set_option(settings.options, *spec, std::stod(value.substr(eq + 1)));
-        } else if (arg == "--size") {
-            if (std::sscanf(value.c_str(), "%dx%d", &settings.width, &settings.height) != 2) {
-                std::fprintf(stderr, "--size: '%s' is not WxH\n", value.c_str());
+            if (!status.is_ok()) {
+                std::fprintf(stderr, "%s\n", status.message().c_str());
                 return false;
             }
-        } else if (arg == "--medium") {
-            settings.medium = value;
-        } else if (arg == "--frame") {
-            settings.frame = std::stoll(value);
-        } else if (arg == "--out") {
-            settings.out = value;
-        } else if (arg == "--save-cel") {
-            settings.save_cel = value;
-        } else {
-            std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
-            return false;
-        }
-        if (!status.is_ok()) {
-            std::fprintf(stderr, "%s\n", status.message().c_str());
-            return false;
-        }
-    }
-    return true;
+            return true;
+        });
 }
 
 }  // namespace
@@ -182,20 +154,8 @@ int main(int argc, char** argv) {
     const double mpix = static_cast<double>(settings.width) * settings.height / 1e6;
 
     const Image reference_low = low_pass(reference, settings.options.noise, LowPassFilter::Box);
-    const std::vector<float> mean = [&] {
-        std::vector<float> m(3, 0.0f);
-        for (int c = 0; c < 3; ++c) {
-            double sum = 0.0;
-            for (std::size_t i = c; i < reference_low.size(); i += 3)
-                sum += reference_low.data()[i];
-            m[static_cast<std::size_t>(c)] =
-                static_cast<float>(sum / static_cast<double>(reference_low.pixel_count()));
-        }
-        return m;
-    }();
-    Image flat = reference_low;
-    for (std::size_t i = 0; i < flat.size(); ++i) flat.data()[i] = mean[i % 3];
-    const double contrast = rms_difference(reference_low, flat);
+    const double contrast =
+        testing::rms_difference(reference_low, testing::uniform_like(reference_low));
     const double medium_detail = gradient_energy(*medium);
     std::vector<Image> frames;
     for (int r = 0; r < settings.repeats; ++r) {
@@ -235,8 +195,8 @@ int main(int argc, char** argv) {
             prev_cpu = level_cpu[k];
         }
         const double coarse =
-            rms_difference(low_pass(*frame, settings.options.noise, LowPassFilter::Box),
-                           reference_low) /
+            testing::rms_difference(low_pass(*frame, settings.options.noise, LowPassFilter::Box),
+                                    reference_low) /
             contrast;
         std::printf("  low-pass distance %.3f of the contrast, detail %.3f of the medium's\n",
                     coarse, gradient_energy(*frame) / medium_detail);
@@ -245,7 +205,7 @@ int main(int argc, char** argv) {
     }
     if (frames.size() > 1) {
         std::printf("temporal energy over %zu frames: %.3e\n", frames.size(),
-                    temporal_energy(frames));
+                    testing::temporal_energy(frames));
     }
     if (!settings.out.empty()) {
         const Status saved = save_image(frames.back(), settings.out);
