@@ -30,6 +30,20 @@ inline int parse_counts(int argc, char** argv, int& threads, int& repeats) {
     return 4;
 }
 
+/// Calls `handle(flag, value)` for every "--flag value" pair from argv[first] on; false (after a
+/// message) when the last flag has no value or `handle` returns false.
+template <class Handle>
+bool for_each_flag(int argc, char** argv, int first, Handle handle) {
+    for (int i = first; i < argc; i += 2) {
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "%s: missing value\n", argv[i]);
+            return false;
+        }
+        if (!handle(std::string(argv[i]), std::string(argv[i + 1]))) return false;
+    }
+    return true;
+}
+
 /// `--set name=value`: the option and its value, or nullptr (after a message) if unknown.
 inline std::pair<const OptionSpec*, double> parse_set(const std::string& kv) {
     const auto eq = kv.find('=');

@@ -109,33 +109,28 @@ Image run(bool preview, const Data& data, const Settings& settings, const Image&
 }
 
 bool parse_options(int argc, char** argv, int first, Settings& settings) {
-    for (int i = first; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "%s: missing value\n", arg.c_str());
-            return false;
-        }
-        const std::string value = argv[++i];
-        if (arg == "--out") {
-            settings.out = value;
-        } else if (arg == "--components") {
-            settings.components = std::stoi(value);
-        } else if (arg == "--compare") {
-            settings.compare = value;
-        } else if (arg == "--usage") {
-            UsageStrategy usage{};
-            if (!bench::parse_usage(value, usage)) return false;
-            settings.usage = usage;
-        } else if (arg == "--set") {
-            const auto set = bench::parse_set(value);
-            if (set.first == nullptr) return false;
-            settings.overrides.push_back(set);
-        } else {
-            std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
-            return false;
-        }
-    }
-    return true;
+    return bench::for_each_flag(argc, argv, first,
+                                [&](const std::string& arg, const std::string& value) {
+                                    if (arg == "--out") {
+                                        settings.out = value;
+                                    } else if (arg == "--components") {
+                                        settings.components = std::stoi(value);
+                                    } else if (arg == "--compare") {
+                                        settings.compare = value;
+                                    } else if (arg == "--usage") {
+                                        UsageStrategy usage{};
+                                        if (!bench::parse_usage(value, usage)) return false;
+                                        settings.usage = usage;
+                                    } else if (arg == "--set") {
+                                        const auto set = bench::parse_set(value);
+                                        if (set.first == nullptr) return false;
+                                        settings.overrides.push_back(set);
+                                    } else {
+                                        std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
+                                        return false;
+                                    }
+                                    return true;
+                                });
 }
 
 }  // namespace

@@ -848,6 +848,8 @@ def noisy_frame(
     patch_size: int = 7,
     em_iterations: int = 4,
     search_iterations: int = 8,
+    warm_search_iterations: int = 2,
+    warm_em_iterations: int = 1,
     lattice_spacing: float = 50.0,
     min_offset: float = 15.0,
     max_offset: float = 25.0,
@@ -890,6 +892,14 @@ def noisy_frame(
       search_iterations (int, default 8)
           PatchMatch iterations per nearest-neighbour search (chapter: 8). Range 1..100
           iterations.
+      warm_search_iterations (int, default 2)
+          PatchMatch iterations per search on a level whose pixels all continue from the
+          level before, starting from its upsampled field; 0 = a random field and the
+          chapter's em-iterations x search-iterations on every level. Range 0..100
+          iterations.
+      warm_em_iterations (int, default 1)
+          Search+vote iterations on such a level (with warm-search-iterations > 0). Range
+          1..100 iterations.
       lattice_spacing (float, default 50.0)
           Spacing of the control lattice of the random rigid-MLS pre-deformation of the
           source, in source pixels (chapter: 50). Range 4.0..10000.0 px.

@@ -35,6 +35,7 @@ def test_noisy_frames_are_the_clis(cli, tmp_path):
 def test_noisy_options_come_from_the_table():
     parameters = exemplar.noisy_frame.__signature__.parameters
     for name in ("noise", "level_ratio", "patch_size", "em_iterations", "search_iterations",
+                 "warm_search_iterations", "warm_em_iterations",
                  "lattice_spacing", "min_offset", "max_offset", "seed", "filter", "frame"):
         assert name in parameters
     assert parameters["patch_size"].default == 7

@@ -1,11 +1,46 @@
 #include "exemplar/synth/nnf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "vote.hpp"
 
 namespace exemplar {
+
+// The same relative database position, the offset within the patch kept (rotated with the
+// match). Serves the forward NNF (query = target, database = source) and the engine's reversed
+// field (query = source, database = target).
+Nnf upsample_nnf(const Nnf& coarse, int coarse_db_w, int coarse_db_h, int fine_w, int fine_h,
+                 int fine_db_w, int fine_db_h) {
+    Nnf out(fine_w, fine_h);
+    const double qx_scale = static_cast<double>(coarse.width()) / fine_w;
+    const double qy_scale = static_cast<double>(coarse.height()) / fine_h;
+    const double dx_scale = static_cast<double>(fine_db_w) / coarse_db_w;
+    const double dy_scale = static_cast<double>(fine_db_h) / coarse_db_h;
+    for (int y = 0; y < fine_h; ++y) {
+        for (int x = 0; x < fine_w; ++x) {
+            const double u = (x + 0.5) * qx_scale - 0.5;
+            const double v = (y + 0.5) * qy_scale - 0.5;
+            const int cx = std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
+            const int cy = std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
+            const Match& m = coarse.at(cx, cy);
+            Match& o = out.at(x, y);
+            if (m.x < 0) {
+                o = Match{-1, -1, 0.0f, 0.0f};
+                continue;
+            }
+            const double du = u - cx, dv = v - cy;
+            const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
+            const double su = m.x + c * du - s * dv;
+            const double sv = m.y + s * du + c * dv;
+            o.x = static_cast<int>(std::lround((su + 0.5) * dx_scale - 0.5));
+            o.y = static_cast<int>(std::lround((sv + 0.5) * dy_scale - 0.5));
+            o.angle_rad = m.angle_rad;
+        }
+    }
+    return out;
+}
 
 Image nnf_to_image(const Nnf& nnf) {
     Image out(nnf.width(), nnf.height(), 4);

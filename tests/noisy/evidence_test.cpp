@@ -100,41 +100,16 @@ std::vector<double> temporal_spectrum(const std::vector<Image>& seq) {
     return power;
 }
 
-double rms_difference(const Image& a, const Image& b) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const double d = a.data()[i] - b.data()[i];
-        sum += d * d;
-    }
-    return std::sqrt(sum / static_cast<double>(a.size()));
-}
-
-// The image with every channel replaced by its mean.
-Image uniform_like(const Image& image) {
-    Image flat = image;
-    for (int c = 0; c < image.channels(); ++c) {
-        double mean = 0.0;
-        for (int y = 0; y < image.height(); ++y) {
-            for (int x = 0; x < image.width(); ++x) mean += image.at(x, y, c);
-        }
-        mean /= static_cast<double>(image.pixel_count());
-        for (int y = 0; y < image.height(); ++y) {
-            for (int x = 0; x < image.width(); ++x) flat.at(x, y, c) = static_cast<float>(mean);
-        }
-    }
-    return flat;
-}
-
 // Worst over frames of ||h_f * T_i - h_f * R|| (RMS), and the reference's own contrast at that
 // scale, ||h_f * R - mean||.
 std::pair<double, double> low_pass_distance(const std::vector<Image>& seq, double f) {
     const Image target_low = low_pass(reference(), f, LowPassFilter::Box, 1);
     double worst = 0.0;
     for (const Image& frame : seq) {
-        worst =
-            std::max(worst, rms_difference(low_pass(frame, f, LowPassFilter::Box, 1), target_low));
+        worst = std::max(
+            worst, testing::rms_difference(low_pass(frame, f, LowPassFilter::Box, 1), target_low));
     }
-    return {worst, rms_difference(target_low, uniform_like(target_low))};
+    return {worst, testing::rms_difference(target_low, testing::uniform_like(target_low))};
 }
 
 TEST(NoisyEvidence, TemporalSpectrumIsFlatOver32Frames) {

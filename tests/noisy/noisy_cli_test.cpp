@@ -150,6 +150,19 @@ TEST_F(NoisyCli, BadInputsGiveOneLineErrors) {
                          "source with patch-size 5 (at most 6.4)\n");
 
     a = args("E/%04d.png", "1");
+    a.insert(a.end(), {"--warm-search-iterations", "-1"});
+    r = run_noisy(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err,
+              "exemplar: warm-search-iterations: -1 is invalid (must be an integer, 0..100)\n");
+
+    a = args("E/%04d.png", "1");
+    a.insert(a.end(), {"--warm-em-iterations", "0"});
+    r = run_noisy(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: warm-em-iterations: 0 is invalid (must be an integer, 1..100)\n");
+
+    a = args("E/%04d.png", "1");
     a.insert(a.end(), {"--filter", "gauss"});
     r = run_noisy(a);
     EXPECT_EQ(r.code, 1);

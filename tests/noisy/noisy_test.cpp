@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "procedural.hpp"
 
@@ -58,6 +59,9 @@ TEST(NoisyOptions, DefaultsAreTheChaptersAndRangesAreChecked) {
     EXPECT_FLOAT_EQ(defaults.max_offset_px, 25.0f);
     EXPECT_EQ(defaults.filter, LowPassFilter::Box);
     EXPECT_FLOAT_EQ(defaults.coarse_weight, 0.5f);  // ours (docs/noisy.md); 0 = the chapter's
+    // Ours (docs/noisy.md, "Speed"); warm-search-iterations 0 = the chapter's schedule.
+    EXPECT_EQ(defaults.warm_search_iterations, 2);
+    EXPECT_EQ(defaults.warm_em_iterations, 1);
     EXPECT_TRUE(validate(defaults).ok());
 
     NoisyOptions options;
@@ -67,6 +71,12 @@ TEST(NoisyOptions, DefaultsAreTheChaptersAndRangesAreChecked) {
     EXPECT_EQ(even.message(), "patch-size: 6 is invalid (must be odd, 3..31)");
     const Status bad_weight = set_option(options, *find_noisy_option("coarse-weight"), -0.5);
     EXPECT_EQ(bad_weight.message(), "coarse-weight: -0.5 is invalid (must be 0..100)");
+    EXPECT_EQ(set_option(options, *find_noisy_option("warm-search-iterations"), -1.0).message(),
+              "warm-search-iterations: -1 is invalid (must be an integer, 0..100)");
+    EXPECT_EQ(set_option(options, *find_noisy_option("warm_em_iterations"), 0.0).message(),
+              "warm-em-iterations: 0 is invalid (must be an integer, 1..100)");
+    EXPECT_EQ(set_option(options, *find_noisy_option("warm-em-iterations"), 1.5).message(),
+              "warm-em-iterations: 1.5 is invalid (must be an integer, 1..100)");
     options.min_offset_px = 30.0f;
     EXPECT_EQ(validate(options).message(),
               "min-offset: 30 is invalid (must be at most max-offset, 25)");
@@ -108,6 +118,90 @@ TEST(NoisyFrame, IsAPureFunctionOfSeedAndFrameForAnyThreadCount) {
     options.seed = 2;
     const Result<Image> reseeded = synthesize_frame(in.source, in.frame, options, 3, RunContext(2));
     EXPECT_FALSE(identical(one.value(), reseeded.value()));
+}
+
+TEST(NoisyFrame, EverySchedulesFrameIsTheSameForAnyThreadCount) {
+    // The chapter's schedule (a random field on every level), and the default warm schedule
+    // with a noise map, where pixels start on different levels (such levels run the full
+    // schedule from the carried field).
+    const Fixture in;
+    NoisyOptions chapter;
+    chapter.noise = 4.0f;
+    chapter.warm_search_iterations = 0;
+    NoisyFrame mapped = in.frame;
+    mapped.noise_map = Image(64, 64, 1, 1.0f);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 40; ++x) mapped.noise_map.at(x, y, 0) = x < 20 ? 0.0f : 0.5f;
+    }
+    NoisyOptions warm;
+    warm.noise = 4.0f;
+    for (const auto& [frame, options] : {std::pair{in.frame, chapter}, std::pair{mapped, warm}}) {
+        const Result<Image> one = synthesize_frame(in.source, frame, options, 5, RunContext(1));
+        ASSERT_TRUE(one.ok()) << one.status().message();
+        const Result<Image> many = synthesize_frame(in.source, frame, options, 5, RunContext(2));
+        ASSERT_TRUE(many.ok());
+        EXPECT_TRUE(identical(one.value(), many.value()));
+    }
+}
+
+// Mean over the frame's interior pixels of the distance (mean squared difference per channel)
+// from its 5x5 patch to the nearest 5x5 patch of `source`, by brute force: fine consistency,
+// eq. 4.1.
+double nearest_patch_distance(const Image& frame, const Image& source) {
+    constexpr int r = 2;
+    double total = 0.0;
+    long count = 0;
+    for (int ty = r; ty < frame.height() - r; ++ty) {
+        for (int tx = r; tx < frame.width() - r; ++tx) {
+            double best = 1e30;
+            for (int sy = r; sy < source.height() - r; ++sy) {
+                for (int sx = r; sx < source.width() - r; ++sx) {
+                    double d = 0.0;
+                    for (int dy = -r; dy <= r && d < best; ++dy) {
+                        const float* a = frame.pixel(tx - r, ty + dy);
+                        const float* b = source.pixel(sx - r, sy + dy);
+                        for (int i = 0; i < (2 * r + 1) * frame.channels(); ++i) {
+                            d += (a[i] - b[i]) * (a[i] - b[i]);
+                        }
+                    }
+                    best = std::min(best, d);
+                }
+            }
+            total += best / ((2 * r + 1) * (2 * r + 1) * frame.channels());
+            ++count;
+        }
+    }
+    return total / static_cast<double>(count);
+}
+
+TEST(NoisyFrame, WarmLevelsKeepTheChaptersFineConsistency) {
+    // The default schedule runs 1 EM iteration of 2 PatchMatch iterations on the levels after
+    // the coarsest, starting from the level before's field. Its frames are as close to the
+    // medium, patch by patch (eq. 4.1), as those of the chapter's 4 x 8 iterations from a random
+    // field on every level (measured 1.12e-3 vs 1.17e-3). No pre-deformation here, so the
+    // medium itself is the source the patches come from.
+    const Image source = testing::medium(64, 64);
+    const Image reference = testing::cel(40, 40, 18, 16, 10);
+    NoisyOptions options;
+    options.noise = 2.0f;
+    options.patch_size = 5;
+    options.min_offset_px = options.max_offset_px = 0.0f;
+    auto distance = [&](const NoisyOptions& o) {
+        double sum = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const Result<Image> frame =
+                synthesize_frame(source, NoisyFrame{reference, {}, {}}, o, i, RunContext(2));
+            EXPECT_TRUE(frame.ok());
+            sum += nearest_patch_distance(frame.value(), source) / 3.0;
+        }
+        return sum;
+    };
+    const double warm = distance(options);
+    NoisyOptions chapter = options;
+    chapter.warm_search_iterations = 0;
+    const double full = distance(chapter);
+    std::printf("nearest-patch distance: warm %.3e, chapter %.3e\n", warm, full);
+    EXPECT_LT(warm, 1.15 * full);
 }
 
 TEST(NoisyFrame, RejectsBadInputsWithOneLineMessages) {

@@ -1,6 +1,7 @@
 #pragma once
-// Procedural inputs of the Color Me Noisy tests: a crayon-like drawing medium and a flat-coloured
-// reference animation, so the tests need no files.
+// Procedural inputs of the Color Me Noisy tests (a crayon-like drawing medium and a flat-coloured
+// reference animation, so the tests need no files) and the measures the tests and bench_noisy
+// share.
 
 #include <algorithm>
 #include <cmath>
@@ -90,6 +91,32 @@ inline double temporal_energy(const std::vector<Image>& frames, int x0 = 0, int 
         }
     }
     return sum / static_cast<double>(count);
+}
+
+// RMS difference over pixels and channels of two images of the same size.
+inline double rms_difference(const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double d = a.data()[i] - b.data()[i];
+        sum += d * d;
+    }
+    return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+// The image with every channel replaced by its mean.
+inline Image uniform_like(const Image& image) {
+    Image flat = image;
+    for (int c = 0; c < image.channels(); ++c) {
+        double mean = 0.0;
+        for (int y = 0; y < image.height(); ++y) {
+            for (int x = 0; x < image.width(); ++x) mean += image.at(x, y, c);
+        }
+        mean /= static_cast<double>(image.pixel_count());
+        for (int y = 0; y < image.height(); ++y) {
+            for (int x = 0; x < image.width(); ++x) flat.at(x, y, c) = static_cast<float>(mean);
+        }
+    }
+    return flat;
 }
 
 }  // namespace exemplar::noisy::testing

@@ -58,6 +58,16 @@ Image nnf_to_image(const Nnf& nnf);
 /// non-integral or negative source coordinates (other than the -1, -1 "no match" marker).
 Result<Nnf> nnf_from_image(const Image& image);
 
+/// The field of a finer pyramid level from a coarser one (as the engine carries its field between
+/// its levels): each fine pixel takes the match of the nearest coarse pixel, scaled to the fine
+/// source (`fine_source_width` x `fine_source_height`; the coarse field refers to a
+/// `coarse_source_width` x `coarse_source_height` source), keeping its offset within the patch.
+/// Entries with x = -1 stay "no match". Matches may fall outside the fine source by rounding;
+/// the engine repairs such entries of an initial field (SynthesisInput::initial_nnf) with random
+/// ones, so clamp them if the field is used elsewhere.
+Nnf upsample_nnf(const Nnf& coarse, int coarse_source_width, int coarse_source_height,
+                 int fine_width, int fine_height, int fine_source_width, int fine_source_height);
+
 /// Re-applies an NNF to another source image (e.g. a 16-bit or extra-channel version of the
 /// style): every target pixel becomes the (weighted) average of the overlapping `patch_size`
 /// patches, or of their central `vote_size` pixels (0 = whole patches), each read from `source`
