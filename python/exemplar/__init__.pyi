@@ -96,6 +96,7 @@ def stylize(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -204,6 +205,12 @@ def stylize(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_iterations (int, default 0)
+          Error budget: the finest level runs this many iterations of plain nearest-
+          neighbour search from the budget's field instead of finest-em-iterations budget
+          iterations: the seams of its mosaic move to where the pieces agree (closer to the
+          exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -296,6 +303,7 @@ def stylit(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -390,6 +398,12 @@ def stylit(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_iterations (int, default 0)
+          Error budget: the finest level runs this many iterations of plain nearest-
+          neighbour search from the budget's field instead of finest-em-iterations budget
+          iterations: the seams of its mosaic move to where the pieces agree (closer to the
+          exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -508,6 +522,7 @@ def animate(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -628,6 +643,12 @@ def animate(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_iterations (int, default 0)
+          Error budget: the finest level runs this many iterations of plain nearest-
+          neighbour search from the budget's field instead of finest-em-iterations budget
+          iterations: the seams of its mosaic move to where the pieces agree (closer to the
+          exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
