@@ -206,11 +206,11 @@ def stylize(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level runs this many iterations of plain nearest-
-          neighbour search from the budget's field instead of finest-em-iterations budget
-          iterations: the seams of its mosaic move to where the pieces agree (closer to the
-          exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
-          published). Range 0..100 iterations.
+          Error budget: the finest level searches plain nearest neighbours from the budget's
+          field, this many iterations instead of finest-em-iterations budget ones: the seams
+          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
+          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
+          iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -399,11 +399,11 @@ def stylit(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level runs this many iterations of plain nearest-
-          neighbour search from the budget's field instead of finest-em-iterations budget
-          iterations: the seams of its mosaic move to where the pieces agree (closer to the
-          exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
-          published). Range 0..100 iterations.
+          Error budget: the finest level searches plain nearest neighbours from the budget's
+          field, this many iterations instead of finest-em-iterations budget ones: the seams
+          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
+          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
+          iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -644,11 +644,11 @@ def animate(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level runs this many iterations of plain nearest-
-          neighbour search from the budget's field instead of finest-em-iterations budget
-          iterations: the seams of its mosaic move to where the pieces agree (closer to the
-          exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
-          published). Range 0..100 iterations.
+          Error budget: the finest level searches plain nearest neighbours from the budget's
+          field, this many iterations instead of finest-em-iterations budget ones: the seams
+          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
+          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
+          iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.

@@ -165,10 +165,10 @@ const std::array<OptionSpec, 23> kSpecs{{
      "that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
     {"budget-polish-iterations",
-     "Error budget: the finest level runs this many iterations of plain nearest-neighbour search "
-     "from the budget's field instead of finest-em-iterations budget iterations: the seams of its "
-     "mosaic move to where the pieces agree (closer to the exemplar, faster), but the finest "
-     "grain partly washes out; 0 = off (StyLit as published).",
+     "Error budget: the finest level searches plain nearest neighbours from the budget's field, "
+     "this many iterations instead of finest-em-iterations budget ones: the seams of its mosaic "
+     "move to where the pieces agree (closer to the exemplar, faster), but the finest grain "
+     "partly washes out; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::budget_polish_iterations},
     {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
      "rounds", 1, 1000, &O::budget_max_rounds},

@@ -73,12 +73,18 @@ TEST(Synthesize, RedundantGuideChannelsAreTakenOutExactly) {
     EXPECT_GT((after - before) / centres, 0.9 * 2 * 25 * 5 * 0.09);
 }
 
-// finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
-// finest level's first reversed round only (coarser levels are unaffected).
-TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
+// The identity guides with larger targets: a two-level run whose finest level has work to do.
+SynthesisInput two_level_input() {
     SynthesisInput in = identity_input(48, 40);
     in.guides[0].target = testing::texture(52, 44, 3, 9);
     in.guides[1].target = testing::ramp(52, 44);
+    return in;
+}
+
+// finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
+// finest level's first reversed round only (coarser levels are unaffected).
+TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
+    const SynthesisInput in = two_level_input();
     SynthesisOptions opt;
     opt.levels = 2;
     auto run = [&](int first_round, std::vector<Image>* coarse) {
@@ -111,9 +117,7 @@ TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
 // that many iterations of plain nearest-neighbour search, whose matches are closer to the same B'
 // than the budget's. Other strategies ignore it.
 TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
-    SynthesisInput in = identity_input(48, 40);
-    in.guides[0].target = testing::texture(52, 44, 3, 9);
-    in.guides[1].target = testing::ramp(52, 44);
+    const SynthesisInput in = two_level_input();
     SynthesisOptions opt;
     opt.levels = 2;
     opt.finest_em_iterations = 2;
