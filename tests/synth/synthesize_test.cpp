@@ -153,6 +153,10 @@ TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
     // The first finest search starts from the same field and B' in both runs.
     EXPECT_LT(polished[coarse].mean_error, plain[coarse].mean_error);
     EXPECT_FALSE(same(plain.back().current, polished.back().current));
+    // The same bytes for any thread count.
+    auto one = synthesize(in, opt, RunContext{1});
+    ASSERT_TRUE(one.ok());
+    EXPECT_TRUE(same(one->image, polished.back().current));
 
     opt.usage = UsageStrategy::Uniform;
     const std::vector<Frame> uniform_plain = run(0);
