@@ -102,6 +102,7 @@ def stylize(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -215,6 +216,12 @@ def stylize(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_iterations (int, default 0)
+          Error budget: the finest level searches plain nearest neighbours from the budget's
+          field, this many iterations instead of finest-em-iterations budget ones: the seams
+          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
+          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
+          iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -308,6 +315,7 @@ def stylit(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -407,6 +415,12 @@ def stylit(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_iterations (int, default 0)
+          Error budget: the finest level searches plain nearest neighbours from the budget's
+          field, this many iterations instead of finest-em-iterations budget ones: the seams
+          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
+          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
+          iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -526,6 +540,7 @@ def animate(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -651,6 +666,12 @@ def animate(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_iterations (int, default 0)
+          Error budget: the finest level searches plain nearest neighbours from the budget's
+          field, this many iterations instead of finest-em-iterations budget ones: the seams
+          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
+          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
+          iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.

@@ -71,6 +71,7 @@ std::span<const QualityChange> quality_changes(Quality quality) {
         QualityChange{"em-iterations", 16},
         QualityChange{"finest-em-iterations", 3},
         QualityChange{"second-finest-em-iterations", 8},
+        QualityChange{"budget-polish-iterations", 4},
     };
     switch (quality) {
         case Quality::Fast: return kFast;
@@ -106,7 +107,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 23> kSpecs{{
+const std::array<OptionSpec, 24> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -169,6 +170,12 @@ const std::array<OptionSpec, 23> kSpecs{{
      "fewer than two of its neighbours' source regions) takes a neighbour's shifted match where "
      "that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
+    {"budget-polish-iterations",
+     "Error budget: the finest level searches plain nearest neighbours from the budget's field, "
+     "this many iterations instead of finest-em-iterations budget ones: the seams of its mosaic "
+     "move to where the pieces agree (closer to the exemplar, faster), but the finest grain "
+     "partly washes out; 0 = off (StyLit as published).",
+     "iterations", 0, 100, &O::budget_polish_iterations},
     {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
      "rounds", 1, 1000, &O::budget_max_rounds},
     {"budget-focus",

@@ -184,28 +184,34 @@ int last_vote_size(const SynthesisOptions& options, int patch_size) {
 // reversed-retrieval state; with `warm_start` the first search already counts as warm (the NNF
 // and reverse_field come from a previous pass over the same level). Every search also tries
 // `candidates` (the level's candidate fields; empty = none). On the `finest` level the first
-// reversed round runs options.finest_first_round_iterations; when these iterations `end_run`,
-// the last one votes with the footprint of last_vote_size.
+// reversed round runs options.finest_first_round_iterations; with `polish` every search is a
+// plain nearest-neighbour one whatever the usage strategy; when these iterations `end_run`, the
+// last one votes with the footprint of last_vote_size.
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
             int threads, bool warm_start, const std::vector<Nnf>& candidates, bool finest,
-            bool end_run, Nnf& nnf, Nnf& reverse_field, Image& current, ProgressTracker& tracker,
-            const DebugSink& debug) {
+            bool polish, bool end_run, Nnf& nnf, Nnf& reverse_field, Image& current,
+            ProgressTracker& tracker, const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
                         (options.patch_size * options.patch_size);
     std::vector<float> weights, histogram;
+    // The error budget's polish: plain nearest neighbours from the field the budget laid out
+    // (see SynthesisOptions::budget_polish_iterations); the field is a close one (upsampled or
+    // the previous iteration's) unless this is the coarsest level.
+    SynthesisOptions nearest = options;
+    nearest.usage = UsageStrategy::None;
     for (int it = 0; it < iterations; ++it) {
         if (tracker.context.cancelled()) {
             tracker.cancelled = true;
             return;
         }
         const synth::SearchSetup setup{L,
-                                       options,
+                                       polish ? nearest : options,
                                        hash_keys(key, 0x100 + static_cast<std::uint64_t>(it)),
                                        threads,
                                        &reverse_field,
-                                       it > 0 || warm_start,
+                                       it > 0 || warm_start || (polish && L.index > 0),
                                        candidates.empty() ? nullptr : &candidates,
                                        finest ? options.finest_first_round_iterations : 0};
         synth::search(setup, nnf);
@@ -479,7 +485,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         }
         const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
         run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,
-               /*end_run=*/finest && !final_pass, nnf, reverse_field, current, tracker, debug);
+               /*polish=*/finest && budget_polish(options), /*end_run=*/finest && !final_pass, nnf,
+               reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
@@ -495,7 +502,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
                        threads, /*warm_start=*/true, candidates, /*finest=*/true,
-                       /*end_run=*/true, nnf, reverse_field, current, tracker, debug);
+                       /*polish=*/false, /*end_run=*/true, nnf, reverse_field, current, tracker,
+                       debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }

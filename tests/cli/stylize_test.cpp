@@ -343,6 +343,8 @@ TEST_F(Cli, OutOfRangeValues) {
                    "quality: 'superb' is invalid (must be one of fast, default, best)");
     expect_failure(with(stylize_args(), {"--coherence-sweeps", "-1"}), 1,
                    "coherence-sweeps: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--budget-polish-iterations", "-1"}), 1,
+                   "budget-polish-iterations: -1 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--vote-coherence", "101"}), 1,
                    "vote-coherence: 101 is invalid (must be 0..100)");
     expect_failure(with(stylize_args(), {"--vote-histogram", "-1"}), 1,

@@ -73,12 +73,18 @@ TEST(Synthesize, RedundantGuideChannelsAreTakenOutExactly) {
     EXPECT_GT((after - before) / centres, 0.9 * 2 * 25 * 5 * 0.09);
 }
 
-// finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
-// finest level's first reversed round only (coarser levels are unaffected).
-TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
+// The identity guides with larger targets: a two-level run whose finest level has work to do.
+SynthesisInput two_level_input() {
     SynthesisInput in = identity_input(48, 40);
     in.guides[0].target = testing::texture(52, 44, 3, 9);
     in.guides[1].target = testing::ramp(52, 44);
+    return in;
+}
+
+// finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
+// finest level's first reversed round only (coarser levels are unaffected).
+TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
+    const SynthesisInput in = two_level_input();
     SynthesisOptions opt;
     opt.levels = 2;
     auto run = [&](int first_round, std::vector<Image>* coarse) {
@@ -105,6 +111,58 @@ TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
         EXPECT_TRUE(std::equal(coarse_one[i].data().begin(), coarse_one[i].data().end(),
                                coarse_zero[i].data().begin()));
     }
+}
+
+// The error budget's polish (budget-polish-iterations): only the finest level changes; it runs
+// that many iterations of plain nearest-neighbour search, whose matches are closer to the same B'
+// than the budget's. Other strategies ignore it.
+TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
+    const SynthesisInput in = two_level_input();
+    SynthesisOptions opt;
+    opt.levels = 2;
+    opt.finest_em_iterations = 2;
+    struct Frame {
+        int level = 0;
+        Image current;
+        double mean_error = 0.0;
+    };
+    auto run = [&](int polish) {
+        opt.budget_polish_iterations = polish;
+        std::vector<Frame> frames;
+        auto sink = [&](const DebugFrame& f) {
+            double sum = 0.0;
+            for (const Match& m : f.nnf->matches()) sum += m.error;
+            frames.push_back(
+                Frame{f.level, *f.current, sum / static_cast<double>(f.nnf->pixel_count())});
+        };
+        EXPECT_TRUE(synthesize(in, opt, RunContext{2}, sink).ok());
+        return frames;
+    };
+    auto same = [](const Image& a, const Image& b) {
+        return std::equal(a.data().begin(), a.data().end(), b.data().begin(), b.data().end());
+    };
+    const std::vector<Frame> plain = run(0);
+    const std::vector<Frame> polished = run(3);
+    const std::size_t coarse = static_cast<std::size_t>(opt.em_iterations);
+    ASSERT_EQ(plain.size(), coarse + 2);
+    ASSERT_EQ(polished.size(), coarse + 3);
+    for (std::size_t i = 0; i < coarse; ++i) {
+        EXPECT_EQ(polished[i].level, 0);
+        EXPECT_TRUE(same(plain[i].current, polished[i].current)) << "frame " << i;
+    }
+    // The first finest search starts from the same field and B' in both runs.
+    EXPECT_LT(polished[coarse].mean_error, plain[coarse].mean_error);
+    EXPECT_FALSE(same(plain.back().current, polished.back().current));
+    // The same bytes for any thread count.
+    auto one = synthesize(in, opt, RunContext{1});
+    ASSERT_TRUE(one.ok());
+    EXPECT_TRUE(same(one->image, polished.back().current));
+
+    opt.usage = UsageStrategy::Uniform;
+    const std::vector<Frame> uniform_plain = run(0);
+    const std::vector<Frame> uniform_polished = run(3);
+    ASSERT_EQ(uniform_plain.size(), uniform_polished.size());
+    EXPECT_TRUE(same(uniform_plain.back().current, uniform_polished.back().current));
 }
 
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
@@ -547,7 +605,8 @@ TEST(Synthesize, DebugSinkReceivesUsageMaps) {
 }
 
 // The EM iterations per level: em-iterations on the coarse levels, second-finest-em-iterations
-// on the level before the finest (not when that is the coarsest), finest-em-iterations last.
+// on the level before the finest (not when that is the coarsest), finest-em-iterations last, or
+// budget-polish-iterations with the error budget's polish.
 TEST(Synthesize, EmIterationsPerLevel) {
     const SynthesisInput in = identity_input(64, 64);
     SynthesisOptions opt;
@@ -565,6 +624,10 @@ TEST(Synthesize, EmIterationsPerLevel) {
     EXPECT_EQ(frames_per_level(2), (std::vector<int>{3, 1}));  // the coarsest starts from scratch
     EXPECT_EQ(frames_per_level(1), (std::vector<int>{1}));
     opt.second_finest_em_iterations = 0;
+    EXPECT_EQ(frames_per_level(3), (std::vector<int>{3, 3, 1}));
+    opt.budget_polish_iterations = 2;
+    EXPECT_EQ(frames_per_level(3), (std::vector<int>{3, 3, 2}));
+    opt.usage = UsageStrategy::OccurrencePenalty;  // the polish is the error budget's
     EXPECT_EQ(frames_per_level(3), (std::vector<int>{3, 3, 1}));
 }
 

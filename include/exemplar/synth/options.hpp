@@ -108,7 +108,8 @@ struct SynthesisOptions {
     /// PatchMatch iterations of the first reversed-retrieval round of each EM iteration on the
     /// finest level, which starts from a close field (the previous iteration's, or the coarser
     /// level's upsampled); 0 = warm_search_iterations. One is enough there (on coarser levels
-    /// it loses texture); measurements in docs/PERFORMANCE.md.
+    /// it loses texture); measurements in docs/PERFORMANCE.md. The error budget's finest level
+    /// runs no reversed rounds unless budget_polish_iterations is 0.
     int finest_first_round_iterations = 1;
     float style_weight = 1.0f;      ///< Weight of the style (A'/B') term relative to guides.
     float falloff_sigma_px = 0.0f;  ///< Gaussian fall-off of pixel weights in a patch; 0 = flat.
@@ -153,6 +154,17 @@ struct SynthesisOptions {
     /// Closer to the exemplar and more of its grain kept; 0 = off (StyLit as published).
     /// Measurements in docs/PERFORMANCE.md.
     int coherence_sweeps = 2;
+    /// Error budget: the finest level runs this many EM iterations of plain nearest-neighbour
+    /// search from the field the budget laid out on the coarser levels, instead of
+    /// finest_em_iterations budget iterations. The coarser levels fix the layout (which exemplar
+    /// region goes where); the budget on the finest level adds a mosaic of small pieces whose
+    /// seams no exemplar patch contains, and the plain search moves those seams to where
+    /// neighbouring pieces agree: closer to the exemplar (stylit's patch fidelity as ebsynth's)
+    /// and cheaper, but the finest grain partly washes out again (facestyle keeps 4-7% less
+    /// gradient energy) and highlights take fewer highlight patches. 0 = off (default: StyLit as
+    /// published; the `best` preset uses it). Not in the 3x3 final pass. Measurements in
+    /// docs/PERFORMANCE.md.
+    int budget_polish_iterations = 0;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
     /// Error budget: once fewer than this fraction of the target patches are still free, a
@@ -172,10 +184,18 @@ struct SynthesisOptions {
     static SynthesisOptions preset(Quality quality);
 };
 
+/// Whether the finest level searches plain nearest neighbours instead of the error budget
+/// (SynthesisOptions::budget_polish_iterations).
+inline bool budget_polish(const SynthesisOptions& options) {
+    return options.usage == UsageStrategy::ErrorBudget && options.budget_polish_iterations > 0;
+}
+
 /// EM iterations of the level `depth` steps above the finest (0 = finest) of a pyramid with
-/// `levels` levels: finest_em_iterations on the finest and second_finest_em_iterations on the
-/// one before it if that is not the coarsest (each when set), else em_iterations.
+/// `levels` levels: finest_em_iterations on the finest (budget_polish_iterations when
+/// budget_polish) and second_finest_em_iterations on the one before it if that is not the
+/// coarsest (each when set), else em_iterations.
 inline int em_iterations_of_level(const SynthesisOptions& options, int depth, int levels) {
+    if (depth == 0 && budget_polish(options)) return options.budget_polish_iterations;
     if (depth == 0 && options.finest_em_iterations > 0) return options.finest_em_iterations;
     if (depth == 1 && levels > 2 && options.second_finest_em_iterations > 0) {
         return options.second_finest_em_iterations;
