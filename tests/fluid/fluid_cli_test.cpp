@@ -160,26 +160,12 @@ TEST_F(FluidCli, JobFileGivesTheSameFramesAsFlags) {
 // clear where it is not.
 TEST_F(FluidCli, BundledInkExampleRunsOnAPlume) {
     const std::string job = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/fluid/job.json";
-    const CliRun r = run({"fluid",
-                          "--config",
-                          job,
-                          "--alpha",
-                          path("sim/alpha/%04d.png"),
-                          "--motion",
-                          path("sim/motion/%04d.flo"),
-                          "--first",
-                          "0",
-                          "--last",
-                          "5",
-                          "--output",
-                          path("ink/%04d.png"),
-                          "--mp4",
-                          "",
-                          "--blur-radius",
-                          "1.5",
-                          "-j",
-                          "2",
-                          "-q"});
+    // The fixture's flags with the job file in place of the exemplar (flags override the job).
+    std::vector<std::string> flags = args("ink/%04d.png");
+    flags[1] = "--config";
+    flags[2] = job;
+    flags.insert(flags.end(), {"--mp4", ""});
+    const CliRun r = run(flags);
     ASSERT_EQ(r.code, 0) << r.err;
     const Result<Image> out = load_image(path("ink/0005.png"));
     const Result<Image> target = load_image(path("sim/alpha/0005.png"));
