@@ -212,6 +212,18 @@ Status AnimateCommand::run(const Streams& streams) const {
             src.frames.emplace(std::move(sequence).value());
             f0 = src.frames->first_number();
             f1 = f0 + src.frames->size() - 1;
+            // "first"/"last" narrow a folder or video to a part of its frames.
+            if (job.first >= 0 || job.last >= 0) {
+                const int a = job.first >= 0 ? job.first : f0, b = job.last >= 0 ? job.last : f1;
+                if (a < f0 || b > f1 || b < a) {
+                    return invalid_argument("frames " + src.spec->frames + ": first/last " +
+                                            std::to_string(a) + ".." + std::to_string(b) +
+                                            " is invalid (it has frames " + std::to_string(f0) +
+                                            ".." + std::to_string(f1) + ")");
+                }
+                f0 = a;
+                f1 = b;
+            }
             probe_number = f0;
         }
         for (const auto& [file, image] : {std::pair{&src.spec->style_input, &src.style_input},

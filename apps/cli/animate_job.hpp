@@ -38,9 +38,9 @@ struct AnimateSourceSpec {
 struct AnimateJob {
     AnimateSourceSpec base;                 ///< The top-level inputs.
     std::vector<AnimateSourceSpec> layers;  ///< Back to front; each inherits what it omits.
-    int first = -1, last = -1;              ///< Frame numbers of a pattern (inclusive).
-    std::string output;                     ///< Pattern of the output frames.
-    std::string mp4;                        ///< Optional MP4 of the written range.
+    int first = -1, last = -1;  ///< Frame numbers of a pattern, or part of a folder/video.
+    std::string output;         ///< Pattern of the output frames.
+    std::string mp4;            ///< Optional MP4 of the written range.
     double fps = 24.0;
     int chunk = 24;  ///< Frames per solve (0 = the whole range at once).
     animate::AnimateOptions options;

@@ -60,6 +60,30 @@ protected:
     Scene scene_;
 };
 
+// A folder of frames: "first"/"last" narrow the job to part of it (they were ignored once, and
+// every frame was solved); numbers outside the folder's frames are an error naming them.
+TEST_F(AnimateCli, FolderFramesHonourFirstAndLast) {
+    std::ofstream(path("folder.json"))
+        << R"({"frames": "frames", "first": 1, "last": 2,)"
+        << R"( "flows": {"forward": "flow/f%02d.flo", "backward": "flow/b%02d.flo"},)"
+        << R"( "style": {"input": "s_in.png", "output": "s_out.png"}, "output": "out/%02d.png"})";
+    CliRun r = run({"animate", path("folder.json"), "-j", "2"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, path("out/%02d.png") + " (2 frames)\n");
+    EXPECT_FALSE(fs::exists(out(0)));
+    EXPECT_TRUE(fs::exists(out(1)) && fs::exists(out(2)));
+    EXPECT_FALSE(fs::exists(out(3)));
+    std::ofstream(path("beyond.json"))
+        << R"({"frames": "frames", "last": 99,)"
+        << R"( "style": {"input": "s_in.png", "output": "s_out.png"}, "output": "out/%02d.png"})";
+    r = run({"animate", path("beyond.json"), "-q"});
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("first/last 0..99 is invalid (it has frames 0.." +
+                         std::to_string(scene_.frames - 1) + ")"),
+              std::string::npos)
+        << r.err;
+}
+
 TEST_F(AnimateCli, RangesHandOverAndResumeSkipsFinishedFrames) {
     const std::string j = job();
     CliRun r = run({"animate", j, "--frames", "0-3", "-j", "2"});
