@@ -750,6 +750,7 @@ def fluid_frame(
     boundary_low: float = 0.1,
     boundary_high: float = 0.9,
     motion_blur: float = 0.0,
+    vote_histogram: float = 2.0,
     usage: str = 'uniform',
     rotations: bool = False,
     seed: int = 1,
@@ -801,6 +802,10 @@ def fluid_frame(
       motion_blur (float, default 0.0)
           Motion blur along the motion, sigma as a fraction of the motion's length (0 =
           off). Range 0.0..2.0.
+      vote_histogram (float, default 2.0)
+          Colour-histogram weight of the vote: values the frame already holds more of than
+          the exemplar weigh less, so the texture is not averaged flat (0 = the paper's
+          vote). Ours: 2. Range 0.0..100.0.
       usage (str, default 'uniform')
           'uniform' (LazyFluids) or 'none' (plain nearest neighbours, for comparisons).
       rotations (bool, default False)

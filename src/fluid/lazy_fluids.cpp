@@ -142,6 +142,10 @@ std::span<const FluidOptionSpec> fluid_option_specs() {
         {"motion-blur",
          "Motion blur along the motion, sigma as a fraction of the motion's length (0 = off)", "",
          0, 2, &O::motion_blur},
+        {"vote-histogram",
+         "Colour-histogram weight of the vote: values the frame already holds more of than the "
+         "exemplar weigh less, so the texture is not averaged flat (0 = the paper's vote). Ours: 2",
+         "", 0, 100, &O::vote_histogram},
     };
     return specs;
 }
@@ -398,6 +402,7 @@ Result<FluidFrameResult> synthesize_fluid_frame(const FluidFrameInput& in,
     SynthesisOptions synthesis = options.synthesis;
     synthesis.patch_size = options.patch_size;
     synthesis.usage = options.uniform_usage ? UsageStrategy::Uniform : UsageStrategy::None;
+    synthesis.vote_histogram = options.vote_histogram;
 
     auto run = synthesize(std::move(input), synthesis, context);
     if (!run.ok()) return run.status();

@@ -47,13 +47,14 @@ struct PlumeRun {
     std::vector<double> energy;  // per frame, relative to the exemplar's
 };
 
-PlumeRun run_plume(bool uniform, const std::vector<Image>& alphas,
+PlumeRun run_plume(bool uniform, float vote_histogram, const std::vector<Image>& alphas,
                    const std::vector<Image>& motions) {
     const Image exemplar = test::fire_exemplar(32);
     const double reference = interior_gradient_energy(exemplar);
     FluidOptions options;
     options.blur_radius_px = 1.5f;
     options.uniform_usage = uniform;
+    options.vote_histogram = vote_histogram;
     PlumeRun run;
     Image previous;
     for (std::size_t t = 0; t < alphas.size(); ++t) {
@@ -93,23 +94,35 @@ TEST(LazyFluidsWashOut, UniformUsageKeepsTheTextureOverASixtyFramePlume) {
                     },
                     RunContext(2))
                     .is_ok());
-    const PlumeRun nearest = run_plume(false, alphas, motions);
-    const PlumeRun uniform = run_plume(true, alphas, motions);
+    // The paper's comparison (Kwatra et al.'s nearest neighbours against uniform usage, both
+    // with the plain vote), then our default: uniform usage with the colour-histogram vote.
+    const PlumeRun nearest = run_plume(false, 0.0f, alphas, motions);
+    const PlumeRun uniform = run_plume(true, 0.0f, alphas, motions);
+    const PlumeRun ours = run_plume(true, FluidOptions{}.vote_histogram, alphas, motions);
     ASSERT_EQ(nearest.energy.size(), static_cast<std::size_t>(kFrames));
     ASSERT_EQ(uniform.energy.size(), static_cast<std::size_t>(kFrames));
-    std::printf("gradient energy / exemplar's, frames 0, 10, ..., 50, 59:\n  nearest:");
-    for (int t = 0; t < kFrames; t += 10) std::printf(" %.2f", nearest.energy[t]);
-    std::printf(" %.2f\n  uniform:", nearest.energy.back());
-    for (int t = 0; t < kFrames; t += 10) std::printf(" %.2f", uniform.energy[t]);
-    std::printf(" %.2f\n", uniform.energy.back());
+    ASSERT_EQ(ours.energy.size(), static_cast<std::size_t>(kFrames));
+    std::printf("gradient energy / exemplar's, frames 0, 10, ..., 50, 59:\n");
+    for (const auto& [name, run] : {std::pair{"nearest", &nearest}, std::pair{"uniform", &uniform},
+                                    std::pair{"default", &ours}}) {
+        std::printf("  %s:", name);
+        for (int t = 0; t < kFrames; t += 10) std::printf(" %.2f", run->energy[t]);
+        std::printf(" %.2f\n", run->energy.back());
+    }
     const double mean_nearest = mean(nearest.energy, 0, kFrames);
     const double mean_uniform = mean(uniform.energy, 0, kFrames);
-    std::printf("  mean: nearest %.2f, uniform %.2f\n", mean_nearest, mean_uniform);
+    const double mean_ours = mean(ours.energy, 0, kFrames);
+    std::printf("  mean: nearest %.2f, uniform %.2f, default %.2f\n", mean_nearest, mean_uniform,
+                mean_ours);
     // Nearest neighbours keep little of the exemplar's texture; uniform usage at least twice as
-    // much, and it does not fade over the shot.
+    // much, and it does not fade over the shot. The histogram vote keeps much more again
+    // (measured 0.75 against 0.41), but not the "within 10%" of the exemplar.
     EXPECT_LT(mean_nearest, 0.3);
     EXPECT_GT(mean_uniform, 2.0 * mean_nearest);
     EXPECT_GT(mean(uniform.energy, 40, 60), 0.85 * mean(uniform.energy, 0, 20));
+    EXPECT_GT(mean_ours, 1.5 * mean_uniform);
+    EXPECT_GT(mean(ours.energy, 40, 60), 0.85 * mean(ours.energy, 0, 20));
+    EXPECT_LT(mean_ours, 1.2);  // more texture than the exemplar would be noise, not texture
 }
 
 }  // namespace

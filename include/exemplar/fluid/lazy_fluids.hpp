@@ -69,6 +69,11 @@ struct FluidOptions {
     /// Motion blur (§5.4.5): line convolution of the output along the motion with a Gaussian
     /// whose σ is this fraction of the motion's length (0 = off, default; 0..2).
     float motion_blur = 0.0f;
+    /// Strength of the vote's colour-histogram weight (SynthesisOptions::vote_histogram; Kopf
+    /// et al. 2007), 0..100: values the frame holds more of than the exemplar weigh less in the
+    /// vote, which otherwise averages the scattered uniform matches into flat, faint smoke.
+    /// Ours, not the paper's; default 2 (docs/fluid.md, "Wash-out"); 0 = the paper's vote.
+    float vote_histogram = 2.0f;
     /// Engine options (levels, EM and PatchMatch iterations, seed). patch_size and usage are
     /// set from the fields above.
     SynthesisOptions synthesis;
@@ -86,7 +91,7 @@ struct FluidOptionSpec {
 };
 
 /// The numeric options (patch-size, temporal-weight, boundary-weight, alpha-weight,
-/// blur-radius, boundary-low, boundary-high, motion-blur).
+/// blur-radius, boundary-low, boundary-high, motion-blur, vote-histogram).
 std::span<const FluidOptionSpec> fluid_option_specs();
 
 /// Sets an option, rejecting values outside its range or non-integral values of integer options
