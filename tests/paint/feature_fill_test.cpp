@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "colour_histogram.hpp"
+
 namespace exemplar::paint {
 namespace {
 
@@ -115,26 +117,7 @@ Canvas canvas() {
 // `mask_a` and of `b` inside `mask_b`: 0 = the same distribution, 2 = disjoint.
 double histogram_distance(const Image& a, const Image& mask_a, const Image& b,
                           const Image& mask_b) {
-    auto histograms = [](const Image& image, const Image& mask) {
-        std::vector<double> h(3 * 16, 0.0);
-        double n = 0.0;
-        for (int y = 0; y < image.height(); ++y) {
-            for (int x = 0; x < image.width(); ++x) {
-                if (mask.at(x, y, 0) <= 0.5f) continue;
-                n += 1.0;
-                for (int c = 0; c < 3; ++c) {
-                    const int bin = std::clamp(static_cast<int>(image.at(x, y, c) * 16.0f), 0, 15);
-                    h[static_cast<std::size_t>(c * 16 + bin)] += 1.0;
-                }
-            }
-        }
-        for (double& v : h) v /= n;
-        return h;
-    };
-    const std::vector<double> ha = histograms(a, mask_a), hb = histograms(b, mask_b);
-    double d = 0.0;
-    for (std::size_t i = 0; i < ha.size(); ++i) d += std::abs(ha[i] - hb[i]);
-    return d / 3.0;
+    return testing::histogram_distance({a, mask_a}, {b, mask_b});
 }
 
 // Mean colour step (L1 over channels) between horizontal and vertical neighbours: both inside
