@@ -62,8 +62,9 @@ FillCommand::FillCommand(CLI::App& parent) {
         ->required();
     app_->add_option("--output,-o", output_, "Result image (PNG, TIFF, EXR)")->required();
     app_->add_option("--canvas", canvas_,
-                     "What is painted already (grey, RGB, RGBA); the fill meets it without a "
-                     "seam. Without it the region is filled free-standing on a transparent RGBA "
+                     "What is painted already (grey, RGB, RGBA): kept outside the region, "
+                     "continued across its border. Without it the region is filled free-standing "
+                     "on a transparent RGBA "
                      "image");
     app_->add_option("--usage", usage_,
                      "Patch usage: uniform (default: keeps sparse features), none (the "
