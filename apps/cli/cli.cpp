@@ -64,6 +64,7 @@ struct CommandLine {
     DirectionsCommand directions{app};
     PaintCommand paint{app};
     BrushCommand brush{app};
+    FillCommand fill{app};
     NprCommand npr{app};
 };
 
@@ -185,6 +186,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.paint.run(streams);
         } else if (cli.brush.parsed()) {
             status = cli.brush.run(streams);
+        } else if (cli.fill.parsed()) {
+            status = cli.fill.run(streams);
         } else if (cli.npr.parsed()) {
             status = cli.npr.run(streams);
         }

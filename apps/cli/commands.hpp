@@ -19,6 +19,7 @@
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
+#include "exemplar/paint/feature_fill.hpp"
 #include "exemplar/paint/paint.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
@@ -229,6 +230,30 @@ private:
     float brush_width_ = 0.0f;
     std::uint64_t seed_ = 1;
     bool snap_ = true;
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
+/// `exemplar fill`: fills a canvas region with the texture of a palette region (Painting by
+/// Feature's area-feature fill, docs/feature.md).
+class FillCommand {
+public:
+    /// Adds the `fill` subcommand and its flags to `app`.
+    explicit FillCommand(CLI::App& app);
+    FillCommand(const FillCommand&) = delete;
+    FillCommand& operator=(const FillCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string palette_, source_region_, target_region_, canvas_, output_;
+    std::string usage_{to_string(paint::FeatureFillOptions{}.usage)};
+    std::uint64_t seed_ = 1;
     std::map<std::string, double> numeric_values_;
     std::map<std::string, CLI::Option*> numeric_flags_;
     int threads_ = 0;

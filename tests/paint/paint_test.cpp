@@ -12,6 +12,8 @@
 #include <numeric>
 #include <vector>
 
+#include "colour_histogram.hpp"
+
 namespace exemplar::paint {
 namespace {
 
@@ -264,26 +266,7 @@ PaintSource cells_exemplar(bool flecks) {
 // Mean over R, G, B of the L1 distance between the 16-bin histograms of the exemplar and of the
 // painted (alpha > 0.5) pixels: 0 = the same colour distribution, 2 = disjoint.
 double histogram_distance(const Image& exemplar, const Image& painted) {
-    auto histograms = [](const Image& image) {
-        std::vector<double> h(3 * 16, 0.0);
-        double n = 0.0;
-        for (int y = 0; y < image.height(); ++y) {
-            for (int x = 0; x < image.width(); ++x) {
-                if (image.at(x, y, 3) <= 0.5f) continue;
-                n += 1.0;
-                for (int c = 0; c < 3; ++c) {
-                    const int bin = std::clamp(static_cast<int>(image.at(x, y, c) * 16.0f), 0, 15);
-                    h[static_cast<std::size_t>(c * 16 + bin)] += 1.0;
-                }
-            }
-        }
-        for (double& v : h) v /= n;
-        return h;
-    };
-    const std::vector<double> a = histograms(exemplar), b = histograms(painted);
-    double d = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) d += std::abs(a[i] - b[i]);
-    return d / 3.0;
+    return testing::histogram_distance({exemplar, exemplar, 3}, {painted, painted, 3});
 }
 
 Result<PaintResult> paint_curve(const PaintSource& source, PaintOptions options) {
