@@ -246,10 +246,11 @@ Advected advect(const Image& previous, const LevelBuffers& b, int dims) {
 
 // Correction (§5.2.4): per pixel, the best of the coherence candidates and the advected
 // previous coordinates for texture_weight·E_texture + coherence_weight·E_coherence.
-// Cancelled if the context's token is set before a sub-pass.
-Status correct(Field& field, const Image& stack, const LevelBuffers& b, const Field* previous,
-               const Advected& advected, const SynthesisOptions& options,
-               const RunContext& context) {
+// Cancelled if the context's token is set before a sub-pass. The plain scalar reference of
+// correct_fast (SynthesisOptions::reference_kernels).
+Status correct_reference(Field& field, const Image& stack, const LevelBuffers& b,
+                         const Field* previous, const Advected& advected,
+                         const SynthesisOptions& options, const RunContext& context) {
     const int dims = stack.channels();
     const float h = static_cast<float>(b.spacing);
     for (int pass = 0; pass < options.correction_passes; ++pass)
@@ -355,6 +356,166 @@ Status correct(Field& field, const Image& stack, const LevelBuffers& b, const Fi
                     int* out = field.at(x, y);
                     out[0] = wrap(best_x, stack.width());
                     out[1] = wrap(best_y, stack.height());
+                }
+            });
+        }
+    return Status::ok();
+}
+
+// std::lround for floats without the library call: v - trunc(v) is exact, so this rounds half
+// away from zero exactly as lround does (|v| < 2^31).
+int round_half_away(float v) {
+    int r = static_cast<int>(v);
+    const float fraction = v - static_cast<float>(r);
+    if (fraction >= 0.5f) ++r;
+    if (fraction <= -0.5f) --r;
+    return r;
+}
+
+// pattern_offset with round_half_away (same results).
+void pattern_offset_fast(float c, float s, float dx, float dy, float h, int& ox, int& oy) {
+    ox = round_half_away((c * dx - s * dy) * h);
+    oy = round_half_away((s * dx + c * dy) * h);
+}
+
+// texture_weight·Σ‖have − want‖² + coherence_weight·Σ‖was − want‖² over the 3x3 neighbours of
+// pattern position (ux, uy), stopping once it reaches `best`; the same sums in the same order as
+// correct_reference, so the same floats. Dims is the appearance dimension (0 = `dims`).
+template <int Dims>
+float candidate_error(const Image& stack, int ux, int uy, const int (*offsets)[2],
+                      const float* const* have, const float* const* was, bool any_prior,
+                      float texture_weight, float coherence_weight, float best, int dims) {
+    const int n = Dims > 0 ? Dims : dims;
+    float error = 0.0f;
+    for (int m = 0; m < 9 && error < best; ++m) {
+        const float* want = appearance_at(stack, ux + offsets[m][0], uy + offsets[m][1]);
+        float texture = 0.0f, coherence = 0.0f;
+        for (int d = 0; d < n; ++d) {
+            const float e = have[m][d] - want[d];
+            texture += e * e;
+        }
+        if (any_prior && was[m] != nullptr) {
+            for (int d = 0; d < n; ++d) {
+                const float e = was[m][d] - want[d];
+                coherence += e * e;
+            }
+        }
+        error += texture_weight * texture + coherence_weight * coherence;
+    }
+    return error;
+}
+
+// The correction of correct_reference, with the same candidates, order and sums, faster: the
+// field's appearance is kept in one contiguous buffer (updated in place as pixels change; a
+// pixel's 3x3 holds no other pixel of its parity), the neighbours are read through pointers
+// instead of copies, the 3x3 offsets are computed without lround (and once per level when the
+// orientation is constant 0), candidates live on the stack, and the error kernel is unrolled
+// for the default 6 dimensions.
+Status correct_fast(Field& field, const Image& stack, const LevelBuffers& b, const Field* previous,
+                    const Advected& advected, const SynthesisOptions& options,
+                    const RunContext& context) {
+    const int dims = stack.channels();
+    const float h = static_cast<float>(b.spacing);
+    const int pw = stack.width(), ph = stack.height();
+    std::vector<float> current(static_cast<std::size_t>(b.width) * b.height * dims);
+    parallel_for(0, b.height, context.threads, [&](int y) {
+        for (int x = 0; x < b.width; ++x) {
+            const int* s = field.at(x, y);
+            std::copy_n(appearance_at(stack, s[0], s[1]), dims,
+                        current.data() + b.index(x, y) * dims);
+        }
+    });
+    // The offsets of an unrotated pixel (orientation 0: cos 1, sin 0)
+    int upright[9][2];
+    for (int k = 0; k < 9; ++k)
+        pattern_offset_fast(1.0f, 0.0f, static_cast<float>(k % 3 - 1),
+                            static_cast<float>(k / 3 - 1), h, upright[k][0], upright[k][1]);
+    const bool has_prior = !advected.valid.empty();
+    const auto error_of = dims == 6 ? &candidate_error<6> : &candidate_error<0>;
+    for (int pass = 0; pass < options.correction_passes; ++pass)
+        for (int sub = 0; sub < 4; ++sub) {
+            if (context.cancelled()) return cancelled();
+            // As in correct_reference: one parity at a time, in place
+            const int row0 = sub / 2;
+            const int rows = (b.height - row0 + 1) / 2;
+            parallel_for(0, rows, context.threads, [&](int r) {
+                const int y = row0 + 2 * r;
+                const float* have[9];
+                const float* was[9];
+                int rotated[9][2];
+                int candidates[18][2];
+                for (int x = sub % 2; x < b.width; x += 2) {
+                    const std::size_t i = b.index(x, y);
+                    const float c = b.cos_angle[i], s = b.sin_angle[i];
+                    const int(*offsets)[2] = upright;
+                    if (c != 1.0f || s != 0.0f) {
+                        for (int k = 0; k < 9; ++k)
+                            pattern_offset_fast(c, s, static_cast<float>(k % 3 - 1),
+                                                static_cast<float>(k / 3 - 1), h, rotated[k][0],
+                                                rotated[k][1]);
+                        offsets = rotated;
+                    }
+                    bool any_prior = false;
+                    int count = 0;
+                    for (int k = 0; k < 9; ++k) {
+                        const int nx = std::clamp(x + k % 3 - 1, 0, b.width - 1);
+                        const int ny = std::clamp(y + k / 3 - 1, 0, b.height - 1);
+                        const std::size_t j = b.index(nx, ny);
+                        have[k] = current.data() + j * dims;
+                        was[k] = has_prior && advected.valid[j]
+                                     ? advected.appearance.data() + j * dims
+                                     : nullptr;
+                        any_prior = any_prior || was[k] != nullptr;
+                        // Ashikhmin candidate of this neighbour
+                        const int* sn = field.at(nx, ny);
+                        candidates[count][0] = sn[0] - offsets[k][0];
+                        candidates[count][1] = sn[1] - offsets[k][1];
+                        ++count;
+                    }
+                    // The previous frame's coordinates around the advected position
+                    if (previous != nullptr && !b.valid.empty() && b.valid[i]) {
+                        const float px = static_cast<float>(x) + b.flow[2 * i];
+                        const float py = static_cast<float>(y) + b.flow[2 * i + 1];
+                        const int qx = static_cast<int>(std::lround(px));
+                        const int qy = static_cast<int>(std::lround(py));
+                        for (int k = 0; k < 9; ++k) {
+                            const int sx = qx + k % 3 - 1, sy = qy + k / 3 - 1;
+                            if (sx < 0 || sy < 0 || sx >= b.width || sy >= b.height) continue;
+                            const int* sp = previous->at(sx, sy);
+                            int ox, oy;
+                            pattern_offset_fast(c, s, static_cast<float>(sx) - px,
+                                                static_cast<float>(sy) - py, h, ox, oy);
+                            candidates[count][0] = sp[0] - ox;
+                            candidates[count][1] = sp[1] - oy;
+                            ++count;
+                        }
+                    }
+                    float best = std::numeric_limits<float>::infinity();
+                    int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
+                    for (int k = 0; k < count; ++k) {
+                        const int ux = wrap_near(candidates[k][0], pw);
+                        const int uy = wrap_near(candidates[k][1], ph);
+                        candidates[k][0] = ux;
+                        candidates[k][1] = uy;
+                        // Coherent neighbours propose the same coordinate: evaluate it once
+                        bool seen = false;
+                        for (int j = 0; j < k && !seen; ++j)
+                            seen = candidates[j][0] == ux && candidates[j][1] == uy;
+                        if (seen) continue;
+                        const float error =
+                            error_of(stack, ux, uy, offsets, have, was, any_prior,
+                                     options.texture_weight, options.coherence_weight, best, dims);
+                        if (error < best) {
+                            best = error;
+                            best_x = ux;
+                            best_y = uy;
+                        }
+                    }
+                    int* out = field.at(x, y);
+                    out[0] = wrap_near(best_x, pw);
+                    out[1] = wrap_near(best_y, ph);
+                    std::copy_n(appearance_at(stack, out[0], out[1]), dims,
+                                current.data() + i * dims);
                 }
             });
         }
@@ -497,6 +658,7 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
             advected = advect(previous->appearance[static_cast<std::size_t>(level)], buffers,
                               stack.channels());
         }
+        const auto correct = options.reference_kernels ? &correct_reference : &correct_fast;
         EXEMPLAR_RETURN_IF_ERROR(correct(field, stack, buffers,
                                          use_previous ? &previous_field : nullptr, advected,
                                          options, context));
