@@ -93,6 +93,22 @@ void pattern_offset(float c, float s, float dx, float dy, float h, int& ox, int&
     oy = static_cast<int>(std::lround((s * dx + c * dy) * h));
 }
 
+// std::lround for floats without the library call: v - trunc(v) is exact, so this rounds half
+// away from zero exactly as lround does (|v| < 2^31).
+int round_half_away(float v) {
+    int r = static_cast<int>(v);
+    const float fraction = v - static_cast<float>(r);
+    if (fraction >= 0.5f) ++r;
+    if (fraction <= -0.5f) --r;
+    return r;
+}
+
+// pattern_offset with round_half_away (same results).
+void pattern_offset_fast(float c, float s, float dx, float dy, float h, int& ox, int& oy) {
+    ox = round_half_away((c * dx - s * dy) * h);
+    oy = round_half_away((s * dx + c * dy) * h);
+}
+
 // wrap() for values that are usually within one period of [0, n): no division then.
 int wrap_near(int v, int n) {
     if (v < 0) v += n;
@@ -133,9 +149,9 @@ float screen_at(const Image& screen, float x, float y) {
 
 // Coarsest level: overlapping oriented patches in scanline order (Efros and Freeman 2001
 // without the boundary cut), each the best of a keyed random set of grid positions for the
-// already-filled overlap.
-Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptions& options,
-                 int frame_index, int level) {
+// already-filled overlap. The plain reference of initialize_fast.
+Field initialize_reference(const Image& stack, const LevelBuffers& b,
+                           const SynthesisOptions& options, int frame_index, int level) {
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
@@ -189,6 +205,85 @@ Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptio
                     int ox, oy;
                     pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
                                    static_cast<float>(y - cy), h, ox, oy);
+                    int* s = field.at(x, y);
+                    s[0] = wrap(best_x + ox, stack.width());
+                    s[1] = wrap(best_y + oy, stack.height());
+                    filled[i] = 1;
+                }
+        }
+    return field;
+}
+
+// initialize_reference with the same patches, candidates and sums, faster: per patch, the
+// filled overlap's pattern offsets and appearance are gathered once instead of per candidate.
+Field initialize_fast(const Image& stack, const LevelBuffers& b, const SynthesisOptions& options,
+                      int frame_index, int level) {
+    Field field{b.width, b.height,
+                std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
+    std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
+    const int dims = stack.channels();
+    const int n = std::min({options.init_patch_size, b.width, b.height});
+    const int half = n / 2;
+    const float h = static_cast<float>(b.spacing);
+    const int grid = b.spacing;
+    const int grid_w = std::max(1, stack.width() / grid),
+              grid_h = std::max(1, stack.height() / grid);
+    // The filled overlap of the current patch, in scanline order
+    struct Overlap {
+        int ox, oy;
+        const float* have;
+    };
+    std::vector<Overlap> overlap;
+    overlap.reserve(static_cast<std::size_t>(n) * n);
+    int patch = 0;
+    for (int cy = 0; cy < b.height; ++cy)
+        for (int cx = 0; cx < b.width; ++cx) {
+            if (filled[b.index(cx, cy)]) continue;
+            const int x0 = std::max(0, cx - half), x1 = std::min(b.width, cx - half + n);
+            const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
+            overlap.clear();
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const std::size_t i = b.index(x, y);
+                    if (!filled[i]) continue;
+                    Overlap o;
+                    pattern_offset_fast(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
+                                        static_cast<float>(y - cy), h, o.ox, o.oy);
+                    const int* s = field.at(x, y);
+                    o.have = appearance_at(stack, s[0], s[1]);
+                    overlap.push_back(o);
+                }
+            KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
+                         static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
+            int best_x = 0, best_y = 0;
+            float best = std::numeric_limits<float>::infinity();
+            for (int k = 0; k < options.init_candidates; ++k) {
+                const int ux =
+                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_w))) * grid;
+                const int uy =
+                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_h))) * grid;
+                // The same sum in the same order; stopping earlier only changes losing errors
+                float error = 0.0f;
+                for (std::size_t j = 0; j < overlap.size() && error < best; ++j) {
+                    const Overlap& o = overlap[j];
+                    const float* want = appearance_at(stack, ux + o.ox, uy + o.oy);
+                    for (int c = 0; c < dims; ++c) {
+                        const float d = o.have[c] - want[c];
+                        error += d * d;
+                    }
+                }
+                if (error < best) {
+                    best = error;
+                    best_x = ux;
+                    best_y = uy;
+                }
+            }
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const std::size_t i = b.index(x, y);
+                    int ox, oy;
+                    pattern_offset_fast(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
+                                        static_cast<float>(y - cy), h, ox, oy);
                     int* s = field.at(x, y);
                     s[0] = wrap(best_x + ox, stack.width());
                     s[1] = wrap(best_y + oy, stack.height());
@@ -362,22 +457,6 @@ Status correct_reference(Field& field, const Image& stack, const LevelBuffers& b
     return Status::ok();
 }
 
-// std::lround for floats without the library call: v - trunc(v) is exact, so this rounds half
-// away from zero exactly as lround does (|v| < 2^31).
-int round_half_away(float v) {
-    int r = static_cast<int>(v);
-    const float fraction = v - static_cast<float>(r);
-    if (fraction >= 0.5f) ++r;
-    if (fraction <= -0.5f) --r;
-    return r;
-}
-
-// pattern_offset with round_half_away (same results).
-void pattern_offset_fast(float c, float s, float dx, float dy, float h, int& ox, int& oy) {
-    ox = round_half_away((c * dx - s * dy) * h);
-    oy = round_half_away((s * dx + c * dy) * h);
-}
-
 // texture_weight·Σ‖have − want‖² + coherence_weight·Σ‖was − want‖² over the 3x3 neighbours of
 // pattern position (ux, uy), stopping once it reaches `best`; the same sums in the same order as
 // correct_reference, so the same floats. Dims is the appearance dimension (0 = `dims`).
@@ -492,16 +571,19 @@ Status correct_fast(Field& field, const Image& stack, const LevelBuffers& b, con
                     }
                     float best = std::numeric_limits<float>::infinity();
                     int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
+                    // Coherent neighbours propose the same coordinate: evaluate it once (a
+                    // candidate is compared with the distinct ones before it only)
+                    std::uint64_t distinct[18];
+                    int distinct_count = 0;
                     for (int k = 0; k < count; ++k) {
                         const int ux = wrap_near(candidates[k][0], pw);
                         const int uy = wrap_near(candidates[k][1], ph);
-                        candidates[k][0] = ux;
-                        candidates[k][1] = uy;
-                        // Coherent neighbours propose the same coordinate: evaluate it once
+                        const std::uint64_t key =
+                            static_cast<std::uint64_t>(ux) << 32 | static_cast<std::uint32_t>(uy);
                         bool seen = false;
-                        for (int j = 0; j < k && !seen; ++j)
-                            seen = candidates[j][0] == ux && candidates[j][1] == uy;
+                        for (int j = 0; j < distinct_count; ++j) seen |= distinct[j] == key;
                         if (seen) continue;
+                        distinct[distinct_count++] = key;
                         const float error =
                             error_of(stack, ux, uy, offsets, have, was, any_prior,
                                      options.texture_weight, options.coherence_weight, best, dims);
@@ -648,6 +730,8 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
         const Image& stack = pattern.stack[static_cast<std::size_t>(level)];
         buffers = sample_level(input, level);
         // Initialize the coarsest level with patches, upsample the finer ones
+        const auto initialize =
+            options.reference_kernels ? &initialize_reference : &initialize_fast;
         field = level == levels - 1 ? initialize(stack, buffers, options, frame_index, level)
                                     : upsample(field, buffers, stack);
         // Correct with coherence candidates and the advected previous frame
