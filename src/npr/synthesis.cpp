@@ -29,6 +29,10 @@ int wrap(int v, int n) {
 }
 
 float wrapf(float v, float n) {
+    // Within one period of [0, n) without fmod: fmod(v, n) is v there, and v − n is exact
+    if (v >= 0.0f && v < n) return v;
+    if (v < 0.0f && v >= -n) return v + n;
+    if (v >= n && v < 2.0f * n) return v - n;
     const float r = std::fmod(v, n);
     return r < 0.0f ? r + n : r;
 }
@@ -52,7 +56,7 @@ struct LevelBuffers {
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
 };
 
-LevelBuffers sample_level(const FrameInput& input, int level) {
+LevelBuffers sample_level(const FrameInput& input, int level, int threads) {
     LevelBuffers b;
     b.spacing = 1 << level;
     b.width = (input.width + b.spacing - 1) / b.spacing;
@@ -65,7 +69,7 @@ LevelBuffers sample_level(const FrameInput& input, int level) {
         b.flow.assign(2 * n, 0.0f);
         b.valid.assign(n, 1);
     }
-    for (int y = 0; y < b.height; ++y)
+    parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const int cx = std::min(x * b.spacing + b.spacing / 2, input.width - 1);
             const int cy = std::min(y * b.spacing + b.spacing / 2, input.height - 1);
@@ -83,6 +87,7 @@ LevelBuffers sample_level(const FrameInput& input, int level) {
                 for (int xx = x * b.spacing; xx < std::min((x + 1) * b.spacing, input.width); ++xx)
                     if (input.disocclusion.at(xx, yy, 0) > 0.5f) b.valid[i] = 0;
         }
+    });
     return b;
 }
 
@@ -294,11 +299,11 @@ Field initialize_fast(const Image& stack, const LevelBuffers& b, const Synthesis
 }
 
 // S_l[2i + Δ] = S_{l+1}[i] + Rot(-θ) Δ h_l (eq. 4).
-Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack) {
+Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, int threads) {
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     const float h = static_cast<float>(b.spacing);
-    for (int y = 0; y < b.height; ++y)
+    parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const std::size_t i = b.index(x, y);
             const int* p =
@@ -310,6 +315,7 @@ Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack) {
             s[0] = wrap(p[0] + ox, stack.width());
             s[1] = wrap(p[1] + oy, stack.height());
         }
+    });
     return field;
 }
 
@@ -319,13 +325,13 @@ struct Advected {
     std::vector<unsigned char> valid;
 };
 
-Advected advect(const Image& previous, const LevelBuffers& b, int dims) {
+Advected advect(const Image& previous, const LevelBuffers& b, int dims, int threads) {
     Advected a;
     const std::size_t n = static_cast<std::size_t>(b.width) * b.height;
     a.appearance.assign(n * static_cast<std::size_t>(dims), 0.0f);
     a.valid.assign(n, 0);
     if (b.flow.empty() || previous.empty()) return a;
-    for (int y = 0; y < b.height; ++y)
+    parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const std::size_t i = b.index(x, y);
             const float px = static_cast<float>(x) + b.flow[2 * i];
@@ -336,6 +342,7 @@ Advected advect(const Image& previous, const LevelBuffers& b, int dims) {
             bilinear(previous, px, py, a.appearance.data() + i * static_cast<std::size_t>(dims));
             a.valid[i] = 1;
         }
+    });
     return a;
 }
 
@@ -604,13 +611,14 @@ Status correct_fast(Field& field, const Image& stack, const LevelBuffers& b, con
     return Status::ok();
 }
 
-Image appearance_image(const Field& field, const Image& stack) {
+Image appearance_image(const Field& field, const Image& stack, int threads) {
     Image out(field.width, field.height, stack.channels());
-    for (int y = 0; y < field.height; ++y)
+    parallel_for(0, field.height, threads, [&](int y) {
         for (int x = 0; x < field.width; ++x) {
             const int* s = field.at(x, y);
             std::copy_n(appearance_at(stack, s[0], s[1]), stack.channels(), out.pixel(x, y));
         }
+    });
     return out;
 }
 
@@ -728,26 +736,27 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
     for (int level = 0; level < levels; ++level) work_total += std::ldexp(1.0, -2 * level);
     for (int level = levels - 1; level >= 0; --level) {
         const Image& stack = pattern.stack[static_cast<std::size_t>(level)];
-        buffers = sample_level(input, level);
+        buffers = sample_level(input, level, context.threads);
         // Initialize the coarsest level with patches, upsample the finer ones
         const auto initialize =
             options.reference_kernels ? &initialize_reference : &initialize_fast;
         field = level == levels - 1 ? initialize(stack, buffers, options, frame_index, level)
-                                    : upsample(field, buffers, stack);
+                                    : upsample(field, buffers, stack, context.threads);
         // Correct with coherence candidates and the advected previous frame
         Field previous_field;
         Advected advected;
         if (use_previous) {
             previous_field = field_from_image(previous->coords[static_cast<std::size_t>(level)]);
             advected = advect(previous->appearance[static_cast<std::size_t>(level)], buffers,
-                              stack.channels());
+                              stack.channels(), context.threads);
         }
         const auto correct = options.reference_kernels ? &correct_reference : &correct_fast;
         EXEMPLAR_RETURN_IF_ERROR(correct(field, stack, buffers,
                                          use_previous ? &previous_field : nullptr, advected,
                                          options, context));
         state.coords[static_cast<std::size_t>(level)] = coords_image(field);
-        state.appearance[static_cast<std::size_t>(level)] = appearance_image(field, stack);
+        state.appearance[static_cast<std::size_t>(level)] =
+            appearance_image(field, stack, context.threads);
         work_done += std::ldexp(1.0, -2 * level);
         context.report({"synthesis", levels - 1 - level, levels, 0, 0, work_done / work_total});
     }
@@ -805,7 +814,7 @@ Result<FrameState> unpack_state(const Pattern& pattern, const Image& packed) {
                 }
         state.coords.push_back(coords_image(field));
         state.appearance.push_back(
-            appearance_image(field, pattern.stack[static_cast<std::size_t>(l)]));
+            appearance_image(field, pattern.stack[static_cast<std::size_t>(l)], 1));
     }
     return state;
 }
@@ -821,9 +830,10 @@ Image halftone(const Image& screen, const Image& tone, const HalftoneOptions& op
                int threads) {
     const auto threshold = [&](const Image& t) {
         Image out(screen.width(), screen.height(), 1);
-        for (int y = 0; y < screen.height(); ++y)
+        parallel_for(0, screen.height(), threads, [&](int y) {
             for (int x = 0; x < screen.width(); ++x)
                 out.at(x, y, 0) = screen.at(x, y, 0) < 1.0f - t.at(x, y, 0) ? 0.0f : 1.0f;
+        });
         return out;
     };
     Image first = threshold(tone);
@@ -831,10 +841,11 @@ Image halftone(const Image& screen, const Image& tone, const HalftoneOptions& op
     // Blur the result (the eye's integration), subtract its error from the tone, re-threshold
     const Image seen = gaussian_blur(first, options.blur_sigma_px, threads);
     Image adjusted(tone.width(), tone.height(), 1);
-    for (int y = 0; y < tone.height(); ++y)
+    parallel_for(0, tone.height(), threads, [&](int y) {
         for (int x = 0; x < tone.width(); ++x)
             adjusted.at(x, y, 0) =
                 std::clamp(2.0f * tone.at(x, y, 0) - seen.at(x, y, 0), 0.0f, 1.0f);
+    });
     return threshold(adjusted);
 }
 
