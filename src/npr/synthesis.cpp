@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
@@ -152,92 +153,121 @@ float screen_at(const Image& screen, float x, float y) {
            fy * ((1 - fx) * screen.at(x0, y1, 0) + fx * screen.at(x1, y1, 0));
 }
 
-// Coarsest level: overlapping oriented patches in scanline order (Efros and Freeman 2001
-// without the boundary cut), each the best of a keyed random set of grid positions for the
-// already-filled overlap. The plain reference of initialize_fast.
-Field initialize_reference(const Image& stack, const LevelBuffers& b,
-                           const SynthesisOptions& options, int frame_index, int level) {
-    Field field{b.width, b.height,
-                std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
-    std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
-    const int dims = stack.channels();
-    const int n = std::min({options.init_patch_size, b.width, b.height});
-    const int half = n / 2;
-    const float h = static_cast<float>(b.spacing);
-    const int grid = b.spacing;
-    const int grid_w = std::max(1, stack.width() / grid),
-              grid_h = std::max(1, stack.height() / grid);
-    int patch = 0;
-    for (int cy = 0; cy < b.height; ++cy)
-        for (int cx = 0; cx < b.width; ++cx) {
-            if (filled[b.index(cx, cy)]) continue;
-            const int x0 = std::max(0, cx - half), x1 = std::min(b.width, cx - half + n);
-            const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
-            KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
-                         static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
-            int best_x = 0, best_y = 0;
-            float best = std::numeric_limits<float>::infinity();
-            for (int k = 0; k < options.init_candidates; ++k) {
-                const int ux =
-                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_w))) * grid;
-                const int uy =
-                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_h))) * grid;
-                float error = 0.0f;
-                for (int y = y0; y < y1 && error < best; ++y)
-                    for (int x = x0; x < x1; ++x) {
-                        if (!filled[b.index(x, y)]) continue;
-                        const std::size_t i = b.index(x, y);
-                        int ox, oy;
-                        pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
-                                       static_cast<float>(y - cy), h, ox, oy);
-                        const int* s = field.at(x, y);
-                        const float* have = appearance_at(stack, s[0], s[1]);
-                        const float* want = appearance_at(stack, ux + ox, uy + oy);
-                        for (int c = 0; c < dims; ++c) {
-                            const float d = have[c] - want[c];
-                            error += d * d;
-                        }
-                    }
-                if (error < best) {
-                    best = error;
-                    best_x = ux;
-                    best_y = uy;
-                }
-            }
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
-                    const std::size_t i = b.index(x, y);
-                    int ox, oy;
-                    pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
-                                   static_cast<float>(y - cy), h, ox, oy);
-                    int* s = field.at(x, y);
-                    s[0] = wrap(best_x + ox, stack.width());
-                    s[1] = wrap(best_y + oy, stack.height());
-                    filled[i] = 1;
-                }
-        }
-    return field;
+// One initialization patch: centre (cx, cy), clipped to [x0, x1) x [y0, y1), in a partly filled
+// field; candidates are drawn on the grid of spacing `grid` (grid_w x grid_h positions).
+struct PatchSearch {
+    const Image& stack;
+    const LevelBuffers& b;
+    const Field& field;
+    const std::vector<unsigned char>& filled;
+    int cx, cy, x0, x1, y0, y1;
+    int grid, grid_w, grid_h, candidates;
+};
+
+// A keyed random grid position.
+void draw_candidate(KeyedRng& rng, const PatchSearch& p, int& ux, int& uy) {
+    ux = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_w))) * p.grid;
+    uy = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_h))) * p.grid;
 }
 
-// initialize_reference with the same patches, candidates and sums, faster: per patch, the
-// filled overlap's pattern offsets and appearance are gathered once instead of per candidate.
-Field initialize_fast(const Image& stack, const LevelBuffers& b, const SynthesisOptions& options,
-                      int frame_index, int level) {
+// The first of the patch's keyed candidates with the least error_of(ux, uy, best) (which may
+// stop summing once it reaches `best`).
+template <class Error>
+std::pair<int, int> first_best_candidate(const PatchSearch& p, KeyedRng& rng, Error error_of) {
+    int best_x = 0, best_y = 0;
+    float best = std::numeric_limits<float>::infinity();
+    for (int k = 0; k < p.candidates; ++k) {
+        int ux, uy;
+        draw_candidate(rng, p, ux, uy);
+        const float error = error_of(ux, uy, best);
+        if (error < best) {
+            best = error;
+            best_x = ux;
+            best_y = uy;
+        }
+    }
+    return {best_x, best_y};
+}
+
+// The candidate with the least SSD over the filled overlap (the plain reference of
+// best_patch_fast).
+std::pair<int, int> best_patch_reference(const PatchSearch& p, KeyedRng& rng) {
+    const int dims = p.stack.channels();
+    const float h = static_cast<float>(p.b.spacing);
+    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
+        float error = 0.0f;
+        for (int y = p.y0; y < p.y1 && error < best; ++y)
+            for (int x = p.x0; x < p.x1; ++x) {
+                const std::size_t i = p.b.index(x, y);
+                if (!p.filled[i]) continue;
+                int ox, oy;
+                pattern_offset(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
+                               static_cast<float>(y - p.cy), h, ox, oy);
+                const int* s = p.field.at(x, y);
+                const float* have = appearance_at(p.stack, s[0], s[1]);
+                const float* want = appearance_at(p.stack, ux + ox, uy + oy);
+                for (int c = 0; c < dims; ++c) {
+                    const float d = have[c] - want[c];
+                    error += d * d;
+                }
+            }
+        return error;
+    });
+}
+
+// A filled overlap pixel: its pattern offset and appearance.
+struct Overlap {
+    int ox, oy;
+    const float* have;
+};
+
+// best_patch_reference with the same candidates and sums, faster: the filled overlap's offsets
+// and appearance are gathered once (into `overlap`) instead of per candidate.
+std::pair<int, int> best_patch_fast(const PatchSearch& p, KeyedRng& rng,
+                                    std::vector<Overlap>& overlap) {
+    const int dims = p.stack.channels();
+    const float h = static_cast<float>(p.b.spacing);
+    overlap.clear();
+    for (int y = p.y0; y < p.y1; ++y)
+        for (int x = p.x0; x < p.x1; ++x) {
+            const std::size_t i = p.b.index(x, y);
+            if (!p.filled[i]) continue;
+            Overlap o;
+            pattern_offset_fast(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
+                                static_cast<float>(y - p.cy), h, o.ox, o.oy);
+            const int* s = p.field.at(x, y);
+            o.have = appearance_at(p.stack, s[0], s[1]);
+            overlap.push_back(o);
+        }
+    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
+        // The same sum in the same order; stopping earlier only changes losing errors
+        float error = 0.0f;
+        for (std::size_t j = 0; j < overlap.size() && error < best; ++j) {
+            const Overlap& o = overlap[j];
+            const float* want = appearance_at(p.stack, ux + o.ox, uy + o.oy);
+            for (int c = 0; c < dims; ++c) {
+                const float d = o.have[c] - want[c];
+                error += d * d;
+            }
+        }
+        return error;
+    });
+}
+
+// Coarsest level: overlapping oriented patches in scanline order (Efros and Freeman 2001
+// without the boundary cut), each the best of a keyed random set of grid positions for the
+// already-filled overlap.
+Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptions& options,
+                 int frame_index, int level) {
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
-    const int dims = stack.channels();
     const int n = std::min({options.init_patch_size, b.width, b.height});
     const int half = n / 2;
     const float h = static_cast<float>(b.spacing);
     const int grid = b.spacing;
     const int grid_w = std::max(1, stack.width() / grid),
               grid_h = std::max(1, stack.height() / grid);
-    // The filled overlap of the current patch, in scanline order
-    struct Overlap {
-        int ox, oy;
-        const float* have;
-    };
     std::vector<Overlap> overlap;
     overlap.reserve(static_cast<std::size_t>(n) * n);
     int patch = 0;
@@ -246,49 +276,20 @@ Field initialize_fast(const Image& stack, const LevelBuffers& b, const Synthesis
             if (filled[b.index(cx, cy)]) continue;
             const int x0 = std::max(0, cx - half), x1 = std::min(b.width, cx - half + n);
             const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
-            overlap.clear();
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
-                    const std::size_t i = b.index(x, y);
-                    if (!filled[i]) continue;
-                    Overlap o;
-                    pattern_offset_fast(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
-                                        static_cast<float>(y - cy), h, o.ox, o.oy);
-                    const int* s = field.at(x, y);
-                    o.have = appearance_at(stack, s[0], s[1]);
-                    overlap.push_back(o);
-                }
             KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
                          static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
-            int best_x = 0, best_y = 0;
-            float best = std::numeric_limits<float>::infinity();
-            for (int k = 0; k < options.init_candidates; ++k) {
-                const int ux =
-                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_w))) * grid;
-                const int uy =
-                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_h))) * grid;
-                // The same sum in the same order; stopping earlier only changes losing errors
-                float error = 0.0f;
-                for (std::size_t j = 0; j < overlap.size() && error < best; ++j) {
-                    const Overlap& o = overlap[j];
-                    const float* want = appearance_at(stack, ux + o.ox, uy + o.oy);
-                    for (int c = 0; c < dims; ++c) {
-                        const float d = o.have[c] - want[c];
-                        error += d * d;
-                    }
-                }
-                if (error < best) {
-                    best = error;
-                    best_x = ux;
-                    best_y = uy;
-                }
-            }
+            const PatchSearch search{
+                stack, b,  field, filled, cx,     cy,     x0,
+                x1,    y0, y1,    grid,   grid_w, grid_h, options.init_candidates};
+            const auto [best_x, best_y] = options.reference_kernels
+                                              ? best_patch_reference(search, rng)
+                                              : best_patch_fast(search, rng, overlap);
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t i = b.index(x, y);
                     int ox, oy;
-                    pattern_offset_fast(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
-                                        static_cast<float>(y - cy), h, ox, oy);
+                    pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
+                                   static_cast<float>(y - cy), h, ox, oy);
                     int* s = field.at(x, y);
                     s[0] = wrap(best_x + ox, stack.width());
                     s[1] = wrap(best_y + oy, stack.height());
@@ -346,6 +347,29 @@ Advected advect(const Image& previous, const LevelBuffers& b, int dims, int thre
     return a;
 }
 
+// The previous frame's coordinates around the advected position of pixel (x, y) (rotation (c, s)),
+// with the sub-pixel remainder of the motion, where the backward flow is valid: emit(u, v) for
+// each of the 3x3 inside the level; `offset` is pattern_offset or pattern_offset_fast.
+template <class Offset, class Emit>
+void advected_candidates(const LevelBuffers& b, const Field& previous, int x, int y, float c,
+                         float s, Offset offset, Emit emit) {
+    const std::size_t i = b.index(x, y);
+    if (b.valid.empty() || !b.valid[i]) return;
+    const float h = static_cast<float>(b.spacing);
+    const float px = static_cast<float>(x) + b.flow[2 * i];
+    const float py = static_cast<float>(y) + b.flow[2 * i + 1];
+    const int qx = static_cast<int>(std::lround(px));
+    const int qy = static_cast<int>(std::lround(py));
+    for (int k = 0; k < 9; ++k) {
+        const int sx = qx + k % 3 - 1, sy = qy + k / 3 - 1;
+        if (sx < 0 || sy < 0 || sx >= b.width || sy >= b.height) continue;
+        const int* sp = previous.at(sx, sy);
+        int ox, oy;
+        offset(c, s, static_cast<float>(sx) - px, static_cast<float>(sy) - py, h, ox, oy);
+        emit(sp[0] - ox, sp[1] - oy);
+    }
+}
+
 // Correction (§5.2.4): per pixel, the best of the coherence candidates and the advected
 // previous coordinates for texture_weight·E_texture + coherence_weight·E_coherence.
 // Cancelled if the context's token is set before a sub-pass. The plain scalar reference of
@@ -401,22 +425,12 @@ Status correct_reference(Field& field, const Image& stack, const LevelBuffers& b
                         candidates.push_back(sn[0] - offsets[k][0]);
                         candidates.push_back(sn[1] - offsets[k][1]);
                     }
-                    if (previous != nullptr && !b.valid.empty() && b.valid[i]) {
-                        const float px = static_cast<float>(x) + b.flow[2 * i];
-                        const float py = static_cast<float>(y) + b.flow[2 * i + 1];
-                        const int qx = static_cast<int>(std::lround(px));
-                        const int qy = static_cast<int>(std::lround(py));
-                        for (int k = 0; k < 9; ++k) {
-                            const int sx = qx + k % 3 - 1, sy = qy + k / 3 - 1;
-                            if (sx < 0 || sy < 0 || sx >= b.width || sy >= b.height) continue;
-                            const int* sp = previous->at(sx, sy);
-                            int ox, oy;
-                            pattern_offset(c, s, static_cast<float>(sx) - px,
-                                           static_cast<float>(sy) - py, h, ox, oy);
-                            candidates.push_back(sp[0] - ox);
-                            candidates.push_back(sp[1] - oy);
-                        }
-                    }
+                    if (previous != nullptr)
+                        advected_candidates(b, *previous, x, y, c, s, pattern_offset,
+                                            [&](int u, int v) {
+                                                candidates.push_back(u);
+                                                candidates.push_back(v);
+                                            });
                     float best = std::numeric_limits<float>::infinity();
                     int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
                     for (std::size_t k = 0; k < candidates.size(); k += 2) {
@@ -559,23 +573,13 @@ Status correct_fast(Field& field, const Image& stack, const LevelBuffers& b, con
                         ++count;
                     }
                     // The previous frame's coordinates around the advected position
-                    if (previous != nullptr && !b.valid.empty() && b.valid[i]) {
-                        const float px = static_cast<float>(x) + b.flow[2 * i];
-                        const float py = static_cast<float>(y) + b.flow[2 * i + 1];
-                        const int qx = static_cast<int>(std::lround(px));
-                        const int qy = static_cast<int>(std::lround(py));
-                        for (int k = 0; k < 9; ++k) {
-                            const int sx = qx + k % 3 - 1, sy = qy + k / 3 - 1;
-                            if (sx < 0 || sy < 0 || sx >= b.width || sy >= b.height) continue;
-                            const int* sp = previous->at(sx, sy);
-                            int ox, oy;
-                            pattern_offset_fast(c, s, static_cast<float>(sx) - px,
-                                                static_cast<float>(sy) - py, h, ox, oy);
-                            candidates[count][0] = sp[0] - ox;
-                            candidates[count][1] = sp[1] - oy;
-                            ++count;
-                        }
-                    }
+                    if (previous != nullptr)
+                        advected_candidates(b, *previous, x, y, c, s, pattern_offset_fast,
+                                            [&](int u, int v) {
+                                                candidates[count][0] = u;
+                                                candidates[count][1] = v;
+                                                ++count;
+                                            });
                     float best = std::numeric_limits<float>::infinity();
                     int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
                     // Coherent neighbours propose the same coordinate: evaluate it once (a
@@ -738,8 +742,6 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
         const Image& stack = pattern.stack[static_cast<std::size_t>(level)];
         buffers = sample_level(input, level, context.threads);
         // Initialize the coarsest level with patches, upsample the finer ones
-        const auto initialize =
-            options.reference_kernels ? &initialize_reference : &initialize_fast;
         field = level == levels - 1 ? initialize(stack, buffers, options, frame_index, level)
                                     : upsample(field, buffers, stack, context.threads);
         // Correct with coherence candidates and the advected previous frame
