@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
@@ -29,6 +30,10 @@ int wrap(int v, int n) {
 }
 
 float wrapf(float v, float n) {
+    // Within one period of [0, n) without fmod: fmod(v, n) is v there, and v − n is exact
+    if (v >= 0.0f && v < n) return v;
+    if (v < 0.0f && v >= -n) return v + n;
+    if (v >= n && v < 2.0f * n) return v - n;
     const float r = std::fmod(v, n);
     return r < 0.0f ? r + n : r;
 }
@@ -52,7 +57,7 @@ struct LevelBuffers {
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
 };
 
-LevelBuffers sample_level(const FrameInput& input, int level) {
+LevelBuffers sample_level(const FrameInput& input, int level, int threads) {
     LevelBuffers b;
     b.spacing = 1 << level;
     b.width = (input.width + b.spacing - 1) / b.spacing;
@@ -65,7 +70,7 @@ LevelBuffers sample_level(const FrameInput& input, int level) {
         b.flow.assign(2 * n, 0.0f);
         b.valid.assign(n, 1);
     }
-    for (int y = 0; y < b.height; ++y)
+    parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const int cx = std::min(x * b.spacing + b.spacing / 2, input.width - 1);
             const int cy = std::min(y * b.spacing + b.spacing / 2, input.height - 1);
@@ -83,6 +88,7 @@ LevelBuffers sample_level(const FrameInput& input, int level) {
                 for (int xx = x * b.spacing; xx < std::min((x + 1) * b.spacing, input.width); ++xx)
                     if (input.disocclusion.at(xx, yy, 0) > 0.5f) b.valid[i] = 0;
         }
+    });
     return b;
 }
 
@@ -91,6 +97,22 @@ LevelBuffers sample_level(const FrameInput& input, int level) {
 void pattern_offset(float c, float s, float dx, float dy, float h, int& ox, int& oy) {
     ox = static_cast<int>(std::lround((c * dx - s * dy) * h));
     oy = static_cast<int>(std::lround((s * dx + c * dy) * h));
+}
+
+// std::lround for floats without the library call: v - trunc(v) is exact, so this rounds half
+// away from zero exactly as lround does (|v| < 2^31).
+int round_half_away(float v) {
+    int r = static_cast<int>(v);
+    const float fraction = v - static_cast<float>(r);
+    if (fraction >= 0.5f) ++r;
+    if (fraction <= -0.5f) --r;
+    return r;
+}
+
+// pattern_offset with round_half_away (same results).
+void pattern_offset_fast(float c, float s, float dx, float dy, float h, int& ox, int& oy) {
+    ox = round_half_away((c * dx - s * dy) * h);
+    oy = round_half_away((s * dx + c * dy) * h);
 }
 
 // wrap() for values that are usually within one period of [0, n): no division then.
@@ -131,6 +153,107 @@ float screen_at(const Image& screen, float x, float y) {
            fy * ((1 - fx) * screen.at(x0, y1, 0) + fx * screen.at(x1, y1, 0));
 }
 
+// One initialization patch: centre (cx, cy), clipped to [x0, x1) x [y0, y1), in a partly filled
+// field; candidates are drawn on the grid of spacing `grid` (grid_w x grid_h positions).
+struct PatchSearch {
+    const Image& stack;
+    const LevelBuffers& b;
+    const Field& field;
+    const std::vector<unsigned char>& filled;
+    int cx, cy, x0, x1, y0, y1;
+    int grid, grid_w, grid_h, candidates;
+};
+
+// A keyed random grid position.
+void draw_candidate(KeyedRng& rng, const PatchSearch& p, int& ux, int& uy) {
+    ux = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_w))) * p.grid;
+    uy = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_h))) * p.grid;
+}
+
+// The first of the patch's keyed candidates with the least error_of(ux, uy, best) (which may
+// stop summing once it reaches `best`).
+template <class Error>
+std::pair<int, int> first_best_candidate(const PatchSearch& p, KeyedRng& rng, Error error_of) {
+    int best_x = 0, best_y = 0;
+    float best = std::numeric_limits<float>::infinity();
+    for (int k = 0; k < p.candidates; ++k) {
+        int ux, uy;
+        draw_candidate(rng, p, ux, uy);
+        const float error = error_of(ux, uy, best);
+        if (error < best) {
+            best = error;
+            best_x = ux;
+            best_y = uy;
+        }
+    }
+    return {best_x, best_y};
+}
+
+// The candidate with the least SSD over the filled overlap (the plain reference of
+// best_patch_fast).
+std::pair<int, int> best_patch_reference(const PatchSearch& p, KeyedRng& rng) {
+    const int dims = p.stack.channels();
+    const float h = static_cast<float>(p.b.spacing);
+    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
+        float error = 0.0f;
+        for (int y = p.y0; y < p.y1 && error < best; ++y)
+            for (int x = p.x0; x < p.x1; ++x) {
+                const std::size_t i = p.b.index(x, y);
+                if (!p.filled[i]) continue;
+                int ox, oy;
+                pattern_offset(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
+                               static_cast<float>(y - p.cy), h, ox, oy);
+                const int* s = p.field.at(x, y);
+                const float* have = appearance_at(p.stack, s[0], s[1]);
+                const float* want = appearance_at(p.stack, ux + ox, uy + oy);
+                for (int c = 0; c < dims; ++c) {
+                    const float d = have[c] - want[c];
+                    error += d * d;
+                }
+            }
+        return error;
+    });
+}
+
+// A filled overlap pixel: its pattern offset and appearance.
+struct Overlap {
+    int ox, oy;
+    const float* have;
+};
+
+// best_patch_reference with the same candidates and sums, faster: the filled overlap's offsets
+// and appearance are gathered once (into `overlap`) instead of per candidate.
+std::pair<int, int> best_patch_fast(const PatchSearch& p, KeyedRng& rng,
+                                    std::vector<Overlap>& overlap) {
+    const int dims = p.stack.channels();
+    const float h = static_cast<float>(p.b.spacing);
+    overlap.clear();
+    for (int y = p.y0; y < p.y1; ++y)
+        for (int x = p.x0; x < p.x1; ++x) {
+            const std::size_t i = p.b.index(x, y);
+            if (!p.filled[i]) continue;
+            Overlap o;
+            pattern_offset_fast(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
+                                static_cast<float>(y - p.cy), h, o.ox, o.oy);
+            const int* s = p.field.at(x, y);
+            o.have = appearance_at(p.stack, s[0], s[1]);
+            overlap.push_back(o);
+        }
+    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
+        // The same sum in the same order; stopping earlier only changes losing errors
+        float error = 0.0f;
+        for (std::size_t j = 0; j < overlap.size() && error < best; ++j) {
+            const Overlap& o = overlap[j];
+            const float* want = appearance_at(p.stack, ux + o.ox, uy + o.oy);
+            for (int c = 0; c < dims; ++c) {
+                const float d = o.have[c] - want[c];
+                error += d * d;
+            }
+        }
+        return error;
+    });
+}
+
 // Coarsest level: overlapping oriented patches in scanline order (Efros and Freeman 2001
 // without the boundary cut), each the best of a keyed random set of grid positions for the
 // already-filled overlap.
@@ -139,13 +262,14 @@ Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptio
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
-    const int dims = stack.channels();
     const int n = std::min({options.init_patch_size, b.width, b.height});
     const int half = n / 2;
     const float h = static_cast<float>(b.spacing);
     const int grid = b.spacing;
     const int grid_w = std::max(1, stack.width() / grid),
               grid_h = std::max(1, stack.height() / grid);
+    std::vector<Overlap> overlap;
+    overlap.reserve(static_cast<std::size_t>(n) * n);
     int patch = 0;
     for (int cy = 0; cy < b.height; ++cy)
         for (int cx = 0; cx < b.width; ++cx) {
@@ -154,35 +278,12 @@ Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptio
             const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
             KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
                          static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
-            int best_x = 0, best_y = 0;
-            float best = std::numeric_limits<float>::infinity();
-            for (int k = 0; k < options.init_candidates; ++k) {
-                const int ux =
-                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_w))) * grid;
-                const int uy =
-                    static_cast<int>(rng.below(static_cast<std::uint32_t>(grid_h))) * grid;
-                float error = 0.0f;
-                for (int y = y0; y < y1 && error < best; ++y)
-                    for (int x = x0; x < x1; ++x) {
-                        if (!filled[b.index(x, y)]) continue;
-                        const std::size_t i = b.index(x, y);
-                        int ox, oy;
-                        pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
-                                       static_cast<float>(y - cy), h, ox, oy);
-                        const int* s = field.at(x, y);
-                        const float* have = appearance_at(stack, s[0], s[1]);
-                        const float* want = appearance_at(stack, ux + ox, uy + oy);
-                        for (int c = 0; c < dims; ++c) {
-                            const float d = have[c] - want[c];
-                            error += d * d;
-                        }
-                    }
-                if (error < best) {
-                    best = error;
-                    best_x = ux;
-                    best_y = uy;
-                }
-            }
+            const PatchSearch search{
+                stack, b,  field, filled, cx,     cy,     x0,
+                x1,    y0, y1,    grid,   grid_w, grid_h, options.init_candidates};
+            const auto [best_x, best_y] = options.reference_kernels
+                                              ? best_patch_reference(search, rng)
+                                              : best_patch_fast(search, rng, overlap);
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t i = b.index(x, y);
@@ -199,11 +300,11 @@ Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptio
 }
 
 // S_l[2i + Δ] = S_{l+1}[i] + Rot(-θ) Δ h_l (eq. 4).
-Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack) {
+Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, int threads) {
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     const float h = static_cast<float>(b.spacing);
-    for (int y = 0; y < b.height; ++y)
+    parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const std::size_t i = b.index(x, y);
             const int* p =
@@ -215,6 +316,7 @@ Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack) {
             s[0] = wrap(p[0] + ox, stack.width());
             s[1] = wrap(p[1] + oy, stack.height());
         }
+    });
     return field;
 }
 
@@ -224,13 +326,13 @@ struct Advected {
     std::vector<unsigned char> valid;
 };
 
-Advected advect(const Image& previous, const LevelBuffers& b, int dims) {
+Advected advect(const Image& previous, const LevelBuffers& b, int dims, int threads) {
     Advected a;
     const std::size_t n = static_cast<std::size_t>(b.width) * b.height;
     a.appearance.assign(n * static_cast<std::size_t>(dims), 0.0f);
     a.valid.assign(n, 0);
     if (b.flow.empty() || previous.empty()) return a;
-    for (int y = 0; y < b.height; ++y)
+    parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const std::size_t i = b.index(x, y);
             const float px = static_cast<float>(x) + b.flow[2 * i];
@@ -241,15 +343,40 @@ Advected advect(const Image& previous, const LevelBuffers& b, int dims) {
             bilinear(previous, px, py, a.appearance.data() + i * static_cast<std::size_t>(dims));
             a.valid[i] = 1;
         }
+    });
     return a;
+}
+
+// The previous frame's coordinates around the advected position of pixel (x, y) (rotation (c, s)),
+// with the sub-pixel remainder of the motion, where the backward flow is valid: emit(u, v) for
+// each of the 3x3 inside the level; `offset` is pattern_offset or pattern_offset_fast.
+template <class Offset, class Emit>
+void advected_candidates(const LevelBuffers& b, const Field& previous, int x, int y, float c,
+                         float s, Offset offset, Emit emit) {
+    const std::size_t i = b.index(x, y);
+    if (b.valid.empty() || !b.valid[i]) return;
+    const float h = static_cast<float>(b.spacing);
+    const float px = static_cast<float>(x) + b.flow[2 * i];
+    const float py = static_cast<float>(y) + b.flow[2 * i + 1];
+    const int qx = static_cast<int>(std::lround(px));
+    const int qy = static_cast<int>(std::lround(py));
+    for (int k = 0; k < 9; ++k) {
+        const int sx = qx + k % 3 - 1, sy = qy + k / 3 - 1;
+        if (sx < 0 || sy < 0 || sx >= b.width || sy >= b.height) continue;
+        const int* sp = previous.at(sx, sy);
+        int ox, oy;
+        offset(c, s, static_cast<float>(sx) - px, static_cast<float>(sy) - py, h, ox, oy);
+        emit(sp[0] - ox, sp[1] - oy);
+    }
 }
 
 // Correction (§5.2.4): per pixel, the best of the coherence candidates and the advected
 // previous coordinates for texture_weight·E_texture + coherence_weight·E_coherence.
-// Cancelled if the context's token is set before a sub-pass.
-Status correct(Field& field, const Image& stack, const LevelBuffers& b, const Field* previous,
-               const Advected& advected, const SynthesisOptions& options,
-               const RunContext& context) {
+// Cancelled if the context's token is set before a sub-pass. The plain scalar reference of
+// correct_fast (SynthesisOptions::reference_kernels).
+Status correct_reference(Field& field, const Image& stack, const LevelBuffers& b,
+                         const Field* previous, const Advected& advected,
+                         const SynthesisOptions& options, const RunContext& context) {
     const int dims = stack.channels();
     const float h = static_cast<float>(b.spacing);
     for (int pass = 0; pass < options.correction_passes; ++pass)
@@ -298,22 +425,12 @@ Status correct(Field& field, const Image& stack, const LevelBuffers& b, const Fi
                         candidates.push_back(sn[0] - offsets[k][0]);
                         candidates.push_back(sn[1] - offsets[k][1]);
                     }
-                    if (previous != nullptr && !b.valid.empty() && b.valid[i]) {
-                        const float px = static_cast<float>(x) + b.flow[2 * i];
-                        const float py = static_cast<float>(y) + b.flow[2 * i + 1];
-                        const int qx = static_cast<int>(std::lround(px));
-                        const int qy = static_cast<int>(std::lround(py));
-                        for (int k = 0; k < 9; ++k) {
-                            const int sx = qx + k % 3 - 1, sy = qy + k / 3 - 1;
-                            if (sx < 0 || sy < 0 || sx >= b.width || sy >= b.height) continue;
-                            const int* sp = previous->at(sx, sy);
-                            int ox, oy;
-                            pattern_offset(c, s, static_cast<float>(sx) - px,
-                                           static_cast<float>(sy) - py, h, ox, oy);
-                            candidates.push_back(sp[0] - ox);
-                            candidates.push_back(sp[1] - oy);
-                        }
-                    }
+                    if (previous != nullptr)
+                        advected_candidates(b, *previous, x, y, c, s, pattern_offset,
+                                            [&](int u, int v) {
+                                                candidates.push_back(u);
+                                                candidates.push_back(v);
+                                            });
                     float best = std::numeric_limits<float>::infinity();
                     int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
                     for (std::size_t k = 0; k < candidates.size(); k += 2) {
@@ -361,13 +478,151 @@ Status correct(Field& field, const Image& stack, const LevelBuffers& b, const Fi
     return Status::ok();
 }
 
-Image appearance_image(const Field& field, const Image& stack) {
+// texture_weight·Σ‖have − want‖² + coherence_weight·Σ‖was − want‖² over the 3x3 neighbours of
+// pattern position (ux, uy), stopping once it reaches `best`; the same sums in the same order as
+// correct_reference, so the same floats. Dims is the appearance dimension (0 = `dims`).
+template <int Dims>
+float candidate_error(const Image& stack, int ux, int uy, const int (*offsets)[2],
+                      const float* const* have, const float* const* was, bool any_prior,
+                      float texture_weight, float coherence_weight, float best, int dims) {
+    const int n = Dims > 0 ? Dims : dims;
+    float error = 0.0f;
+    for (int m = 0; m < 9 && error < best; ++m) {
+        const float* want = appearance_at(stack, ux + offsets[m][0], uy + offsets[m][1]);
+        float texture = 0.0f, coherence = 0.0f;
+        for (int d = 0; d < n; ++d) {
+            const float e = have[m][d] - want[d];
+            texture += e * e;
+        }
+        if (any_prior && was[m] != nullptr) {
+            for (int d = 0; d < n; ++d) {
+                const float e = was[m][d] - want[d];
+                coherence += e * e;
+            }
+        }
+        error += texture_weight * texture + coherence_weight * coherence;
+    }
+    return error;
+}
+
+// The correction of correct_reference, with the same candidates, order and sums, faster: the
+// field's appearance is kept in one contiguous buffer (updated in place as pixels change; a
+// pixel's 3x3 holds no other pixel of its parity), the neighbours are read through pointers
+// instead of copies, the 3x3 offsets are computed without lround (and once per level when the
+// orientation is constant 0), candidates live on the stack, and the error kernel is unrolled
+// for the default 6 dimensions.
+Status correct_fast(Field& field, const Image& stack, const LevelBuffers& b, const Field* previous,
+                    const Advected& advected, const SynthesisOptions& options,
+                    const RunContext& context) {
+    const int dims = stack.channels();
+    const float h = static_cast<float>(b.spacing);
+    const int pw = stack.width(), ph = stack.height();
+    std::vector<float> current(static_cast<std::size_t>(b.width) * b.height * dims);
+    parallel_for(0, b.height, context.threads, [&](int y) {
+        for (int x = 0; x < b.width; ++x) {
+            const int* s = field.at(x, y);
+            std::copy_n(appearance_at(stack, s[0], s[1]), dims,
+                        current.data() + b.index(x, y) * dims);
+        }
+    });
+    // The offsets of an unrotated pixel (orientation 0: cos 1, sin 0)
+    int upright[9][2];
+    for (int k = 0; k < 9; ++k)
+        pattern_offset_fast(1.0f, 0.0f, static_cast<float>(k % 3 - 1),
+                            static_cast<float>(k / 3 - 1), h, upright[k][0], upright[k][1]);
+    const bool has_prior = !advected.valid.empty();
+    const auto error_of = dims == 6 ? &candidate_error<6> : &candidate_error<0>;
+    for (int pass = 0; pass < options.correction_passes; ++pass)
+        for (int sub = 0; sub < 4; ++sub) {
+            if (context.cancelled()) return cancelled();
+            // As in correct_reference: one parity at a time, in place
+            const int row0 = sub / 2;
+            const int rows = (b.height - row0 + 1) / 2;
+            parallel_for(0, rows, context.threads, [&](int r) {
+                const int y = row0 + 2 * r;
+                const float* have[9];
+                const float* was[9];
+                int rotated[9][2];
+                int candidates[18][2];
+                for (int x = sub % 2; x < b.width; x += 2) {
+                    const std::size_t i = b.index(x, y);
+                    const float c = b.cos_angle[i], s = b.sin_angle[i];
+                    const int(*offsets)[2] = upright;
+                    if (c != 1.0f || s != 0.0f) {
+                        for (int k = 0; k < 9; ++k)
+                            pattern_offset_fast(c, s, static_cast<float>(k % 3 - 1),
+                                                static_cast<float>(k / 3 - 1), h, rotated[k][0],
+                                                rotated[k][1]);
+                        offsets = rotated;
+                    }
+                    bool any_prior = false;
+                    int count = 0;
+                    for (int k = 0; k < 9; ++k) {
+                        const int nx = std::clamp(x + k % 3 - 1, 0, b.width - 1);
+                        const int ny = std::clamp(y + k / 3 - 1, 0, b.height - 1);
+                        const std::size_t j = b.index(nx, ny);
+                        have[k] = current.data() + j * dims;
+                        was[k] = has_prior && advected.valid[j]
+                                     ? advected.appearance.data() + j * dims
+                                     : nullptr;
+                        any_prior = any_prior || was[k] != nullptr;
+                        // Ashikhmin candidate of this neighbour
+                        const int* sn = field.at(nx, ny);
+                        candidates[count][0] = sn[0] - offsets[k][0];
+                        candidates[count][1] = sn[1] - offsets[k][1];
+                        ++count;
+                    }
+                    // The previous frame's coordinates around the advected position
+                    if (previous != nullptr)
+                        advected_candidates(b, *previous, x, y, c, s, pattern_offset_fast,
+                                            [&](int u, int v) {
+                                                candidates[count][0] = u;
+                                                candidates[count][1] = v;
+                                                ++count;
+                                            });
+                    float best = std::numeric_limits<float>::infinity();
+                    int best_x = field.at(x, y)[0], best_y = field.at(x, y)[1];
+                    // Coherent neighbours propose the same coordinate: evaluate it once (a
+                    // candidate is compared with the distinct ones before it only)
+                    std::uint64_t distinct[18];
+                    int distinct_count = 0;
+                    for (int k = 0; k < count; ++k) {
+                        const int ux = wrap_near(candidates[k][0], pw);
+                        const int uy = wrap_near(candidates[k][1], ph);
+                        const std::uint64_t key =
+                            static_cast<std::uint64_t>(ux) << 32 | static_cast<std::uint32_t>(uy);
+                        bool seen = false;
+                        for (int j = 0; j < distinct_count; ++j) seen |= distinct[j] == key;
+                        if (seen) continue;
+                        distinct[distinct_count++] = key;
+                        const float error =
+                            error_of(stack, ux, uy, offsets, have, was, any_prior,
+                                     options.texture_weight, options.coherence_weight, best, dims);
+                        if (error < best) {
+                            best = error;
+                            best_x = ux;
+                            best_y = uy;
+                        }
+                    }
+                    int* out = field.at(x, y);
+                    out[0] = wrap_near(best_x, pw);
+                    out[1] = wrap_near(best_y, ph);
+                    std::copy_n(appearance_at(stack, out[0], out[1]), dims,
+                                current.data() + i * dims);
+                }
+            });
+        }
+    return Status::ok();
+}
+
+Image appearance_image(const Field& field, const Image& stack, int threads) {
     Image out(field.width, field.height, stack.channels());
-    for (int y = 0; y < field.height; ++y)
+    parallel_for(0, field.height, threads, [&](int y) {
         for (int x = 0; x < field.width; ++x) {
             const int* s = field.at(x, y);
             std::copy_n(appearance_at(stack, s[0], s[1]), stack.channels(), out.pixel(x, y));
         }
+    });
     return out;
 }
 
@@ -485,23 +740,25 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
     for (int level = 0; level < levels; ++level) work_total += std::ldexp(1.0, -2 * level);
     for (int level = levels - 1; level >= 0; --level) {
         const Image& stack = pattern.stack[static_cast<std::size_t>(level)];
-        buffers = sample_level(input, level);
+        buffers = sample_level(input, level, context.threads);
         // Initialize the coarsest level with patches, upsample the finer ones
         field = level == levels - 1 ? initialize(stack, buffers, options, frame_index, level)
-                                    : upsample(field, buffers, stack);
+                                    : upsample(field, buffers, stack, context.threads);
         // Correct with coherence candidates and the advected previous frame
         Field previous_field;
         Advected advected;
         if (use_previous) {
             previous_field = field_from_image(previous->coords[static_cast<std::size_t>(level)]);
             advected = advect(previous->appearance[static_cast<std::size_t>(level)], buffers,
-                              stack.channels());
+                              stack.channels(), context.threads);
         }
+        const auto correct = options.reference_kernels ? &correct_reference : &correct_fast;
         EXEMPLAR_RETURN_IF_ERROR(correct(field, stack, buffers,
                                          use_previous ? &previous_field : nullptr, advected,
                                          options, context));
         state.coords[static_cast<std::size_t>(level)] = coords_image(field);
-        state.appearance[static_cast<std::size_t>(level)] = appearance_image(field, stack);
+        state.appearance[static_cast<std::size_t>(level)] =
+            appearance_image(field, stack, context.threads);
         work_done += std::ldexp(1.0, -2 * level);
         context.report({"synthesis", levels - 1 - level, levels, 0, 0, work_done / work_total});
     }
@@ -559,7 +816,7 @@ Result<FrameState> unpack_state(const Pattern& pattern, const Image& packed) {
                 }
         state.coords.push_back(coords_image(field));
         state.appearance.push_back(
-            appearance_image(field, pattern.stack[static_cast<std::size_t>(l)]));
+            appearance_image(field, pattern.stack[static_cast<std::size_t>(l)], 1));
     }
     return state;
 }
@@ -575,9 +832,10 @@ Image halftone(const Image& screen, const Image& tone, const HalftoneOptions& op
                int threads) {
     const auto threshold = [&](const Image& t) {
         Image out(screen.width(), screen.height(), 1);
-        for (int y = 0; y < screen.height(); ++y)
+        parallel_for(0, screen.height(), threads, [&](int y) {
             for (int x = 0; x < screen.width(); ++x)
                 out.at(x, y, 0) = screen.at(x, y, 0) < 1.0f - t.at(x, y, 0) ? 0.0f : 1.0f;
+        });
         return out;
     };
     Image first = threshold(tone);
@@ -585,10 +843,11 @@ Image halftone(const Image& screen, const Image& tone, const HalftoneOptions& op
     // Blur the result (the eye's integration), subtract its error from the tone, re-threshold
     const Image seen = gaussian_blur(first, options.blur_sigma_px, threads);
     Image adjusted(tone.width(), tone.height(), 1);
-    for (int y = 0; y < tone.height(); ++y)
+    parallel_for(0, tone.height(), threads, [&](int y) {
         for (int x = 0; x < tone.width(); ++x)
             adjusted.at(x, y, 0) =
                 std::clamp(2.0f * tone.at(x, y, 0) - seen.at(x, y, 0), 0.0f, 1.0f);
+    });
     return threshold(adjusted);
 }
 

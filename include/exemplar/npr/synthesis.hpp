@@ -51,6 +51,9 @@ struct SynthesisOptions {
     bool blend_coordinates = true;
     /// Seed of the keyed random generator. Default 1.
     std::uint64_t seed = 1;
+    /// Run the correction with its plain scalar reference kernel instead of the optimized one
+    /// (the tests' oracle: both give the same coordinates, bit for bit). Default false.
+    bool reference_kernels = false;
 };
 
 /// Checks every option; InvalidArgument naming the first bad one and its range.
