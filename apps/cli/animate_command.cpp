@@ -30,10 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string size_str(const Image& im) {
-    return std::to_string(im.width()) + "x" + std::to_string(im.height());
-}
-
 bool is_pattern(const std::string& frames) {
     return frames.find('%') != std::string::npos;
 }

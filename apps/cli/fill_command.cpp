@@ -15,10 +15,6 @@
 namespace exemplar::cli {
 namespace {
 
-std::string size_str(const Image& image) {
-    return std::to_string(image.width()) + "x" + std::to_string(image.height());
-}
-
 // `image` with `channels` channels (1, 3 or 4): grey spread to RGB, an opaque alpha added, or
 // the alpha dropped.
 Image with_channels(const Image& image, int channels) {

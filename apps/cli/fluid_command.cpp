@@ -32,10 +32,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string size_str(const Image& im) {
-    return std::to_string(im.width()) + "x" + std::to_string(im.height());
-}
-
 // A job-file path relative to the job file's folder.
 std::string relative_to(const std::string& job, const std::string& path) {
     if (path.empty() || fs::path(path).is_absolute()) return path;

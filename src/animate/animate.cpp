@@ -35,10 +35,6 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string size_str(const Image& im) {
-    return std::to_string(im.width()) + "x" + std::to_string(im.height());
-}
-
 bool finite_non_negative(float v) {
     return std::isfinite(v) && v >= 0.0f;
 }

@@ -124,4 +124,8 @@ bool all_finite(const Image& image) {
                        [](float v) { return std::isfinite(v); });
 }
 
+std::string size_str(const Image& image) {
+    return std::to_string(image.width()) + "x" + std::to_string(image.height());
+}
+
 }  // namespace exemplar

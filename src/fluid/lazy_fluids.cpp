@@ -34,10 +34,6 @@ namespace exemplar::fluid {
 
 namespace {
 
-std::string size_str(const Image& im) {
-    return std::to_string(im.width()) + "x" + std::to_string(im.height());
-}
-
 // RGBA with the colour multiplied by alpha.
 Image premultiplied(const Image& rgba) {
     Image out = rgba;

@@ -84,10 +84,6 @@ bool same_name(std::string_view a, std::string_view b) {
     return true;
 }
 
-std::string size_str(const Image& image) {
-    return std::to_string(image.width()) + "x" + std::to_string(image.height());
-}
-
 int scaled_size(int size, double strength) {
     return std::max(1, static_cast<int>(std::lround(size / strength)));
 }

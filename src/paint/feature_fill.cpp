@@ -32,10 +32,6 @@ const std::array<FeatureFillOptionSpec, 4> kSpecs{{
      "", 0, 100, &O::vote_histogram},
 }};
 
-std::string size_str(const Image& image) {
-    return std::to_string(image.width()) + "x" + std::to_string(image.height());
-}
-
 // Bounding box [x0, x1) x [y0, y1) of a mask's inside; empty (x0 >= x1) when it has none.
 struct Box {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;

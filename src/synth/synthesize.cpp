@@ -21,10 +21,6 @@ namespace exemplar {
 
 namespace {
 
-std::string size_str(const Image& im) {
-    return std::to_string(im.width()) + "x" + std::to_string(im.height());
-}
-
 std::string guide_name(const GuidePair& g, std::size_t i) {
     return g.name.empty() ? "guide " + std::to_string(i + 1) : g.name;
 }

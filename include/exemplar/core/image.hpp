@@ -106,4 +106,7 @@ int find_channel(const Image& image, const std::string& name);
 /// True if every value is finite (no NaN or infinity).
 bool all_finite(const Image& image);
 
+/// "WxH", the size as messages give it.
+std::string size_str(const Image& image);
+
 }  // namespace exemplar
