@@ -102,7 +102,6 @@ Status BrushCommand::run(const Streams& streams) const {
                                 std::to_string(features->size()) +
                                 " strokes (must be one: the rough path along the feature)");
     }
-    paint::Stroke selection = features->front();
     auto paths = read_strokes("--path", path_, width, height);
     if (!paths.ok()) return paths.status();
     if (paths->empty()) return invalid_argument("--path " + path_ + ": holds no path");
@@ -115,12 +114,8 @@ Status BrushCommand::run(const Streams& streams) const {
         return invalid_argument("--feature " + feature_ + ": " + message);
     };
     const RunContext context(threads_);
-    if (snap_) {
-        auto snapped = paint::snap_to_edges(*palette, selection.points, options);
-        if (!snapped.ok()) return about_feature(snapped.status());
-        selection.points = std::move(snapped).value();
-    }
-    auto feature = paint::LineFeature::create(*palette, selection, options, context.threads);
+    auto feature =
+        paint::pick_line_feature(*palette, features->front(), options, snap_, context.threads);
     if (!feature.ok()) return about_feature(feature.status());
     auto layer =
         paint::paint_feature(*feature, *paths, width, height, brush_width_, context.threads);

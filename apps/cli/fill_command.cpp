@@ -13,31 +13,6 @@
 #include "output_files.hpp"
 
 namespace exemplar::cli {
-namespace {
-
-// `image` with `channels` channels (1, 3 or 4): grey spread to RGB, an opaque alpha added, or
-// the alpha dropped.
-Image with_channels(const Image& image, int channels) {
-    if (image.channels() == channels) return image;
-    Image out(image.width(), image.height(), channels, 1.0f);
-    const int colours_in = image.channels() >= 3 ? 3 : 1;
-    const int colours_out = channels >= 3 ? 3 : 1;
-    for (int y = 0; y < image.height(); ++y) {
-        for (int x = 0; x < image.width(); ++x) {
-            const float* in = image.pixel(x, y);
-            float* o = out.pixel(x, y);
-            for (int c = 0; c < colours_out; ++c) {
-                o[c] = colours_in == 3 ? (colours_out == 3 ? in[c] : (in[0] + in[1] + in[2]) / 3)
-                                       : in[0];
-            }
-            if (channels == 4 && image.channels() == 4) o[3] = in[3];
-        }
-    }
-    return out;
-}
-
-}  // namespace
-
 FillCommand::FillCommand(CLI::App& parent) {
     app_ = parent.add_subcommand(
         "fill",
@@ -109,14 +84,6 @@ Status FillCommand::run(const Streams& streams) const {
         if (!loaded.ok()) return loaded.status();
         canvas = std::move(loaded).value();
     }
-    for (const auto& [image, name] : {std::pair{&*palette, "--palette " + palette_},
-                                      std::pair{&canvas, "--canvas " + canvas_}}) {
-        const int c = image->channels();
-        if (!image->empty() && c != 1 && c != 3 && c != 4) {
-            return invalid_argument(name + ": has " + std::to_string(c) +
-                                    " channels (must be grey, RGB or RGBA)");
-        }
-    }
     if (!source_region->same_size(*palette)) {
         return invalid_argument("--source-region " + source_region_ + ": is " +
                                 size_str(*source_region) + " but --palette " + palette_ + " is " +
@@ -129,16 +96,15 @@ Status FillCommand::run(const Streams& streams) const {
     }
 
     // The palette in the canvas's channels (RGBA without a canvas: transparent outside).
-    const int channels = canvas.empty() ? 4 : canvas.channels();
-    const Image palette_image = with_channels(*palette, channels);
     const RunContext context(threads_);
-    auto filled =
-        paint::fill_area(palette_image, *source_region, canvas, *target_region, options, context);
+    auto filled = paint::fill_with_palette(*palette, *source_region, canvas, *target_region,
+                                           options, context);
     if (!filled.ok()) {
         // The library's messages start with the input's name; the file takes its place.
         std::string message = filled.status().message();
         for (const auto& [prefix, flag, file] :
-             {std::tuple{"source region: ", "--source-region ", source_region_},
+             {std::tuple{"palette: ", "--palette ", palette_},
+              std::tuple{"source region: ", "--source-region ", source_region_},
               std::tuple{"target region: ", "--target-region ", target_region_},
               std::tuple{"canvas: ", "--canvas ", canvas_}}) {
             const std::string p = prefix;

@@ -36,13 +36,14 @@ from ._exemplar import (
     save_image,
 )
 from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
-from ._exemplar import _directions, _fluid_frame, _fluid_simulate, _noisy_frame, _npr_frame, _paint
+from ._exemplar import _brush, _directions, _fill, _fluid_frame, _fluid_simulate, _noisy_frame
+from ._exemplar import _npr_frame, _paint
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
     "InvalidArgumentError", "IoError", "NprState", "Progress", "StylizeResult",
-    "UnsupportedError", "__version__", "animate", "apply_nnf", "beautify", "builtin_scenes",
-    "directions", "flow", "fluid_frame", "fluid_simulate", "load_image", "noisy_frame",
+    "UnsupportedError", "__version__", "animate", "apply_nnf", "beautify", "brush",
+    "builtin_scenes", "directions", "fill", "flow", "fluid_frame", "fluid_simulate", "load_image", "noisy_frame",
     "npr_frame", "option_specs", "paint", "render", "save_image", "stylit", "stylize",
 ]
 
@@ -112,3 +113,13 @@ def directions(image, **options):
 @_signatures.decorate
 def paint(source, strokes, **options):
     return _paint(source, strokes, **options)
+
+
+@_signatures.decorate
+def brush(palette, feature, paths, **options):
+    return _brush(palette, feature, paths, **options)
+
+
+@_signatures.decorate
+def fill(palette, source_region, target_region, **options):
+    return _fill(palette, source_region, target_region, **options)

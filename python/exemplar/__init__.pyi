@@ -1158,6 +1158,172 @@ def paint(
     Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
     """
 
+def brush(
+    palette: Image,
+    feature: dict[str, Any],
+    paths: Sequence[dict[str, Any]],
+    *,
+    width: int | None = None,
+    height: int | None = None,
+    canvas: Image | None = None,
+    brush_width: float = 0.0,
+    snap: bool = True,
+    walk: str = 'randomized',
+    seed: int = 1,
+    sample_spacing: float = 2.0,
+    blend_radius: float = 16.0,
+    base_sigma: float = 4.0,
+    base_range_sigma: float = 0.1,
+    min_jump: float = 8.0,
+    snap_elasticity: float = 1.0,
+    snap_rigidity: float = 1.0,
+    snap_edge_weight: float = 1.2,
+    snap_sigma: float = 2.0,
+    snap_spacing: float = 4.0,
+    snap_iterations: int = 100,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Painting by Feature's line-feature brush (Lukac et al. 2013): a line feature picked in
+    any palette image by a rough stroke along it (snapped onto its edge) is painted along
+    new paths of any length without visible repetition. The CLI's `exemplar brush` with the
+    feature and the paths as stroke dicts (the keys of its JSON stroke files); returns RGBA
+    (straight alpha, transparent outside the paths, or over canvas), the palette's dtype.
+
+    Parameters:
+      palette (Image)
+          The feature palette: any image (grey, RGB, RGBA).
+      feature (dict[str, Any])
+          The line feature: one rough stroke along it, {'points': Nx2 (x, y in palette px),
+          'width': the selection's width = the patch size (default 40)}.
+      paths (Sequence[dict[str, Any]])
+          The paths to paint, in order: {'points': Nx2 (x, y in canvas px), 'width': brush
+          width in px (default 40)}.
+      width (int | None, default None)
+          Canvas width in px (or canvas's).
+      height (int | None, default None)
+          Canvas height in px (or canvas's).
+      canvas (Image | None, default None)
+          Background to paint over (RGB or RGBA).
+      brush_width (float, default 0.0)
+          Width of every painted stroke in px (0 = each path's width; at most 4096); the
+          feature is scaled by brush width / feature width.
+      snap (bool, default True)
+          Snap the feature's rough path onto the palette's edge (False: the CLI's --no-
+          snap).
+      walk (str, default 'randomized')
+          Walk through the feature: 'randomized', or 'looping' and 'dp' (comparison modes).
+      seed (int, default 1)
+          Random seed of the walk.
+      sample_spacing (float, default 2.0)
+          Distance between consecutive samples of the feature's and the target's paths, in
+          source pixels (ours). Range 0.5..64.0 px.
+      blend_radius (float, default 16.0)
+          Half-length along the path of the base-layer blend across each jump of the walk,
+          in target pixels; 0 = no blending (ours). Range 0.0..256.0 px.
+      base_sigma (float, default 4.0)
+          Spatial sigma of the bilateral filter that makes the base layer (ours; Durand and
+          Dorsey: 2% of the image). Range 0.5..64.0 px.
+      base_range_sigma (float, default 0.1)
+          Range sigma of the bilateral filter, on colour distance with values in [0, 1]
+          (ours). Range 0.01..10.0.
+      min_jump (float, default 8.0)
+          Shortest jump of the walk along the source, in source pixels: no stutter of
+          repeated or skipped samples (ours). Range 0.0..1000.0 px.
+      snap_elasticity (float, default 1.0)
+          Active contour: weight of the continuity term (Williams and Shah: 1). Range
+          0.0..100.0.
+      snap_rigidity (float, default 1.0)
+          Active contour: weight of the curvature term (Williams and Shah: 1). Range
+          0.0..100.0.
+      snap_edge_weight (float, default 1.2)
+          Active contour: weight of the edge term (Williams and Shah: 1.2). Range
+          0.0..100.0.
+      snap_sigma (float, default 2.0)
+          Active contour: blur before the gradient; the rough path may be about 3 sigma off
+          the edge (ours). Range 0.0..32.0 px.
+      snap_spacing (float, default 4.0)
+          Active contour: spacing of its points (ours). Range 1.0..64.0 px.
+      snap_iterations (int, default 100)
+          Active contour: most greedy iterations; stops when under 1% of the points move
+          (ours). Range 0..10000 iterations.
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def fill(
+    palette: Image,
+    source_region: Image,
+    target_region: Image,
+    *,
+    canvas: Image | None = None,
+    usage: str = 'uniform',
+    seed: int = 1,
+    patch_size: int = 5,
+    rotations: int = 5,
+    rotation_range: float = 30.0,
+    vote_histogram: float = 0.0,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Painting by Feature's area-feature fill (Lukac et al. 2013): the target region of the
+    canvas is filled with the texture of the source region of the palette (content-aware
+    synthesis over pre-rotated copies of the region), meeting what the canvas holds around
+    it. The CLI's `exemplar fill`; regions are images, inside where the mean colour is above
+    0.5. Returns the canvas's channels (RGBA without a canvas), the palette's dtype; pixels
+    outside the target region are the canvas's.
+
+    Parameters:
+      palette (Image)
+          The feature palette: any image (grey, RGB, RGBA).
+      source_region (Image)
+          White where the palette's texture is picked (palette size).
+      target_region (Image)
+          White where the canvas is filled (canvas size).
+      canvas (Image | None, default None)
+          What is painted already (grey, RGB, RGBA): kept outside the region, continued
+          across its border; None = the region filled free-standing on a transparent RGBA
+          image (target region's size).
+      usage (str, default 'uniform')
+          Patch usage: 'uniform' (keeps sparse features), 'none' (the chapter's plain EM),
+          'error-budget' or 'occurrence'.
+      seed (int, default 1)
+          Random seed.
+      patch_size (int, default 5)
+          Patch width of the synthesis, odd; larger keeps larger structures (ours). Range
+          3..31 px.
+      rotations (int, default 5)
+          Pre-rotated copies of the palette region over [-rotation-range, +rotation-range];
+          1 = unrotated (ours; the chapter: 'a limited range of rotations'). Range 1..36.
+      rotation_range (float, default 30.0)
+          Half-range of the pre-rotation angles (ours). Range 0.0..180.0 deg.
+      vote_histogram (float, default 0.0)
+          Colour-histogram weight of the vote: favours colours the fill lacks; 0 = off
+          (default; with --usage uniform it overshoots, docs/feature.md). Range 0.0..100.0.
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
 def beautify(
     drawing: str | Sequence[numpy.ndarray],
     *,

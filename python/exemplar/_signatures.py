@@ -34,6 +34,8 @@ _SYNTHESIS = "synthesis"  # marker: the quality/usage/vote words and the option 
 _FLUID = "fluid"  # marker: the fluid option table (patch_size, temporal_weight, ...)
 _NOISY = "noisy"  # marker: the noisy option table (noise, level_ratio, ...)
 _NPR = "npr"  # marker: the npr option table (levels, patch_size, coherence_weight)
+_BRUSH = "brush"  # marker: the line-feature brush's option table (sample_spacing, ...)
+_FILL = "fill"  # marker: the area-feature fill's option table (patch_size, rotations, ...)
 _RUN = [
     Param("threads", "int", "Threads; 0 = all cores. The result is the same for any count.", 0),
     Param("progress", "Callable[[Progress], bool | None] | None",
@@ -421,6 +423,65 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "numpy.ndarray",
     ),
+    "brush": (
+        "Painting by Feature's line-feature brush (Lukac et al. 2013): a line feature picked "
+        "in any palette image by a rough stroke along it (snapped onto its edge) is painted "
+        "along new paths of any length without visible repetition. The CLI's `exemplar brush` "
+        "with the feature and the paths as stroke dicts (the keys of its JSON stroke files); "
+        "returns RGBA (straight alpha, transparent outside the paths, or over canvas), the "
+        "palette's dtype.",
+        [
+            Param("palette", _IMAGE, "The feature palette: any image (grey, RGB, RGBA).",
+                  positional=True),
+            Param("feature", "dict[str, Any]",
+                  "The line feature: one rough stroke along it, {'points': Nx2 (x, y in palette "
+                  "px), 'width': the selection's width = the patch size (default 40)}.",
+                  positional=True),
+            Param("paths", "Sequence[dict[str, Any]]",
+                  "The paths to paint, in order: {'points': Nx2 (x, y in canvas px), 'width': "
+                  "brush width in px (default 40)}.", positional=True),
+            Param("width", "int | None", "Canvas width in px (or canvas's).", None),
+            Param("height", "int | None", "Canvas height in px (or canvas's).", None),
+            Param("canvas", "Image | None", "Background to paint over (RGB or RGBA).", None),
+            Param("brush_width", "float",
+                  "Width of every painted stroke in px (0 = each path's width; at most 4096); "
+                  "the feature is scaled by brush width / feature width.", 0.0),
+            Param("snap", "bool", "Snap the feature's rough path onto the palette's edge "
+                  "(False: the CLI's --no-snap).", True),
+            Param("walk", "str", "Walk through the feature: 'randomized', or 'looping' and "
+                  "'dp' (comparison modes).", "randomized"),
+            Param("seed", "int", "Random seed of the walk.", 1),
+            _BRUSH,
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
+    "fill": (
+        "Painting by Feature's area-feature fill (Lukac et al. 2013): the target region of the "
+        "canvas is filled with the texture of the source region of the palette (content-aware "
+        "synthesis over pre-rotated copies of the region), meeting what the canvas holds "
+        "around it. The CLI's `exemplar fill`; regions are images, inside where the mean "
+        "colour is above 0.5. Returns the canvas's channels (RGBA without a canvas), the "
+        "palette's dtype; pixels outside the target region are the canvas's.",
+        [
+            Param("palette", _IMAGE, "The feature palette: any image (grey, RGB, RGBA).",
+                  positional=True),
+            Param("source_region", _IMAGE, "White where the palette's texture is picked "
+                  "(palette size).", positional=True),
+            Param("target_region", _IMAGE, "White where the canvas is filled (canvas size).",
+                  positional=True),
+            Param("canvas", "Image | None",
+                  "What is painted already (grey, RGB, RGBA): kept outside the region, "
+                  "continued across its border; None = the region filled free-standing on a "
+                  "transparent RGBA image (target region's size).", None),
+            Param("usage", "str", "Patch usage: 'uniform' (keeps sparse features), 'none' (the "
+                  "chapter's plain EM), 'error-budget' or 'occurrence'.", "uniform"),
+            Param("seed", "int", "Random seed.", 1),
+            _FILL,
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
@@ -444,7 +505,7 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
 
 def _verb_table_params(specs: list[dict[str, Any]], required: tuple[str, ...] = ()
                        ) -> list[Param]:
-    """A verb's own option table (fluid, noisy, npr) as keyword parameters."""
+    """A verb's own option table (fluid, noisy, npr, brush, fill) as keyword parameters."""
     params = []
     for spec in specs:
         unit = f" {spec['unit']}" if spec["unit"] else ""
@@ -490,6 +551,10 @@ def _params(verb: str) -> list[Param]:
             params += sorted(noisy, key=lambda p: p.default is not _REQUIRED)
         elif param == _NPR:
             params += _verb_table_params(_exemplar._npr_option_specs())
+        elif param == _BRUSH:
+            params += _verb_table_params(_exemplar._feature_brush_option_specs())
+        elif param == _FILL:
+            params += _verb_table_params(_exemplar._feature_fill_option_specs())
         else:
             params.append(param)
     return params

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/option_table.hpp"
@@ -295,8 +296,24 @@ void BrushStroke::shade(const PixelRect& rect, int first_dirty) {
     });
 }
 
+Result<LineFeature> pick_line_feature(const Image& palette, Stroke rough,
+                                      const FeatureBrushOptions& options, bool snap, int threads) {
+    if (snap) {
+        auto snapped = snap_to_edges(palette, rough.points, options);
+        if (!snapped.ok()) return snapped.status();
+        rough.points = std::move(snapped).value();
+    }
+    return LineFeature::create(palette, rough, options, threads);
+}
+
 Result<Image> paint_feature(const LineFeature& feature, std::span<const Stroke> paths, int width,
                             int height, float brush_width_px, int threads) {
+    if (paths.empty()) return invalid_argument("paths: none given (must be at least one)");
+    if (!(brush_width_px >= 0.0f && brush_width_px <= 4096.0f)) {
+        return invalid_argument("brush width: " + std::to_string(brush_width_px) +
+                                " is invalid (must be > 0 and at most 4096, or 0 for the paths' "
+                                "widths)");
+    }
     Image out(width, height, 4);
     for (std::size_t p = 0; p < paths.size(); ++p) {
         const float stroke_width = brush_width_px > 0.0f ? brush_width_px : paths[p].width_px;

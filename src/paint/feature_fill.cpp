@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "exemplar/core/option_table.hpp"
@@ -271,6 +272,41 @@ Result<Image> fill_area(const Image& palette, const Image& source_region, const 
     }
     out.set_channel_names(canvas.empty() ? palette.channel_names() : canvas.channel_names());
     return out;
+}
+
+Image with_channels(const Image& image, int channels) {
+    if (image.channels() == channels) return image;
+    Image out(image.width(), image.height(), channels, 1.0f);
+    const int colours_in = image.channels() >= 3 ? 3 : 1;
+    const int colours_out = channels >= 3 ? 3 : 1;
+    for (int y = 0; y < image.height(); ++y) {
+        for (int x = 0; x < image.width(); ++x) {
+            const float* in = image.pixel(x, y);
+            float* o = out.pixel(x, y);
+            for (int c = 0; c < colours_out; ++c) {
+                o[c] = colours_in == 3 ? (colours_out == 3 ? in[c] : (in[0] + in[1] + in[2]) / 3)
+                                       : in[0];
+            }
+            if (channels == 4 && image.channels() == 4) o[3] = in[3];
+        }
+    }
+    return out;
+}
+
+Result<Image> fill_with_palette(const Image& palette, const Image& source_region,
+                                const Image& canvas, const Image& target_region,
+                                const FeatureFillOptions& options, const RunContext& context) {
+    for (const auto& [image, name] :
+         {std::pair{&palette, "palette: "}, std::pair{&canvas, "canvas: "}}) {
+        const int c = image->channels();
+        if (!image->empty() && c != 1 && c != 3 && c != 4) {
+            return invalid_argument(std::string(name) + "has " + std::to_string(c) +
+                                    " channels (must be grey, RGB or RGBA)");
+        }
+    }
+    const int channels = canvas.empty() ? 4 : canvas.channels();
+    return fill_area(with_channels(palette, channels), source_region, canvas, target_region,
+                     options, context);
 }
 
 }  // namespace exemplar::paint

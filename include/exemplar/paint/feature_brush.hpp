@@ -248,9 +248,17 @@ private:
     int rasterized_ = 0;  // samples already in owner_
 };
 
+/// The feature a rough selection picks, as `exemplar brush` and exemplar.brush make it: `rough`'s
+/// centre line snapped onto the palette's edge (snap_to_edges) unless `snap` is false, then
+/// LineFeature::create. Errors: theirs.
+Result<LineFeature> pick_line_feature(const Image& palette, Stroke rough,
+                                      const FeatureBrushOptions& options = {}, bool snap = true,
+                                      int threads = 0);
+
 /// Paints every path of `paths` with `feature` on a transparent `width` × `height` layer, one
 /// `BrushStroke` each (path k keyed by k), later paths over earlier ones. `brush_width_px` > 0
-/// overrides the paths' widths. Errors: InvalidArgument for an invalid path (named by index).
+/// overrides the paths' widths (0 keeps them; at most 4096). Errors: InvalidArgument for no
+/// path, an invalid brush width or an invalid path (named by index).
 Result<Image> paint_feature(const LineFeature& feature, std::span<const Stroke> paths, int width,
                             int height, float brush_width_px = 0.0f, int threads = 0);
 

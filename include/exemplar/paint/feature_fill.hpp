@@ -88,4 +88,18 @@ Result<Image> fill_area(const Image& palette, const Image& source_region, const 
                         const Image& target_region, const FeatureFillOptions& options = {},
                         const RunContext& context = {});
 
+/// `image` with `channels` channels (1, 3 or 4): grey spread to RGB, RGB to grey as the mean,
+/// an opaque alpha added, or the alpha dropped.
+Image with_channels(const Image& image, int channels);
+
+/// fill_area with a palette of any channel count (grey, RGB or RGBA), as `exemplar fill` and
+/// exemplar.fill do it: the palette is brought to the canvas's channels (with_channels), or
+/// without a canvas to RGBA, so the fill stands free on a transparent image. Errors: a palette or
+/// canvas without 1, 3 or 4 channels (`palette: has 2 channels (must be grey, RGB or RGBA)`),
+/// then fill_area's.
+Result<Image> fill_with_palette(const Image& palette, const Image& source_region,
+                                const Image& canvas, const Image& target_region,
+                                const FeatureFillOptions& options = {},
+                                const RunContext& context = {});
+
 }  // namespace exemplar::paint
