@@ -393,5 +393,28 @@ TEST(PaintFeature, SameBytesForAnyThreadCount) {
     EXPECT_GT(alpha, 0.8 * (280.0 * 24.0 + 270.0 * 40.0) * 0.8);
 }
 
+TEST(PaintFeature, PickLineFeatureSnapsThenCreates) {
+    const Image palette = line_palette();
+    auto unsnapped = pick_line_feature(palette, selection(), {}, false, 1);
+    auto created = LineFeature::create(palette, selection(), {}, 1);
+    ASSERT_TRUE(unsnapped.ok() && created.ok());
+    ASSERT_EQ(unsnapped->size(), created->size());
+    EXPECT_EQ(unsnapped->samples()[0].y, created->samples()[0].y);
+    Stroke snapped_selection = selection();
+    auto snapped_points = snap_to_edges(palette, snapped_selection.points);
+    ASSERT_TRUE(snapped_points.ok());
+    snapped_selection.points = *snapped_points;
+    auto snapped = pick_line_feature(palette, selection(), {}, true, 1);
+    auto expected = LineFeature::create(palette, snapped_selection, {}, 1);
+    ASSERT_TRUE(snapped.ok() && expected.ok());
+    ASSERT_EQ(snapped->size(), expected->size());
+    EXPECT_EQ(snapped->samples()[1].x, expected->samples()[1].x);
+    EXPECT_EQ(snapped->samples()[1].y, expected->samples()[1].y);
+    EXPECT_EQ(paint_feature(*created, {}, 10, 10).status().message(),
+              "paths: none given (must be at least one)");
+    const std::vector<Stroke> path{Stroke{{{1.0f, 5.0f}, {9.0f, 5.0f}}, 4.0f, false}};
+    EXPECT_FALSE(paint_feature(*created, path, 10, 10, -1.0f).ok());
+}
+
 }  // namespace
 }  // namespace exemplar::paint

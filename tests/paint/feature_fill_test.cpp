@@ -299,5 +299,25 @@ TEST(FeatureFill, RejectsBadInputs) {
               "rotations: 0 is invalid (must be an integer, 1..36)");
 }
 
+TEST(FeatureFill, FillWithPaletteBringsThePaletteToTheCanvasChannels) {
+    const Palette p = palette();
+    const Canvas c = canvas();
+    // RGB palette on an RGB canvas: fill_area itself.
+    auto same = fill_with_palette(p.image, p.region, c.image, c.region);
+    auto direct = fill_area(p.image, p.region, c.image, c.region);
+    ASSERT_TRUE(same.ok() && direct.ok());
+    EXPECT_EQ(std::memcmp(same->data().data(), direct->data().data(), same->size() * 4), 0);
+    // Without a canvas: RGBA, transparent outside the region, opaque inside.
+    auto free_standing = fill_with_palette(p.image, p.region, Image(), c.region);
+    ASSERT_TRUE(free_standing.ok());
+    EXPECT_EQ(free_standing->channels(), 4);
+    EXPECT_EQ(with_channels(p.image, 4).at(3, 3, 3), 1.0f);
+    EXPECT_EQ(with_channels(p.image, 1).at(3, 3, 0),
+              (p.image.at(3, 3, 0) + p.image.at(3, 3, 1) + p.image.at(3, 3, 2)) / 3);
+    auto two = fill_with_palette(Image(96, 80, 2), p.region, c.image, c.region);
+    ASSERT_FALSE(two.ok());
+    EXPECT_EQ(two.status().message(), "palette: has 2 channels (must be grey, RGB or RGBA)");
+}
+
 }  // namespace
 }  // namespace exemplar::paint
