@@ -155,13 +155,7 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
         options.usage = take(parse_usage_strategy(text(usage, "usage")));
     }
     set_number(args, "patch_size", options.patch_size);
-    if (const py::object seed = pop(args, "seed"); !seed.is_none()) {
-        const int value = integer(seed, "seed");
-        if (value < 0) {
-            throw InputError("seed: " + std::to_string(value) + " is invalid (must be >= 0)");
-        }
-        options.seed = static_cast<std::uint64_t>(value);
-    }
+    pop_seed(args, options.seed);
     check(paint::validate(options));
     const py::object width_given = pop(args, "width");
     const py::object height_given = pop(args, "height");
