@@ -167,10 +167,10 @@ Status set_option(FluidOptions& options, const FluidOptionSpec& spec, double val
 }
 
 Status validate(const FluidOptions& o) {
-    for (const FluidOptionSpec& spec : fluid_option_specs()) {
-        FluidOptions copy = o;
-        if (Status s = set_option(copy, spec, get_option(o, spec)); !s.is_ok()) return s;
-    }
+    EXEMPLAR_RETURN_IF_ERROR(validate_table_options(
+        o, fluid_option_specs(), [](FluidOptions& copy, const FluidOptionSpec& spec, double value) {
+            return set_option(copy, spec, value);
+        }));
     if (o.patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(o.patch_size) +
                                 " is invalid (must be odd, 3..15)");

@@ -145,11 +145,15 @@ Status set_option(NoisyOptions& options, const NoisyOptionSpec& spec, double val
 }
 
 Status validate(const NoisyOptions& options) {
-    for (const NoisyOptionSpec& spec : kSpecs) {
-        if (std::holds_alternative<std::uint64_t NoisyOptions::*>(spec.field)) continue;
-        NoisyOptions copy = options;
-        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
-    }
+    EXEMPLAR_RETURN_IF_ERROR(validate_table_options(
+        options, std::span<const NoisyOptionSpec>(kSpecs),
+        [](NoisyOptions& o, const NoisyOptionSpec& spec, double value) {
+            // Any seed is valid in the library; the table's range is the flag's.
+            if (std::holds_alternative<std::uint64_t NoisyOptions::*>(spec.field)) {
+                return Status::ok();
+            }
+            return set_option(o, spec, value);
+        }));
     if (options.min_offset_px > options.max_offset_px) {
         return invalid_argument("min-offset: " + format_option_number(options.min_offset_px) +
                                 " is invalid (must be at most max-offset, " +

@@ -248,11 +248,10 @@ const OptionSpec* find_option(std::string_view name) {
 }
 
 Status validate(const SynthesisOptions& options) {
-    for (const OptionSpec& spec : kSpecs) {
-        SynthesisOptions copy = options;
-        EXEMPLAR_RETURN_IF_ERROR(set_option(copy, spec, get_option(options, spec)));
-    }
-    return Status::ok();
+    return validate_table_options(options, std::span<const OptionSpec>(kSpecs),
+                                  [](SynthesisOptions& o, const OptionSpec& spec, double value) {
+                                      return set_option(o, spec, value);
+                                  });
 }
 
 }  // namespace exemplar
