@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -192,6 +193,9 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
                         (options.patch_size * options.patch_size);
     std::vector<float> weights, histogram;
+    // The exemplar's side of the colour-histogram weight, the same for every vote of the level.
+    std::optional<synth::SourceHistogram> source_histogram;
+    if (options.vote_histogram > 0.0f) source_histogram.emplace(L.source_style);
     // The error budget's polish: plain nearest neighbours from the field the budget laid out
     // (see SynthesisOptions::budget_polish_iterations); the field is a close one (upsampled or
     // the previous iteration's) unless this is the coarsest level.
@@ -214,10 +218,10 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
         if (end_run && it + 1 == iterations) vp.footprint = last_vote_size(options, L.patch_size);
-        if (options.vote_histogram > 0.0f) {
+        if (source_histogram) {
             // Against the histogram of the target as it stands before this vote.
-            histogram = synth::histogram_weights(L.source_style, current, L.target_active.data(),
-                                                 options.vote_histogram, threads);
+            histogram = source_histogram->weights(current, L.target_active.data(),
+                                                  options.vote_histogram, threads);
             vp.source_weights = histogram;
         }
         synth::vote(nnf, L.source_style, vp, current, threads);

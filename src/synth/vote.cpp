@@ -64,33 +64,48 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
     return weights;
 }
 
-std::vector<float> histogram_weights(const Image& source, const Image& target,
-                                     const std::uint8_t* target_pixels, float strength,
-                                     int threads) {
-    EXEMPLAR_CHECK_EQ(source.channels(), target.channels());
+SourceHistogram::SourceHistogram(const Image& source) : source_(&source) {
     const int C = source.channels();
-    const std::size_t sn = source.pixel_count(), tn = target.pixel_count();
-    std::vector<float> lo(static_cast<std::size_t>(C)), scale(static_cast<std::size_t>(C));
+    const std::size_t n = source.pixel_count();
+    lo_.resize(static_cast<std::size_t>(C));
+    scale_.resize(static_cast<std::size_t>(C));
     for (int c = 0; c < C; ++c) {
         float mn = std::numeric_limits<float>::max(), mx = std::numeric_limits<float>::lowest();
-        for (std::size_t i = 0; i < sn; ++i) {
+        for (std::size_t i = 0; i < n; ++i) {
             mn = std::min(mn, source.data()[i * C + c]);
             mx = std::max(mx, source.data()[i * C + c]);
         }
-        lo[c] = mn;
-        scale[c] = mx > mn ? kHistogramBins / (mx - mn) : 0.0f;
+        lo_[c] = mn;
+        scale_[c] = mx > mn ? kHistogramBins / (mx - mn) : 0.0f;
     }
-    auto bin = [&](float v, int c) {
-        return std::clamp(static_cast<int>((v - lo[c]) * scale[c]), 0, kHistogramBins - 1);
-    };
-    // Counts are integers, so the histograms do not depend on the order of summation.
-    std::vector<double> excess(static_cast<std::size_t>(C) * kHistogramBins, 0.0);
-    std::vector<std::int64_t> source_count(excess.size(), 0), target_count(excess.size(), 0);
+    // Counts are integers, so the density does not depend on the order of summation.
+    bins_.resize(n * static_cast<std::size_t>(C));
+    std::vector<std::int64_t> count(static_cast<std::size_t>(C) * kHistogramBins, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < C; ++c) {
+            const int b = bin(source.data()[i * C + c], c);
+            bins_[i * C + c] = static_cast<std::uint8_t>(b);
+            ++count[c * kHistogramBins + b];
+        }
+    }
+    density_.resize(count.size());
+    for (std::size_t b = 0; b < count.size(); ++b) {
+        density_[b] = n == 0 ? 0.0 : static_cast<double>(count[b]) / static_cast<double>(n);
+    }
+}
+
+int SourceHistogram::bin(float value, int channel) const {
+    return std::clamp(static_cast<int>((value - lo_[channel]) * scale_[channel]), 0,
+                      kHistogramBins - 1);
+}
+
+std::vector<float> SourceHistogram::weights(const Image& target, const std::uint8_t* target_pixels,
+                                            float strength, int threads) const {
+    EXEMPLAR_CHECK_EQ(source_->channels(), target.channels());
+    const int C = target.channels();
+    const std::size_t sn = source_->pixel_count(), tn = target.pixel_count();
+    std::vector<std::int64_t> target_count(density_.size(), 0);
     std::int64_t target_total = 0;
-    for (std::size_t i = 0; i < sn; ++i) {
-        for (int c = 0; c < C; ++c)
-            ++source_count[c * kHistogramBins + bin(source.data()[i * C + c], c)];
-    }
     for (std::size_t i = 0; i < tn; ++i) {
         if (target_pixels != nullptr && !target_pixels[i]) continue;
         ++target_total;
@@ -99,22 +114,27 @@ std::vector<float> histogram_weights(const Image& source, const Image& target,
     }
     std::vector<float> weights(sn, 1.0f);
     if (target_total == 0 || sn == 0) return weights;
+    std::vector<double> excess(density_.size());
     for (std::size_t b = 0; b < excess.size(); ++b) {
-        const double hs = static_cast<double>(source_count[b]) / static_cast<double>(sn);
         const double ht = static_cast<double>(target_count[b]) / static_cast<double>(target_total);
-        excess[b] = std::max(0.0, (ht - hs) * kHistogramBins);
+        excess[b] = std::max(0.0, (ht - density_[b]) * kHistogramBins);
     }
-    const int sw = source.width();
-    parallel_for(0, source.height(), threads, [&](int y) {
+    const int sw = source_->width();
+    parallel_for(0, source_->height(), threads, [&](int y) {
         for (int x = 0; x < sw; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * sw + x;
             double sum = 0.0;
-            for (int c = 0; c < C; ++c)
-                sum += excess[c * kHistogramBins + bin(source.data()[i * C + c], c)];
+            for (int c = 0; c < C; ++c) sum += excess[c * kHistogramBins + bins_[i * C + c]];
             weights[i] = static_cast<float>(1.0 / (1.0 + strength * sum));
         }
     });
     return weights;
+}
+
+std::vector<float> histogram_weights(const Image& source, const Image& target,
+                                     const std::uint8_t* target_pixels, float strength,
+                                     int threads) {
+    return SourceHistogram(source).weights(target, target_pixels, strength, threads);
 }
 
 namespace {

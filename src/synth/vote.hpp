@@ -49,6 +49,25 @@ std::vector<float> histogram_weights(const Image& source, const Image& target,
                                      int threads);
 inline constexpr int kHistogramBins = 32;
 
+/// The source's side of histogram_weights, which does not change between the votes of a level:
+/// its bins, each pixel's bin per channel and the densities, made once; `weights` then counts
+/// only the target. Keeps a pointer to `source`, which must outlive it.
+class SourceHistogram {
+public:
+    explicit SourceHistogram(const Image& source);
+    /// histogram_weights(source, target, target_pixels, strength, threads).
+    std::vector<float> weights(const Image& target, const std::uint8_t* target_pixels,
+                               float strength, int threads) const;
+
+private:
+    int bin(float value, int channel) const;
+
+    const Image* source_;
+    std::vector<float> lo_, scale_;   // per channel: the range's start, bins per unit
+    std::vector<std::uint8_t> bins_;  // per pixel and channel
+    std::vector<double> density_;     // per channel and bin: share of the source's pixels
+};
+
 /// Writes the vote into `out`, which must already have the NNF's size and the source's channel
 /// count. Pixels that receive no vote (or are fixed) keep their value.
 void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads);
