@@ -103,9 +103,7 @@ py::list animate_py(const py::object& style_input, const py::object& style_outpu
     const py::object flows = pop(args, "flows");
     const py::object keyframes = pop(args, "keyframes");
     const py::object lines = pop(args, "lines");
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "animate");
 
     // The inputs, copied once into images the solver's callbacks hand out without Python.
@@ -175,7 +173,7 @@ py::list animate_py(const py::object& style_input, const py::object& style_outpu
     }
     check(animate::validate(input, options));
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     animate::AnimationResult result =
         run([&](const RunContext& context) { return animate::animate(input, options, context); });
     // The frames in the style output's dtype.

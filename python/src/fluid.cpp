@@ -48,9 +48,7 @@ py::array fluid_frame_py(const py::object& exemplar, const py::object& target_al
         }
         options.uniform_usage = value == "uniform";
     }
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     check(fluid::validate(options));
 
     const std::optional<Image> previous_exemplar = optional_input(args, "previous_exemplar");
@@ -70,7 +68,7 @@ py::array fluid_frame_py(const py::object& exemplar, const py::object& target_al
     input.previous_motion = previous_motion ? &*previous_motion : nullptr;
     input.motion = motion ? &*motion : nullptr;
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     fluid::FluidFrameResult result = run([&](const RunContext& context) {
         return fluid::synthesize_fluid_frame(input, options, context);
     });
@@ -104,14 +102,12 @@ py::tuple fluid_simulate_py(py::kwargs kwargs) {
     if (const py::object warmup = pop(args, "warmup_frames"); !warmup.is_none()) {
         scene.warmup_frames = integer(warmup, "warmup_frames");
     }
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "fluid_simulate");
     check(fluid::validate(scene));
 
     std::vector<Image> alphas, motions;
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     run([&](const RunContext& context) -> Result<int> {
         const Status status = fluid::simulate(
             scene, frames,

@@ -42,9 +42,7 @@ py::array noisy_frame_py(const py::object& exemplar, const py::object& reference
     if (const py::object frame = pop(args, "frame"); !frame.is_none()) {
         frame_index = integer(frame, "frame");
     }
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
 
     noisy::NoisyFrame input;
     if (const py::object map = pop(args, "noise_map"); !map.is_none()) {
@@ -65,7 +63,7 @@ py::array noisy_frame_py(const py::object& exemplar, const py::object& reference
                          std::to_string(input.reference.height()));
     }
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     Image image = run([&](const RunContext& context) {
         return noisy::synthesize_frame(source.image, source_orientation, input, options,
                                        frame_index, context);

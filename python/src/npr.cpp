@@ -72,9 +72,7 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
         linear_tone = pop_bool(args, "linear_tone", false);
     pop(args, "linear_tone");
     const py::object previous_object = pop(args, "previous");
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "npr_frame");
 
     const NprState* previous = nullptr;
@@ -112,7 +110,7 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
     } else {
         next->pattern_image = pattern_arg.image;
     }
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     Image image = run([&](const RunContext& context) -> Result<Image> {
         if (next->pattern == nullptr) {
             auto prepared = npr::prepare_pattern(next->pattern_image, options, context);

@@ -162,9 +162,7 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
     const py::object canvas_given = pop(args, "canvas");
     const py::object mask_given = pop(args, "source_mask");
     const py::object directions_given = pop(args, "source_directions");
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "paint");
 
     const Canvas target = canvas_from(width_given, height_given, canvas_given);
@@ -194,7 +192,7 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
     paint::PaintCanvas canvas(width, height);
     for (const paint::Stroke& stroke : stroke_list) take(canvas.add_stroke(stroke));
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     paint::PaintResult result = run(
         [&](const RunContext& context) { return paint::paint(input, canvas, options, context); });
     Image out = background.empty() ? std::move(result.image)
@@ -222,9 +220,7 @@ py::array brush_py(const py::object& palette, const py::object& feature, const p
     const py::object width_given = pop(args, "width");
     const py::object height_given = pop(args, "height");
     const py::object canvas_given = pop(args, "canvas");
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "brush");
 
     const Canvas target = canvas_from(width_given, height_given, canvas_given);
@@ -232,7 +228,7 @@ py::array brush_py(const py::object& palette, const py::object& feature, const p
     const paint::Stroke selection = stroke_from(feature, "feature");
     const std::vector<paint::Stroke> path_list = strokes_from(paths, "paths");
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     Image layer = run([&](const RunContext& context) -> Result<Image> {
         auto picked =
             paint::pick_line_feature(palette_arg.image, selection, options, snap, context.threads);
@@ -267,16 +263,14 @@ py::array fill_py(const py::object& palette, const py::object& source_region,
     pop_seed(args, options.seed);
     check(paint::validate(options));
     const py::object canvas_given = pop(args, "canvas");
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "fill");
 
     ImageArg palette_arg = any_image(palette, "palette");
     const Image source = any_image(source_region, "source_region").image;
     const Image target = any_image(target_region, "target_region").image;
     const Image canvas = canvas_given.is_none() ? Image() : any_image(canvas_given, "canvas").image;
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     Image out = run([&](const RunContext& context) {
         return paint::fill_with_palette(palette_arg.image, source, canvas, target, options,
                                         context);

@@ -65,9 +65,7 @@ py::dict render_py(const std::string& scene, py::kwargs kwargs) {
     }
     long long frame = 0;
     const bool frame_given = pop_integer(args, "frame", frame);
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "render");
 
     // Checks that need no file, then the scene: a file if one exists by that name (or it looks
@@ -90,7 +88,7 @@ py::dict render_py(const std::string& scene, py::kwargs kwargs) {
                          " is animated (render it one frame at a time)");
     }
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     render::RenderBuffers buffers = run([&](const RunContext& context) {
         Result<render::RenderBuffers> result =
             frame_given ? render::render_frame(animation, static_cast<int>(frame), options, context)

@@ -40,6 +40,17 @@ PythonRun::PythonRun(int threads, py::object progress, py::object cancel)
     context_.progress = [this](const ProgressEvent& event) { on_progress(event); };
 }
 
+PythonRun::PythonRun(const RunKeywords& keywords)
+    : PythonRun(threads_keyword(keywords.threads), keywords.progress, keywords.cancel) {}
+
+RunKeywords pop_run_keywords(py::dict& kwargs) {
+    RunKeywords keywords;
+    keywords.progress = pop(kwargs, "progress");
+    keywords.cancel = pop(kwargs, "cancel");
+    keywords.threads = pop(kwargs, "threads");
+    return keywords;
+}
+
 void PythonRun::on_progress(const ProgressEvent& event) {
     py::gil_scoped_acquire gil;
     if (python_error_) return;  // already cancelling

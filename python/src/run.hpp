@@ -21,12 +21,23 @@ struct PyCancelToken {
     CancelToken token;
 };
 
+/// The `threads`, `progress` and `cancel` keywords of a call, taken out of its keywords before
+/// reject_unknown; the PythonRun is made from them once the inputs are converted.
+struct RunKeywords {
+    py::object threads, progress, cancel;
+};
+
+/// Pops `threads`, `progress` and `cancel` (None where not given).
+RunKeywords pop_run_keywords(py::dict& kwargs);
+
 /// The RunContext of one call, built from the `threads`, `progress` and `cancel` keywords.
 class PythonRun {
 public:
     /// `progress`: None or a callable taking an exemplar.Progress; `cancel`: None or an
     /// exemplar.CancelToken; `threads` >= 0 (0 = all cores).
     PythonRun(int threads, py::object progress, py::object cancel);
+    /// The same from the popped keywords (threads through threads_keyword).
+    explicit PythonRun(const RunKeywords& keywords);
     PythonRun(const PythonRun&) = delete;
     PythonRun& operator=(const PythonRun&) = delete;
 

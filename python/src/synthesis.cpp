@@ -184,9 +184,7 @@ StylizeResult stylize(const py::object& style, const py::object& guides, py::kwa
     // Keywords, in the CLI's order of checks: options, then inputs.
     py::dict args(kwargs);
     const SynthesisOptions options = pop_synthesis_options(args);
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
 
     SynthesisInput input;
     ImageArg style_arg = image_from_array(style, "style", Shape::Colour);
@@ -244,7 +242,7 @@ StylizeResult stylize(const py::object& style, const py::object& guides, py::kwa
     }
     check(with_label_values(validate_input(input, options), label_values));
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     SynthesisResult result = run(
         [&](const RunContext& context) { return synthesize(std::move(input), options, context); });
     const SynthesisResult::GuideCompression compression = result.guide_compression;
@@ -347,9 +345,7 @@ StylizeResult stylit_py(const py::object& exemplar, const py::object& source,
         layers.is_none() ? take(find_layer_preset(
                                preset_name.is_none() ? "exemplar" : text(preset_name, "preset")))
                          : take(custom_layer_preset(text(layers, "layers")));
-    const py::object progress = pop(args, "progress");
-    const py::object cancel = pop(args, "cancel");
-    const py::object threads = pop(args, "threads");
+    const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "stylit");
 
     ImageArg painting = image_from_array(exemplar, "exemplar", Shape::Colour);
@@ -360,7 +356,7 @@ StylizeResult stylit_py(const py::object& exemplar, const py::object& source,
         take(stylit_input(painting.image, source_buffers, target_buffers, options));
     check(validate_input(input, options.synthesis));
 
-    PythonRun run(threads_keyword(threads), progress, cancel);
+    PythonRun run(run_keywords);
     StylitResult result = run([&](const RunContext& context) {
         return stylize_render(painting.image, source_buffers, target_buffers, options, context);
     });
