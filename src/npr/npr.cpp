@@ -19,7 +19,7 @@ namespace {
 
 using O = NprOptions;
 
-const std::array<NprOptionSpec, 3> kSpecs{{
+const std::array<NprOptionSpec, 4> kSpecs{{
     {"levels",
      "Pyramid levels of the coordinate synthesis (the paper's L + 1). The pattern needs "
      "patch-size x 2^(levels-1) pixels on a side.",
@@ -32,6 +32,13 @@ const std::array<NprOptionSpec, 3> kSpecs{{
      "beta: weight of the temporal coherence term against the texture term (weight 1). Higher "
      "= steadier elements, which then grow and shrink with a camera zoom.",
      "", 0, 100, &O::coherence_weight},
+    {"motion-levels",
+     "Pyramid levels, from the coarsest, whose correction also tries the previous frame's "
+     "coordinate at each pixel's advected position. 0 = the previous frame enters through the "
+     "coarsest level's patches and the coherence term: the pattern keeps its size under a "
+     "camera zoom. More = steadier on rotations, but the pattern grows with a zoom (all levels: "
+     "2x under a 2x zoom, as texture mapping).",
+     "", 0, 6, &O::motion_levels},
 }};
 
 std::string size_text(const Image& image) {
@@ -177,6 +184,7 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
     SynthesisOptions synthesis;
     synthesis.init_patch_size = options.patch_size;
     synthesis.coherence_weight = options.coherence_weight;
+    synthesis.motion_levels = options.motion_levels;
     synthesis.seed = options.seed;
     auto state = synthesize_frame(pattern, input, previous, frame_index, synthesis, context);
     if (!state.ok()) return state.status();

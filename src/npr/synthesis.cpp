@@ -153,173 +153,6 @@ float screen_at(const Image& screen, float x, float y) {
            fy * ((1 - fx) * screen.at(x0, y1, 0) + fx * screen.at(x1, y1, 0));
 }
 
-// One initialization patch: centre (cx, cy), clipped to [x0, x1) x [y0, y1), in a partly filled
-// field; candidates are drawn on the grid of spacing `grid` (grid_w x grid_h positions).
-struct PatchSearch {
-    const Image& stack;
-    const LevelBuffers& b;
-    const Field& field;
-    const std::vector<unsigned char>& filled;
-    int cx, cy, x0, x1, y0, y1;
-    int grid, grid_w, grid_h, candidates;
-};
-
-// A keyed random grid position.
-void draw_candidate(KeyedRng& rng, const PatchSearch& p, int& ux, int& uy) {
-    ux = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_w))) * p.grid;
-    uy = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_h))) * p.grid;
-}
-
-// The first of the patch's keyed candidates with the least error_of(ux, uy, best) (which may
-// stop summing once it reaches `best`).
-template <class Error>
-std::pair<int, int> first_best_candidate(const PatchSearch& p, KeyedRng& rng, Error error_of) {
-    int best_x = 0, best_y = 0;
-    float best = std::numeric_limits<float>::infinity();
-    for (int k = 0; k < p.candidates; ++k) {
-        int ux, uy;
-        draw_candidate(rng, p, ux, uy);
-        const float error = error_of(ux, uy, best);
-        if (error < best) {
-            best = error;
-            best_x = ux;
-            best_y = uy;
-        }
-    }
-    return {best_x, best_y};
-}
-
-// The candidate with the least SSD over the filled overlap (the plain reference of
-// best_patch_fast).
-std::pair<int, int> best_patch_reference(const PatchSearch& p, KeyedRng& rng) {
-    const int dims = p.stack.channels();
-    const float h = static_cast<float>(p.b.spacing);
-    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
-        float error = 0.0f;
-        for (int y = p.y0; y < p.y1 && error < best; ++y)
-            for (int x = p.x0; x < p.x1; ++x) {
-                const std::size_t i = p.b.index(x, y);
-                if (!p.filled[i]) continue;
-                int ox, oy;
-                pattern_offset(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
-                               static_cast<float>(y - p.cy), h, ox, oy);
-                const int* s = p.field.at(x, y);
-                const float* have = appearance_at(p.stack, s[0], s[1]);
-                const float* want = appearance_at(p.stack, ux + ox, uy + oy);
-                for (int c = 0; c < dims; ++c) {
-                    const float d = have[c] - want[c];
-                    error += d * d;
-                }
-            }
-        return error;
-    });
-}
-
-// A filled overlap pixel: its pattern offset and appearance.
-struct Overlap {
-    int ox, oy;
-    const float* have;
-};
-
-// best_patch_reference with the same candidates and sums, faster: the filled overlap's offsets
-// and appearance are gathered once (into `overlap`) instead of per candidate.
-std::pair<int, int> best_patch_fast(const PatchSearch& p, KeyedRng& rng,
-                                    std::vector<Overlap>& overlap) {
-    const int dims = p.stack.channels();
-    const float h = static_cast<float>(p.b.spacing);
-    overlap.clear();
-    for (int y = p.y0; y < p.y1; ++y)
-        for (int x = p.x0; x < p.x1; ++x) {
-            const std::size_t i = p.b.index(x, y);
-            if (!p.filled[i]) continue;
-            Overlap o;
-            pattern_offset_fast(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
-                                static_cast<float>(y - p.cy), h, o.ox, o.oy);
-            const int* s = p.field.at(x, y);
-            o.have = appearance_at(p.stack, s[0], s[1]);
-            overlap.push_back(o);
-        }
-    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
-        // The same sum in the same order; stopping earlier only changes losing errors
-        float error = 0.0f;
-        for (std::size_t j = 0; j < overlap.size() && error < best; ++j) {
-            const Overlap& o = overlap[j];
-            const float* want = appearance_at(p.stack, ux + o.ox, uy + o.oy);
-            for (int c = 0; c < dims; ++c) {
-                const float d = o.have[c] - want[c];
-                error += d * d;
-            }
-        }
-        return error;
-    });
-}
-
-// Coarsest level: overlapping oriented patches in scanline order (Efros and Freeman 2001
-// without the boundary cut), each the best of a keyed random set of grid positions for the
-// already-filled overlap.
-Field initialize(const Image& stack, const LevelBuffers& b, const SynthesisOptions& options,
-                 int frame_index, int level) {
-    Field field{b.width, b.height,
-                std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
-    std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
-    const int n = std::min({options.init_patch_size, b.width, b.height});
-    const int half = n / 2;
-    const float h = static_cast<float>(b.spacing);
-    const int grid = b.spacing;
-    const int grid_w = std::max(1, stack.width() / grid),
-              grid_h = std::max(1, stack.height() / grid);
-    std::vector<Overlap> overlap;
-    overlap.reserve(static_cast<std::size_t>(n) * n);
-    int patch = 0;
-    for (int cy = 0; cy < b.height; ++cy)
-        for (int cx = 0; cx < b.width; ++cx) {
-            if (filled[b.index(cx, cy)]) continue;
-            const int x0 = std::max(0, cx - half), x1 = std::min(b.width, cx - half + n);
-            const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
-            KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
-                         static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
-            const PatchSearch search{
-                stack, b,  field, filled, cx,     cy,     x0,
-                x1,    y0, y1,    grid,   grid_w, grid_h, options.init_candidates};
-            const auto [best_x, best_y] = options.reference_kernels
-                                              ? best_patch_reference(search, rng)
-                                              : best_patch_fast(search, rng, overlap);
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
-                    const std::size_t i = b.index(x, y);
-                    int ox, oy;
-                    pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
-                                   static_cast<float>(y - cy), h, ox, oy);
-                    int* s = field.at(x, y);
-                    s[0] = wrap(best_x + ox, stack.width());
-                    s[1] = wrap(best_y + oy, stack.height());
-                    filled[i] = 1;
-                }
-        }
-    return field;
-}
-
-// S_l[2i + Δ] = S_{l+1}[i] + Rot(-θ) Δ h_l (eq. 4).
-Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, int threads) {
-    Field field{b.width, b.height,
-                std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
-    const float h = static_cast<float>(b.spacing);
-    parallel_for(0, b.height, threads, [&](int y) {
-        for (int x = 0; x < b.width; ++x) {
-            const std::size_t i = b.index(x, y);
-            const int* p =
-                parent.at(std::min(x / 2, parent.width - 1), std::min(y / 2, parent.height - 1));
-            int ox, oy;
-            pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x % 2),
-                           static_cast<float>(y % 2), h, ox, oy);
-            int* s = field.at(x, y);
-            s[0] = wrap(p[0] + ox, stack.width());
-            s[1] = wrap(p[1] + oy, stack.height());
-        }
-    });
-    return field;
-}
-
 // The previous frame's appearance advected to this frame (valid[i] = 0 where unusable).
 struct Advected {
     std::vector<float> appearance;
@@ -368,6 +201,212 @@ void advected_candidates(const LevelBuffers& b, const Field& previous, int x, in
         offset(c, s, static_cast<float>(sx) - px, static_cast<float>(sy) - py, h, ox, oy);
         emit(sp[0] - ox, sp[1] - oy);
     }
+}
+
+// One initialization patch: centre (cx, cy), clipped to [x0, x1) x [y0, y1), in a partly filled
+// field; candidates are the previous frame's coordinates around the centre's advected position
+// (`anchored`), then keyed random positions on the grid of spacing `grid` (grid_w x grid_h).
+struct PatchSearch {
+    const Image& stack;
+    const LevelBuffers& b;
+    const Field& field;
+    const std::vector<unsigned char>& filled;
+    const Advected& advected;  // the previous frame's appearance here; valid empty = none
+    const SynthesisOptions& options;
+    const std::vector<std::pair<int, int>>& anchored;
+    int cx, cy, x0, x1, y0, y1;
+    int grid, grid_w, grid_h;
+};
+
+// The previous frame's appearance advected to pixel i, or null where there is none.
+const float* prior_at(const Advected& advected, std::size_t i, int dims) {
+    if (advected.valid.empty() || !advected.valid[i]) return nullptr;
+    return advected.appearance.data() + i * static_cast<std::size_t>(dims);
+}
+
+// The first of the patch's candidates (the anchored ones, then keyed random grid positions)
+// with the least error_of(ux, uy, best) (which may stop summing once it reaches `best`).
+template <class Error>
+std::pair<int, int> first_best_candidate(const PatchSearch& p, KeyedRng& rng, Error error_of) {
+    int best_x = 0, best_y = 0;
+    float best = std::numeric_limits<float>::infinity();
+    const auto consider = [&](int ux, int uy) {
+        const float error = error_of(ux, uy, best);
+        if (error < best) {
+            best = error;
+            best_x = ux;
+            best_y = uy;
+        }
+    };
+    for (const auto& [ux, uy] : p.anchored)
+        consider(wrap(ux, p.stack.width()), wrap(uy, p.stack.height()));
+    for (int k = 0; k < p.options.init_candidates; ++k) {
+        const int ux = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_w))) * p.grid;
+        const int uy = static_cast<int>(rng.below(static_cast<std::uint32_t>(p.grid_h))) * p.grid;
+        consider(ux, uy);
+    }
+    return {best_x, best_y};
+}
+
+// The candidate with the least texture_weight·E_texture over the filled overlap plus
+// coherence_weight·E_coherence over the patch pixels the previous frame covers (the plain
+// reference of best_patch_fast).
+std::pair<int, int> best_patch_reference(const PatchSearch& p, KeyedRng& rng) {
+    const int dims = p.stack.channels();
+    const float h = static_cast<float>(p.b.spacing);
+    const float alpha = p.options.texture_weight, beta = p.options.coherence_weight;
+    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
+        float error = 0.0f;
+        for (int y = p.y0; y < p.y1 && error < best; ++y)
+            for (int x = p.x0; x < p.x1; ++x) {
+                const std::size_t i = p.b.index(x, y);
+                const float* was = prior_at(p.advected, i, dims);
+                if (!p.filled[i] && was == nullptr) continue;
+                int ox, oy;
+                pattern_offset(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
+                               static_cast<float>(y - p.cy), h, ox, oy);
+                const float* want = appearance_at(p.stack, ux + ox, uy + oy);
+                if (p.filled[i]) {
+                    const int* s = p.field.at(x, y);
+                    const float* have = appearance_at(p.stack, s[0], s[1]);
+                    for (int c = 0; c < dims; ++c) {
+                        const float d = have[c] - want[c];
+                        error += alpha * (d * d);
+                    }
+                }
+                if (was != nullptr)
+                    for (int c = 0; c < dims; ++c) {
+                        const float d = was[c] - want[c];
+                        error += beta * (d * d);
+                    }
+            }
+        return error;
+    });
+}
+
+// A patch pixel the error reads: its pattern offset, the filled field's appearance there (or
+// null) and the previous frame's (or null).
+struct Overlap {
+    int ox, oy;
+    const float* have;
+    const float* was;
+};
+
+// best_patch_reference with the same candidates and sums, faster: the patch's offsets and
+// appearances are gathered once (into `overlap`) instead of per candidate.
+std::pair<int, int> best_patch_fast(const PatchSearch& p, KeyedRng& rng,
+                                    std::vector<Overlap>& overlap) {
+    const int dims = p.stack.channels();
+    const float h = static_cast<float>(p.b.spacing);
+    const float alpha = p.options.texture_weight, beta = p.options.coherence_weight;
+    overlap.clear();
+    for (int y = p.y0; y < p.y1; ++y)
+        for (int x = p.x0; x < p.x1; ++x) {
+            const std::size_t i = p.b.index(x, y);
+            Overlap o;
+            o.was = prior_at(p.advected, i, dims);
+            if (!p.filled[i] && o.was == nullptr) continue;
+            pattern_offset_fast(p.b.cos_angle[i], p.b.sin_angle[i], static_cast<float>(x - p.cx),
+                                static_cast<float>(y - p.cy), h, o.ox, o.oy);
+            const int* s = p.field.at(x, y);
+            o.have = p.filled[i] ? appearance_at(p.stack, s[0], s[1]) : nullptr;
+            overlap.push_back(o);
+        }
+    return first_best_candidate(p, rng, [&](int ux, int uy, float best) {
+        // The same sum in the same order; stopping earlier only changes losing errors
+        float error = 0.0f;
+        for (std::size_t j = 0; j < overlap.size() && error < best; ++j) {
+            const Overlap& o = overlap[j];
+            const float* want = appearance_at(p.stack, ux + o.ox, uy + o.oy);
+            if (o.have != nullptr)
+                for (int c = 0; c < dims; ++c) {
+                    const float d = o.have[c] - want[c];
+                    error += alpha * (d * d);
+                }
+            if (o.was != nullptr)
+                for (int c = 0; c < dims; ++c) {
+                    const float d = o.was[c] - want[c];
+                    error += beta * (d * d);
+                }
+        }
+        return error;
+    });
+}
+
+// Coarsest level: overlapping oriented patches in scanline order (Efros and Freeman 2001
+// without the boundary cut), each the best for the objective of §5.1 (texture over the
+// already-filled overlap, coherence with the advected previous frame) among the previous
+// frame's coordinates at the patch centre's advected position and a keyed random set of grid
+// positions.
+Field initialize(const Image& stack, const LevelBuffers& b, const Field* previous,
+                 const Advected& advected, const SynthesisOptions& options, int frame_index,
+                 int level) {
+    Field field{b.width, b.height,
+                std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
+    std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
+    const int n = std::min({options.init_patch_size, b.width, b.height});
+    const int half = n / 2;
+    const float h = static_cast<float>(b.spacing);
+    const int grid = b.spacing;
+    const int grid_w = std::max(1, stack.width() / grid),
+              grid_h = std::max(1, stack.height() / grid);
+    std::vector<Overlap> overlap;
+    overlap.reserve(static_cast<std::size_t>(n) * n);
+    std::vector<std::pair<int, int>> anchored;
+    int patch = 0;
+    for (int cy = 0; cy < b.height; ++cy)
+        for (int cx = 0; cx < b.width; ++cx) {
+            if (filled[b.index(cx, cy)]) continue;
+            const int x0 = std::max(0, cx - half), x1 = std::min(b.width, cx - half + n);
+            const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
+            KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
+                         static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
+            anchored.clear();
+            if (previous != nullptr) {
+                const std::size_t i = b.index(cx, cy);
+                advected_candidates(b, *previous, cx, cy, b.cos_angle[i], b.sin_angle[i],
+                                    pattern_offset,
+                                    [&](int u, int v) { anchored.emplace_back(u, v); });
+            }
+            const PatchSearch search{stack, b,  field, filled, advected, options, anchored, cx,
+                                     cy,    x0, x1,    y0,     y1,       grid,    grid_w,   grid_h};
+            const auto [best_x, best_y] = options.reference_kernels
+                                              ? best_patch_reference(search, rng)
+                                              : best_patch_fast(search, rng, overlap);
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const std::size_t i = b.index(x, y);
+                    int ox, oy;
+                    pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
+                                   static_cast<float>(y - cy), h, ox, oy);
+                    int* s = field.at(x, y);
+                    s[0] = wrap(best_x + ox, stack.width());
+                    s[1] = wrap(best_y + oy, stack.height());
+                    filled[i] = 1;
+                }
+        }
+    return field;
+}
+
+// S_l[2i + Δ] = S_{l+1}[i] + Rot(-θ) Δ h_l (eq. 4).
+Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, int threads) {
+    Field field{b.width, b.height,
+                std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
+    const float h = static_cast<float>(b.spacing);
+    parallel_for(0, b.height, threads, [&](int y) {
+        for (int x = 0; x < b.width; ++x) {
+            const std::size_t i = b.index(x, y);
+            const int* p =
+                parent.at(std::min(x / 2, parent.width - 1), std::min(y / 2, parent.height - 1));
+            int ox, oy;
+            pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x % 2),
+                           static_cast<float>(y % 2), h, ox, oy);
+            int* s = field.at(x, y);
+            s[0] = wrap(p[0] + ox, stack.width());
+            s[1] = wrap(p[1] + oy, stack.height());
+        }
+    });
+    return field;
 }
 
 // Correction (§5.2.4): per pixel, the best of the coherence candidates and the advected
@@ -698,6 +737,9 @@ Status validate(const SynthesisOptions& options) {
     if (options.correction_passes < 0 || options.correction_passes > 8)
         return invalid_argument("correction_passes: " + std::to_string(options.correction_passes) +
                                 " is invalid (must be 0..8)");
+    if (options.motion_levels < 0 || options.motion_levels > 6)
+        return invalid_argument("motion_levels: " + std::to_string(options.motion_levels) +
+                                " is invalid (must be 0..6)");
     if (!(options.texture_weight >= 0.0f && options.texture_weight <= 100.0f))
         return invalid_argument("texture_weight: " + std::to_string(options.texture_weight) +
                                 " is invalid (must be in [0, 100])");
@@ -741,10 +783,7 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
     for (int level = levels - 1; level >= 0; --level) {
         const Image& stack = pattern.stack[static_cast<std::size_t>(level)];
         buffers = sample_level(input, level, context.threads);
-        // Initialize the coarsest level with patches, upsample the finer ones
-        field = level == levels - 1 ? initialize(stack, buffers, options, frame_index, level)
-                                    : upsample(field, buffers, stack, context.threads);
-        // Correct with coherence candidates and the advected previous frame
+        // The previous frame's coordinates and appearance, advected
         Field previous_field;
         Advected advected;
         if (use_previous) {
@@ -752,9 +791,19 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
             advected = advect(previous->appearance[static_cast<std::size_t>(level)], buffers,
                               stack.channels(), context.threads);
         }
+        // Initialize the coarsest level with patches, upsample the finer ones
+        field = level == levels - 1
+                    ? initialize(stack, buffers, use_previous ? &previous_field : nullptr, advected,
+                                 options, frame_index, level)
+                    : upsample(field, buffers, stack, context.threads);
+        // Correct with coherence candidates and the advected previous frame
         const auto correct = options.reference_kernels ? &correct_reference : &correct_fast;
+        // The previous frame's coordinates as candidates at each pixel: only at the coarsest
+        // motion_levels levels (elsewhere they would carry the exact motion and grow the pattern
+        // with a zoom)
+        const bool motion_candidates = use_previous && level >= levels - options.motion_levels;
         EXEMPLAR_RETURN_IF_ERROR(correct(field, stack, buffers,
-                                         use_previous ? &previous_field : nullptr, advected,
+                                         motion_candidates ? &previous_field : nullptr, advected,
                                          options, context));
         state.coords[static_cast<std::size_t>(level)] = coords_image(field);
         state.appearance[static_cast<std::size_t>(level)] =

@@ -69,7 +69,7 @@ std::vector<std::string> names(const std::vector<BufferNeed>& needs) {
 TEST(NprStyle, OptionTableChecksRangesAndTheToneAgainstTheStyle) {
     NprOptions options;
     const auto specs = npr_option_specs();
-    ASSERT_EQ(specs.size(), 3u);
+    ASSERT_EQ(specs.size(), 4u);
     EXPECT_EQ(get_option(options, specs[0]), 3.0);  // levels
     Status status = set_option(options, specs[0], 9);
     EXPECT_EQ(status.message(), "levels: 9 is invalid (must be an integer, 1..6)");
@@ -77,6 +77,9 @@ TEST(NprStyle, OptionTableChecksRangesAndTheToneAgainstTheStyle) {
     EXPECT_EQ(status.message(), "patch-size: 12.5 is invalid (must be an integer, 3..32)");
     ASSERT_TRUE(set_option(options, specs[2], 0.25).is_ok());
     EXPECT_FLOAT_EQ(options.coherence_weight, 0.25f);
+    EXPECT_EQ(get_option(options, specs[3]), 0.0);  // motion-levels
+    EXPECT_EQ(set_option(options, specs[3], 7).message(),
+              "motion-levels: 7 is invalid (must be an integer, 0..6)");
     EXPECT_TRUE(validate(options).is_ok());
     options.levels = 0;
     EXPECT_EQ(validate(options).message(), "levels: 0 is invalid (must be an integer, 1..6)");

@@ -58,6 +58,10 @@ struct NprOptions {
     int patch_size = 12;
     /// β, the weight of the temporal coherence term. Default 1 (the paper's); range 0..100.
     float coherence_weight = 1.0f;
+    /// Pyramid levels, from the coarsest, whose correction also tries the previous frame's
+    /// coordinate at each pixel's advected position (SynthesisOptions::motion_levels). Default 0
+    /// (the pattern keeps its size under a zoom); range 0..6.
+    int motion_levels = 0;
     /// Buffer giving the tone (its Rec. 709 luma). Unset = "direct_diffuse". Style::Pattern
     /// shows no tone: setting it there is an error.
     std::optional<std::string> tone;
@@ -83,7 +87,7 @@ struct NprOptionSpec {
     std::variant<int NprOptions::*, float NprOptions::*> field;
 };
 
-/// The numeric options (levels, patch-size, coherence-weight).
+/// The numeric options (levels, patch-size, coherence-weight, motion-levels, ...).
 std::span<const NprOptionSpec> npr_option_specs();
 /// Reads an option's value as a double.
 double get_option(const NprOptions& options, const NprOptionSpec& spec);

@@ -7,15 +7,19 @@
 /// `levels` pyramid levels (level l has size ceil(W / 2^l) x ceil(H / 2^l), coordinate
 /// spacing h = 2^l):
 /// 1. Initialization (coarsest level): overlapping oriented patches in scanline order, each
-///    centre skipping already-filled pixels; the best of `init_candidates` pattern positions
-///    (on a grid of spacing 2^L, drawn by a keyed generator) for the already-filled overlap.
+///    centre skipping already-filled pixels; per patch the candidate minimizing
+///    texture_weight·E_texture (over the already-filled overlap) + coherence_weight·E_coherence
+///    (over the pixels the advected previous frame covers) among the previous frame's
+///    coordinates around the centre's advected position and `init_candidates` pattern
+///    positions (on a grid of spacing 2^L, drawn by a keyed generator).
 /// 2. Upsampling (finer levels): child (2i + Δ), Δ ∈ {0,1}², gets the parent's coordinate plus
 ///    the offset Δ h rotated by the orientation at the child.
 /// 3. Correction (`correction_passes` passes of 4 interleaved sub-passes): Ashikhmin coherence
-///    candidates from the 3x3 neighbours, plus, where the backward flow is valid
-///    (disocclusion = 0), the previous frame's coordinates around the advected position; the
-///    candidate minimizing texture_weight·‖N_S − N_P‖² + coherence_weight·‖N_P − N_prev‖² over
-///    3x3 appearance neighbourhoods wins (N_prev: the previous frame's appearance, advected).
+///    candidates from the 3x3 neighbours, plus, at the `motion_levels` coarsest levels and where
+///    the backward flow is valid (disocclusion = 0), the previous frame's coordinates around the
+///    advected position; the candidate minimizing texture_weight·‖N_S − N_P‖² +
+///    coherence_weight·‖N_P − N_prev‖² over 3x3 appearance neighbourhoods wins (N_prev: the
+///    previous frame's appearance, advected).
 /// 4. Output: the screen colour with 3x3 coordinate blending (eq. 5).
 ///
 /// Orientation: an angle θ (radians, counter-clockwise on screen, as the renderer's
@@ -47,6 +51,16 @@ struct SynthesisOptions {
     float texture_weight = 1.0f;
     /// β, the weight of the temporal coherence term. Default 1 (the paper's); range [0, 100].
     float coherence_weight = 1.0f;
+    /// Pyramid levels, counted from the coarsest, whose correction also tries the previous
+    /// frame's coordinates around each pixel's advected position (§5.2.4). Default 0: the
+    /// previous frame enters through the initialization (each coarsest-level patch may be the
+    /// previous frame's content at its centre's advected position, chosen by the same
+    /// objective) and the coherence term, so the pattern keeps its size in the image under a
+    /// camera zoom. Each level more follows the exact motion more closely (steadier on
+    /// rotations), but those per-pixel candidates carry the motion's scaling: with all levels
+    /// a 2x zoom grows the pattern 2x, as texture mapping does. Range 0..6 (more than the
+    /// levels = all).
+    int motion_levels = 0;
     /// Blend coordinates over 3x3 (eq. 5) when producing the screen. Default true.
     bool blend_coordinates = true;
     /// Seed of the keyed random generator. Default 1.
