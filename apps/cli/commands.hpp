@@ -386,7 +386,7 @@ public:
 
 private:
     CLI::App* app_ = nullptr;
-    std::string pattern_, frames_, output_, mp4_;
+    std::string pattern_, frames_, output_, mp4_, paper_;
     double fps_ = 24.0;
     std::string style_ = "stipple";
     std::optional<std::string> tone_;

@@ -2,7 +2,8 @@
 // (issue 20, docs/npr.md) from the frame folders of `exemplar render --frames`.
 //
 // Frames are synthesized in order; each output is written atomically with its synthesis state
-// (the pattern coordinates of every level, OUT.state.exr) as soon as it is done; --mp4 adds
+// (the pattern coordinates of every level, OUT.state.exr; with --paper also the paper's,
+// OUT.paper.state.exr) as soon as it is done; --mp4 adds
 // every frame of the range (also resumed ones, read back) to one video. A frame whose
 // output and state exist is skipped (resume) and its state read back as the next frame's
 // previous frame, so a resumed range gives the same bytes as an uninterrupted one. A missing
@@ -13,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "exemplar/io/folders.hpp"
@@ -102,6 +104,9 @@ NprCommand::NprCommand(CLI::App& parent) {
             return npr::get_option(o, spec);
         },
         numeric_values_, numeric_flags_);
+    app_->add_option("--paper", paper_,
+                     "Paper texture (grey image), synthesized like the pattern: grain, and the "
+                     "shape's boundary (alpha buffer) eroded by its noise");
     app_->add_option("--mp4", mp4_, "Also write the range as an MP4 (even frame sizes)");
     app_->add_option("--fps", fps_, "Frames per second of the MP4 (default 24)");
     app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
@@ -128,6 +133,10 @@ Status NprCommand::run(const Streams& streams) {
     options.lines = lines_;
     options.tone_correction = tone_correction_;
     options.seed = seed_;
+    options.paper = !paper_.empty();
+    for (const char* flag : {"paper-grain", "erosion"})
+        if (!options.paper && numeric_flags_.at(flag)->count() > 0)
+            return invalid_argument(std::string("--") + flag + ": needs --paper");
     if (const Status valid = npr::validate(options); !valid.is_ok())
         return invalid_argument("--" + valid.message());
     if (last_ < first_)
@@ -151,6 +160,39 @@ Status NprCommand::run(const Streams& streams) {
     if (!prepared.ok())
         return invalid_argument("--pattern " + pattern_ + ": " + prepared.status().message());
     const npr::Pattern& pattern = *prepared;
+    std::optional<npr::Pattern> paper;
+    if (options.paper) {
+        auto paper_image = load_image(paper_);
+        if (!paper_image.ok()) return paper_image.status();
+        auto prepared_paper = npr::prepare_pattern(*paper_image, options, context);
+        if (!prepared_paper.ok())
+            return invalid_argument("--paper " + paper_ + ": " + prepared_paper.status().message());
+        paper = std::move(prepared_paper).value();
+    }
+    // A frame's stored states: the pattern's (OUT.state.exr) and the paper's
+    // (OUT.paper.state.exr)
+    const auto state_files = [&](const std::string& out_path) {
+        std::vector<std::string> files{out_path + ".state.exr"};
+        if (paper) files.push_back(out_path + ".paper.state.exr");
+        return files;
+    };
+    const auto all_exist = [&](const std::vector<std::string>& files) {
+        for (const std::string& file : files)
+            if (!exists(file)) return false;
+        return true;
+    };
+    std::optional<npr::FrameState> previous, previous_paper;
+    const auto load_states = [&](const std::vector<std::string>& files) -> Status {
+        auto state = load_state(files[0], pattern);
+        if (!state.ok()) return state.status();
+        previous = std::move(state).value();
+        if (paper) {
+            auto paper_state = load_state(files[1], *paper);
+            if (!paper_state.ok()) return paper_state.status();
+            previous_paper = std::move(paper_state).value();
+        }
+        return Status::ok();
+    };
 
     if (!mp4_.empty()) {
         EXEMPLAR_RETURN_IF_ERROR(check_output_path("--mp4", mp4_));
@@ -178,22 +220,16 @@ Status NprCommand::run(const Streams& streams) {
     };
     ProgressBar bar(streams.err, "npr", !quiet_ && streams.err_is_terminal);
     const int count = last_ - first_ + 1;
-    std::optional<npr::FrameState> previous;
     // A finished frame just before the range hands over to it
     if (auto before = frame_path("--output", output_, first_ - 1);
-        before.ok() && exists(*before + ".state.exr")) {
-        auto state = load_state(*before + ".state.exr", pattern);
-        if (!state.ok()) return state.status();
-        previous = std::move(state).value();
-    }
+        before.ok() && all_exist(state_files(*before)))
+        EXEMPLAR_RETURN_IF_ERROR(load_states(state_files(*before)));
     int written = 0;
     for (int n = first_; n <= last_; ++n) {
         const std::string out_path = *frame_path("--output", output_, n);
-        const std::string state_path = out_path + ".state.exr";
-        if (resume_ && exists(out_path) && exists(state_path)) {
-            auto state = load_state(state_path, pattern);
-            if (!state.ok()) return state.status();
-            previous = std::move(state).value();
+        const std::vector<std::string> states = state_files(out_path);
+        if (resume_ && exists(out_path) && all_exist(states)) {
+            EXEMPLAR_RETURN_IF_ERROR(load_states(states));
             if (!mp4_.empty()) {
                 auto stored = load_image(out_path);
                 if (!stored.ok()) return stored.status();
@@ -209,8 +245,13 @@ Status NprCommand::run(const Streams& streams) {
             EXEMPLAR_RETURN_IF_ERROR(load_buffer(folder, need.name, frame[need.role], linear));
             if (need.role == npr::BufferRole::Tone) frame.tone_linear = linear;
         }
+        npr::NprPaper paper_layer;
+        if (paper) {
+            paper_layer.pattern = &*paper;
+            paper_layer.previous = previous_paper ? &*previous_paper : nullptr;
+        }
         auto styled = npr::stylize_frame(pattern, frame, previous ? &*previous : nullptr, n,
-                                         options, context);
+                                         options, context, paper_layer);
         if (!styled.ok())
             return Status(styled.status().code(), folder + ": " + styled.status().message());
         const Image& result = styled->image;
@@ -218,12 +259,16 @@ Status NprCommand::run(const Streams& streams) {
         SaveOptions state_options;
         state_options.format = PixelFormat::Float;
         EXEMPLAR_RETURN_IF_ERROR(
-            save_image(npr::pack_state(styled->state), state_path, state_options));
+            save_image(npr::pack_state(styled->state), states[0], state_options));
+        if (paper)
+            EXEMPLAR_RETURN_IF_ERROR(
+                save_image(npr::pack_state(styled->paper_state), states[1], state_options));
         EXEMPLAR_RETURN_IF_ERROR(video::write_frame(result, output_, n));
         EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(result));
         ++written;
         if (!quiet_) streams.out << out_path << '\n';
         previous = std::move(styled->state);
+        if (paper) previous_paper = std::move(styled->paper_state);
         bar.update(static_cast<double>(n - first_ + 1) / count,
                    "frame " + std::to_string(n) + " (" + std::to_string(n - first_ + 1) + "/" +
                        std::to_string(count) + ")");

@@ -1,7 +1,9 @@
 // The styles of image-space NPR: tone, orientation, thresholding with tone correction and line
 // inking around the coordinate synthesis ("Image Space Texture Synthesis for 3D NPR Animation"
-// §6: halftoning, §6.0.1 tone correction, §6.0.2 silhouettes). Deviation: the silhouettes are
-// the renderer's `lines` buffer inked as it is, not eroded by paper noise.
+// §6: halftoning, §6.0.1 tone correction, the paper layer, §6.0.2 boundary erosion and
+// silhouettes). Deviations: the silhouettes are the renderer's `lines` buffer inked as it is;
+// the media simulation of Kalnins et al. 2002 is reduced to the paper's grain shading the
+// result.
 
 #include "exemplar/npr/npr.hpp"
 
@@ -11,6 +13,8 @@
 #include <utility>
 
 #include "exemplar/core/option_table.hpp"
+#include "exemplar/core/parallel.hpp"
+#include "exemplar/filters/resample.hpp"
 #include "exemplar/render/render.hpp"
 
 namespace exemplar::npr {
@@ -19,7 +23,7 @@ namespace {
 
 using O = NprOptions;
 
-const std::array<NprOptionSpec, 4> kSpecs{{
+const std::array<NprOptionSpec, 6> kSpecs{{
     {"levels",
      "Pyramid levels of the coordinate synthesis (the paper's L + 1). The pattern needs "
      "patch-size x 2^(levels-1) pixels on a side.",
@@ -39,6 +43,13 @@ const std::array<NprOptionSpec, 4> kSpecs{{
      "camera zoom. More = steadier on rotations, but the pattern grows with a zoom (all levels: "
      "2x under a 2x zoom, as texture mapping).",
      "", 0, 6, &O::motion_levels},
+    {"paper-grain",
+     "With --paper: how much the paper texture's dark parts darken the white (0 = no grain).", "",
+     0, 1, &O::paper_grain},
+    {"erosion",
+     "With --paper: width of the shape boundary's erosion by the paper noise (the blur of the "
+     "alpha mask).",
+     "px", 0.5, 20, &O::erosion_px},
 }};
 
 std::string size_text(const Image& image) {
@@ -52,6 +63,23 @@ int channels_used(BufferRole role) {
 
 bool thresholded(Style style) {
     return style != Style::Pattern;
+}
+
+// §6.0.2: outside the shape (mask ≤ 0.5) and where the mask blurred by erosion_px falls to
+// 0.5 + 0.45·paper or below (a band along the boundary, uneven with the paper's noise) the
+// image becomes paper; everything is then shaded by the paper's grain.
+void on_paper(Image& image, const Image& mask, const Image& paper, const NprOptions& options,
+              int threads) {
+    const Image shape = extract_channels(mask, 0, 1);
+    const Image soft = gaussian_blur(shape, options.erosion_px, threads);
+    parallel_for(0, image.height(), threads, [&](int y) {
+        for (int x = 0; x < image.width(); ++x) {
+            const float grain = paper.at(x, y, 0);
+            const bool kept = shape.at(x, y, 0) > 0.5f && soft.at(x, y, 0) > 0.5f + 0.45f * grain;
+            const float value = kept ? image.at(x, y, 0) : 1.0f;
+            image.at(x, y, 0) = value * (1.0f - options.paper_grain * (1.0f - grain));
+        }
+    });
 }
 
 }  // namespace
@@ -121,6 +149,7 @@ std::vector<BufferNeed> needed_buffers(const NprOptions& options, bool continues
         needs.push_back({BufferRole::BackwardFlow, "backward_flow"});
         needs.push_back({BufferRole::Disocclusion, "disocclusion"});
     }
+    if (options.paper) needs.push_back({BufferRole::Mask, "alpha"});
     // Without other buffers `lines` gives the frame's size (the renderer always writes it)
     if (options.lines || needs.empty()) needs.push_back({BufferRole::Lines, "lines"});
     return needs;
@@ -137,17 +166,25 @@ const Image& NprFrame::operator[](BufferRole role) const {
         case BufferRole::BackwardFlow: return backward_flow;
         case BufferRole::Disocclusion: return disocclusion;
         case BufferRole::Lines: return lines;
+        case BufferRole::Mask: return mask;
     }
     return tone;
 }
 
 Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& frame,
                                      const FrameState* previous, int frame_index,
-                                     const NprOptions& options, const RunContext& context) {
+                                     const NprOptions& options, const RunContext& context,
+                                     const NprPaper& paper) {
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
-    if (static_cast<int>(pattern.stack.size()) != options.levels)
-        return invalid_argument("pattern: prepared with " + std::to_string(pattern.stack.size()) +
-                                " levels but levels is " + std::to_string(options.levels));
+    for (const Pattern* p : {&pattern, paper.pattern})
+        if (p != nullptr && static_cast<int>(p->stack.size()) != options.levels)
+            return invalid_argument(std::string(p == &pattern ? "pattern" : "paper") +
+                                    ": prepared with " + std::to_string(p->stack.size()) +
+                                    " levels but levels is " + std::to_string(options.levels));
+    if (options.paper != (paper.pattern != nullptr))
+        return invalid_argument(options.paper ? "paper: the paper layer needs a paper pattern"
+                                              : "paper: a paper pattern is given but the paper "
+                                                "layer is off");
 
     // The buffers: each needed one given, with its channels, all of the first one's size
     const std::vector<BufferNeed> needs = needed_buffers(options, previous != nullptr);
@@ -188,6 +225,17 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
     synthesis.seed = options.seed;
     auto state = synthesize_frame(pattern, input, previous, frame_index, synthesis, context);
     if (!state.ok()) return state.status();
+    // and the paper, the same way along the same motion, unoriented and with its own randomness
+    Result<FrameState> paper_state = FrameState{};
+    if (options.paper) {
+        FrameInput paper_input = input;
+        paper_input.orientation = Image();
+        SynthesisOptions paper_synthesis = synthesis;
+        paper_synthesis.seed = options.seed ^ 0x7061706572ull;  // "paper"
+        paper_state = synthesize_frame(*paper.pattern, paper_input, paper.previous, frame_index,
+                                       paper_synthesis, context);
+        if (!paper_state.ok()) return paper_state.status();
+    }
 
     // Threshold it against the tone (luma of the sRGB-encoded buffer, in [0, 1])
     NprFrameResult result;
@@ -200,6 +248,9 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
     } else {
         result.image = state->screen;
     }
+    // Lay it on the paper, eroding the shape's boundary by the paper's noise
+    if (options.paper)
+        on_paper(result.image, frame.mask, paper_state->screen, options, context.threads);
     // Ink the lines
     if (options.lines) {
         for (int y = 0; y < result.image.height(); ++y)
@@ -207,6 +258,7 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
                 if (frame.lines.at(x, y, 0) > 0.5f) result.image.at(x, y, 0) = 0.0f;
     }
     result.state = std::move(state).value();
+    result.paper_state = std::move(paper_state).value();
     return result;
 }
 

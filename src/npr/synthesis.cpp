@@ -361,12 +361,26 @@ Field initialize(const Image& stack, const LevelBuffers& b, const Field* previou
             const int y0 = std::max(0, cy - half), y1 = std::min(b.height, cy - half + n);
             KeyedRng rng(options.seed, 0x696e6974ull, static_cast<std::uint64_t>(frame_index),
                          static_cast<std::uint64_t>(level), static_cast<std::uint64_t>(patch++));
+            // The previous frame's coordinates at the advected position of the centre, or of
+            // the patch pixel nearest to it where the centre was not visible before
             anchored.clear();
-            if (previous != nullptr) {
-                const std::size_t i = b.index(cx, cy);
-                advected_candidates(b, *previous, cx, cy, b.cos_angle[i], b.sin_angle[i],
+            int ax = -1, ay = -1;
+            if (previous != nullptr && !b.valid.empty())
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) {
+                        const int d = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+                        if (b.valid[b.index(x, y)] &&
+                            (ax < 0 || d < (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy)))
+                            ax = x, ay = y;
+                    }
+            if (ax >= 0) {
+                const std::size_t i = b.index(ax, ay);
+                int ox, oy;
+                pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(ax - cx),
+                               static_cast<float>(ay - cy), h, ox, oy);
+                advected_candidates(b, *previous, ax, ay, b.cos_angle[i], b.sin_angle[i],
                                     pattern_offset,
-                                    [&](int u, int v) { anchored.emplace_back(u, v); });
+                                    [&](int u, int v) { anchored.emplace_back(u - ox, v - oy); });
             }
             const PatchSearch search{stack, b,  field, filled, advected, options, anchored, cx,
                                      cy,    x0, x1,    y0,     y1,       grid,    grid_w,   grid_h};

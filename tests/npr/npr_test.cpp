@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -69,7 +71,7 @@ std::vector<std::string> names(const std::vector<BufferNeed>& needs) {
 TEST(NprStyle, OptionTableChecksRangesAndTheToneAgainstTheStyle) {
     NprOptions options;
     const auto specs = npr_option_specs();
-    ASSERT_EQ(specs.size(), 4u);
+    ASSERT_EQ(specs.size(), 6u);
     EXPECT_EQ(get_option(options, specs[0]), 3.0);  // levels
     Status status = set_option(options, specs[0], 9);
     EXPECT_EQ(status.message(), "levels: 9 is invalid (must be an integer, 1..6)");
@@ -146,8 +148,8 @@ TEST(NprStyle, ThresholdsTheToneAndInksTheLines) {
     const Result<NprFrameResult> same = stylize_frame(pattern, encoded, nullptr, 0, options);
     ASSERT_TRUE(same.ok());
     EXPECT_EQ(pixels(same->image), pixels(image));
-    const Result<NprFrameResult> raw =
-        stylize_frame(pattern, {frame.tone, false, {}, {}, {}, frame.lines}, nullptr, 0, options);
+    const Result<NprFrameResult> raw = stylize_frame(
+        pattern, {frame.tone, false, {}, {}, {}, frame.lines, {}}, nullptr, 0, options);
     ASSERT_TRUE(raw.ok());
     EXPECT_NE(pixels(raw->image), pixels(image));
 }
@@ -184,6 +186,85 @@ TEST(NprStyle, ContinuesFromThePreviousStateIdenticallyForOneAndTwoThreads) {
         images[t] = pixels(b->image);
     }
     EXPECT_EQ(images[0], images[1]);
+}
+
+// The paper layer (§6, §6.0.2): synthesized like the pattern and coherent along the motion;
+// outside the shape only paper; along the shape's boundary an uneven band eroded to paper;
+// inside the result shaded by the paper's grain.
+TEST(NprStyle, PaperLayerShadesAndErodesTheShapeBoundary) {
+    NprOptions options;
+    options.paper = true;
+    const Pattern pattern = prepared(options);
+    Result<Pattern> paper = prepare_pattern(testing::halftone_pattern(64, 6), options);
+    ASSERT_TRUE(paper.ok()) << paper.status().message();
+    // The shape: a disc of radius 12 px
+    NprFrame frame;
+    frame.tone = tone_ramp();
+    frame.tone_linear = true;
+    frame.lines = Image(kWidth, kHeight, 1);
+    frame.mask = Image(kWidth, kHeight, 1);
+    const auto radius = [](int x, int y) {
+        return std::hypot(static_cast<float>(x) - 24.0f, static_cast<float>(y) - 16.0f);
+    };
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) frame.mask.at(x, y, 0) = radius(x, y) < 12.0f ? 1 : 0;
+    const Result<NprFrameResult> on_paper =
+        stylize_frame(pattern, frame, nullptr, 0, options, {}, {&*paper, nullptr});
+    ASSERT_TRUE(on_paper.ok()) << on_paper.status().message();
+    NprOptions plain = options;
+    plain.paper = false;
+    const Result<NprFrameResult> without = stylize_frame(pattern, frame, nullptr, 0, plain);
+    ASSERT_TRUE(without.ok());
+    const Image& grain = on_paper->paper_state.screen;
+    ASSERT_EQ(grain.width(), kWidth);
+    int eroded = 0, kept_in_band = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const float shade = 1.0f - options.paper_grain * (1.0f - grain.at(x, y, 0));
+            const float value = on_paper->image.at(x, y, 0);
+            const float r = radius(x, y);
+            if (r >= 12.0f) {
+                EXPECT_FLOAT_EQ(value, shade) << x << "," << y;  // paper only
+            } else if (r < 7.0f) {
+                EXPECT_FLOAT_EQ(value, without->image.at(x, y, 0) * shade) << x << "," << y;
+            } else if (r > 10.0f && without->image.at(x, y, 0) == 0.0f) {
+                // Ink of the band along the boundary: eroded where the paper is light
+                (value == shade ? eroded : kept_in_band) += 1;
+            }
+        }
+    EXPECT_GT(eroded, 3);
+    EXPECT_GT(kept_in_band, 3);
+    // The paper continues along the motion like the pattern
+    NprFrame next = moved_frame();
+    next.mask = frame.mask;
+    const Result<NprFrameResult> continued = stylize_frame(
+        pattern, next, &on_paper->state, 1, options, {}, {&*paper, &on_paper->paper_state});
+    ASSERT_TRUE(continued.ok()) << continued.status().message();
+    const Result<NprFrameResult> alone =
+        stylize_frame(pattern, frame, nullptr, 1, options, {}, {&*paper, nullptr});
+    ASSERT_TRUE(alone.ok());
+    const auto moved_error = [&](const Image& screen) {
+        double sum = 0.0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 2; x < kWidth; ++x)
+                sum += std::fabs(screen.at(x, y, 0) - grain.at(x - 2, y, 0));
+        return sum / ((kWidth - 2) * kHeight);
+    };
+    const double coherent = moved_error(continued->paper_state.screen);
+    const double independent = moved_error(alone->paper_state.screen);
+    std::printf("paper along the motion: %.4f, independent %.4f\n", coherent, independent);
+    EXPECT_LT(coherent, 0.5 * independent);
+    // Errors: no paper pattern, paper pattern without the layer, no alpha buffer
+    EXPECT_EQ(stylize_frame(pattern, frame, nullptr, 0, options).status().message(),
+              "paper: the paper layer needs a paper pattern");
+    EXPECT_EQ(
+        stylize_frame(pattern, frame, nullptr, 0, plain, {}, {&*paper, nullptr}).status().message(),
+        "paper: a paper pattern is given but the paper layer is off");
+    frame.mask = {};
+    EXPECT_EQ(stylize_frame(pattern, frame, nullptr, 0, options, {}, {&*paper, nullptr})
+                  .status()
+                  .message(),
+              "missing buffer 'alpha'");
 }
 
 TEST(NprStyle, NamesMissingAndMismatchedBuffers) {

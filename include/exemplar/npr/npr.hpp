@@ -74,6 +74,19 @@ struct NprOptions {
     bool tone_correction = true;
     /// Seed of the keyed random generator (with the frame number). Default 1.
     std::uint64_t seed = 1;
+    /// The paper layer (§6, §6.0.2): a paper texture synthesized the same way as the pattern
+    /// (its own coordinates, coherent along the same motion, unoriented), shown as grain
+    /// (white × (1 − paper_grain · (1 − paper))) and eroding the shape's boundary: a pixel of
+    /// the `alpha` buffer's shape stays where the shape mask blurred by erosion_px exceeds
+    /// 0.5 + 0.45 · paper, else it becomes paper. Needs stylize_frame's `paper` and the `alpha`
+    /// buffer. Default false.
+    bool paper = false;
+    /// Grain of the paper layer: how much its dark parts darken the white. Default 0.15; range
+    /// 0..1.
+    float paper_grain = 0.15f;
+    /// Width of the boundary erosion: the blur of the shape mask, in pixels. Default 2; range
+    /// 0.5..20.
+    float erosion_px = 2.0f;
 };
 
 /// Description of one numeric option (name, doc, unit, range): the one table the CLI flags,
@@ -104,7 +117,7 @@ Result<Pattern> prepare_pattern(const Image& pattern, const NprOptions& options,
                                 const RunContext& context = {});
 
 /// What a style uses a buffer for.
-enum class BufferRole { Tone, Orientation, BackwardFlow, Disocclusion, Lines };
+enum class BufferRole { Tone, Orientation, BackwardFlow, Disocclusion, Lines, Mask };
 
 /// One buffer a frame reads: its role and its name in the frame folder.
 struct BufferNeed {
@@ -114,8 +127,9 @@ struct BufferNeed {
 
 /// The buffers a frame reads under `options`, in this order: the tone (thresholded styles),
 /// the orientation (unless "none"), `backward_flow` and `disocclusion` (when `continues`: a
-/// previous frame's state is given), `lines` (when inked, or when no other buffer would give
-/// the frame's size: the renderer always writes it). Assumes valid options.
+/// previous frame's state is given), `alpha` (the shape mask, with the paper layer), `lines`
+/// (when inked, or when no other buffer would give the frame's size: the renderer always
+/// writes it). Assumes valid options.
 std::vector<BufferNeed> needed_buffers(const NprOptions& options, bool continues);
 
 /// One frame's buffers, at the output resolution; empty = not given. Channels beyond those
@@ -130,6 +144,7 @@ struct NprFrame {
     Image backward_flow;  ///< Channels 0, 1: pixel x was at x + b(x) in the previous frame.
     Image disocclusion;   ///< Channel 0: > 0.5 where the point was not visible before.
     Image lines;          ///< Channel 0: > 0.5 on a line.
+    Image mask;           ///< Channel 0: the shape's coverage (`alpha`), 1 = shape.
 
     Image& operator[](BufferRole role);
     const Image& operator[](BufferRole role) const;
@@ -141,6 +156,17 @@ struct NprFrameResult {
     Image image;
     /// The synthesis state: the next frame's `previous` (pack_state stores it in a file).
     FrameState state;
+    /// The paper layer's synthesis state (NprOptions::paper), the next frame's
+    /// `NprPaper::previous`; empty without the paper layer.
+    FrameState paper_state;
+};
+
+/// The paper layer's inputs (NprOptions::paper).
+struct NprPaper {
+    /// The prepared paper texture (prepare_pattern with the same options); null = none.
+    const Pattern* pattern = nullptr;
+    /// The previous frame's paper state (NprFrameResult::paper_state), or null.
+    const FrameState* previous = nullptr;
 };
 
 /// Styles frame `frame_index` (it keys the randomness with the seed) from its buffers,
@@ -151,9 +177,11 @@ struct NprFrameResult {
 /// are 96x64`) or with too few channels; a frame size other than the previous frame's; a pattern
 /// prepared with other levels. Cancelled through context.cancel (checked before each
 /// correction sub-pass); progress events after each level ("synthesis", the last with fraction
-/// 1). Uses context.threads.
+/// 1). Uses context.threads. With NprOptions::paper, `paper.pattern` is required (and rejected
+/// without it); the paper is synthesized after the pattern (its progress events follow).
 Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& frame,
                                      const FrameState* previous, int frame_index,
-                                     const NprOptions& options, const RunContext& context = {});
+                                     const NprOptions& options, const RunContext& context = {},
+                                     const NprPaper& paper = {});
 
 }  // namespace exemplar::npr
