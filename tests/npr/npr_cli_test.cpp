@@ -131,6 +131,52 @@ TEST_F(NprCli, HatchStyleUsesTheOrientationBuffer) {
     EXPECT_NE(missing.err.find("missing buffer 'orientation'"), std::string::npos) << missing.err;
 }
 
+// The paper layer: a scanned paper texture (tests/data/paper), its state stored beside the
+// pattern's so that a resumed run gives the same bytes; outside the sphere (alpha) only paper
+// (and the sphere's silhouette line).
+TEST_F(NprCli, PaperLayerResumesToTheSameBytes) {
+    const std::string paper = std::string(EXEMPLAR_TEST_DATA_DIR) + "/paper/struc.pgm";
+    const CliRun first = run(npr({"--paper", paper, "--erosion", "1.5"}));
+    ASSERT_EQ(first.code, 0) << first.err;
+    std::vector<std::string> outputs;
+    for (int n = 0; n <= 2; ++n) {
+        const std::string out = path("O/000" + std::to_string(n) + ".png");
+        ASSERT_TRUE(fs::exists(out + ".paper.state.exr")) << out;
+        outputs.push_back(file_bytes(out));
+    }
+    const Result<Image> image = load_image(path("O/0001.png"));
+    const Result<Image> alpha = load_image(path("R/frame_0001/alpha.png"));
+    const Result<Image> lines = load_image(path("R/frame_0001/lines.png"));
+    ASSERT_TRUE(image.ok() && alpha.ok() && lines.ok());
+    int outside = 0, light = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x)
+            if (alpha->at(x, y, 0) < 0.5f && lines->at(x, y, 0) < 0.5f) {
+                ++outside;
+                light += image->at(x, y, 0) >= 0.8f;  // paper: 1 - 0.15 at the darkest grain
+            }
+    EXPECT_GT(outside, 100);
+    EXPECT_EQ(light, outside);
+    fs::remove(path("O/0001.png"));
+    fs::remove(path("O/0002.png"));
+    const CliRun again = run(npr({"--paper", paper, "--erosion", "1.5"}));
+    ASSERT_EQ(again.code, 0) << again.err;
+    for (int n = 0; n <= 2; ++n)
+        EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
+                  outputs[static_cast<std::size_t>(n)])
+            << "frame " << n;
+    // The paper's options need the paper; a paper too small is named
+    const CliRun grain = run(npr({"--paper-grain", "0.5"}));
+    EXPECT_EQ(grain.code, 1);
+    EXPECT_EQ(grain.err, "exemplar: --paper-grain: needs --paper\n");
+    ASSERT_TRUE(save_image(testing::halftone_pattern(16, 8), path("tiny.png")).is_ok());
+    const CliRun small = run(npr({"--paper", path("tiny.png")}));
+    EXPECT_EQ(small.code, 1);
+    EXPECT_NE(small.err.find("--paper " + path("tiny.png") + ": pattern: 16x16 is too small"),
+              std::string::npos)
+        << small.err;
+}
+
 TEST_F(NprCli, AMissingBufferIsNamedAndFinishedFramesAreKept) {
     fs::remove(path("R/frame_0002/backward_flow.exr"));
     const CliRun r = run(npr({}));
