@@ -394,6 +394,7 @@ private:
     int first_ = 0;
     int last_ = 0;
     // The library's option table (levels, patch-size, coherence-weight), by name
+    int bidirectional_ = 0;
     std::map<std::string, double> numeric_values_;
     std::map<std::string, CLI::Option*> numeric_flags_;
     int threads_ = 0;

@@ -10,6 +10,7 @@
 // buffer stops the run with one line naming it; the frames written so far are kept. What a
 // frame shows (tone, thresholding, orientation, lines) is the library's npr::stylize_frame.
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -107,6 +108,9 @@ NprCommand::NprCommand(CLI::App& parent) {
     app_->add_option("--paper", paper_,
                      "Paper texture (grey image), synthesized like the pattern: grain, and the "
                      "shape's boundary (alpha buffer) eroded by its noise");
+    app_->add_option("--bidirectional", bidirectional_,
+                     "Bidirectional loop with delayed disocclusions every N frames (forward, "
+                     "then backward along the forward flow; 0 = forward only, the default)");
     app_->add_option("--mp4", mp4_, "Also write the range as an MP4 (even frame sizes)");
     app_->add_option("--fps", fps_, "Frames per second of the MP4 (default 24)");
     app_->add_option("--threads,-j", threads_, "Threads (0 = all cores)");
@@ -139,6 +143,11 @@ Status NprCommand::run(const Streams& streams) {
             return invalid_argument(std::string("--") + flag + ": needs --paper");
     if (const Status valid = npr::validate(options); !valid.is_ok())
         return invalid_argument("--" + valid.message());
+    if (bidirectional_ < 0 || bidirectional_ == 1 || bidirectional_ > 1000)
+        return invalid_argument("--bidirectional: " + std::to_string(bidirectional_) +
+                                " is invalid (must be 0 or 2..1000)");
+    if (bidirectional_ > 0 && options.paper)
+        return invalid_argument("--bidirectional: not available with --paper yet");
     if (last_ < first_)
         return invalid_argument("--last: " + std::to_string(last_) + " is before --first " +
                                 std::to_string(first_));
@@ -224,54 +233,112 @@ Status NprCommand::run(const Streams& streams) {
     if (auto before = frame_path("--output", output_, first_ - 1);
         before.ok() && all_exist(state_files(*before)))
         EXEMPLAR_RETURN_IF_ERROR(load_states(state_files(*before)));
-    int written = 0;
-    for (int n = first_; n <= last_; ++n) {
-        const std::string out_path = *frame_path("--output", output_, n);
-        const std::vector<std::string> states = state_files(out_path);
-        if (resume_ && exists(out_path) && all_exist(states)) {
-            EXEMPLAR_RETURN_IF_ERROR(load_states(states));
-            if (!mp4_.empty()) {
-                auto stored = load_image(out_path);
-                if (!stored.ok()) return stored.status();
-                EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(*stored));
-            }
-            continue;
-        }
-        // This frame's buffers, then the frame
+    // Frame n's buffers (those of `needs`) from its folder
+    const auto load_frame = [&](int n, const std::vector<npr::BufferNeed>& needs,
+                                npr::NprFrame& frame) -> Status {
         const std::string folder = *frame_path("--frames", frames_, n);
-        npr::NprFrame frame;
-        for (const npr::BufferNeed& need : npr::needed_buffers(options, previous.has_value())) {
+        for (const npr::BufferNeed& need : needs) {
             bool linear = false;
             EXEMPLAR_RETURN_IF_ERROR(load_buffer(folder, need.name, frame[need.role], linear));
             if (need.role == npr::BufferRole::Tone) frame.tone_linear = linear;
         }
-        npr::NprPaper paper_layer;
-        if (paper) {
-            paper_layer.pattern = &*paper;
-            paper_layer.previous = previous_paper ? &*previous_paper : nullptr;
+        return Status::ok();
+    };
+    const auto in_folder = [&](int n, const Status& status) {
+        return Status(status.code(), *frame_path("--frames", frames_, n) + ": " + status.message());
+    };
+    // Blocks of frames done together: one frame each, or with --bidirectional N the first frame,
+    // then the N frames up to each update frame (forward, then backward)
+    int written = 0;
+    for (int start = first_; start <= last_;) {
+        const int end = bidirectional_ == 0 || start == first_
+                            ? start
+                            : std::min(start + bidirectional_ - 1, last_);
+        bool done = resume_;
+        for (int n = start; n <= end && done; ++n) {
+            const std::string out_path = *frame_path("--output", output_, n);
+            done = exists(out_path) && all_exist(state_files(out_path));
         }
-        auto styled = npr::stylize_frame(pattern, frame, previous ? &*previous : nullptr, n,
-                                         options, context, paper_layer);
-        if (!styled.ok())
-            return Status(styled.status().code(), folder + ": " + styled.status().message());
-        const Image& result = styled->image;
-        EXEMPLAR_RETURN_IF_ERROR(create_folders(fs::path(out_path).parent_path().string()));
-        SaveOptions state_options;
-        state_options.format = PixelFormat::Float;
-        EXEMPLAR_RETURN_IF_ERROR(
-            save_image(npr::pack_state(styled->state), states[0], state_options));
-        if (paper)
+        if (done) {
             EXEMPLAR_RETURN_IF_ERROR(
-                save_image(npr::pack_state(styled->paper_state), states[1], state_options));
-        EXEMPLAR_RETURN_IF_ERROR(video::write_frame(result, output_, n));
-        EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(result));
-        ++written;
-        if (!quiet_) streams.out << out_path << '\n';
-        previous = std::move(styled->state);
-        if (paper) previous_paper = std::move(styled->paper_state);
-        bar.update(static_cast<double>(n - first_ + 1) / count,
-                   "frame " + std::to_string(n) + " (" + std::to_string(n - first_ + 1) + "/" +
+                load_states(state_files(*frame_path("--output", output_, end))));
+            for (int n = start; n <= end && !mp4_.empty(); ++n) {
+                auto stored = load_image(*frame_path("--output", output_, n));
+                if (!stored.ok()) return stored.status();
+                EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(*stored));
+            }
+            start = end + 1;
+            continue;
+        }
+        // Forward: each frame from the one before; within a bidirectional block only where the
+        // point was visible in every frame since the block's start (the delayed visibility)
+        std::vector<npr::NprFrameResult> results;
+        std::vector<Image> visible;
+        const bool loop = bidirectional_ > 0 && previous.has_value();
+        for (int n = start; n <= end; ++n) {
+            npr::NprFrame frame;
+            EXEMPLAR_RETURN_IF_ERROR(
+                load_frame(n, npr::needed_buffers(options, previous.has_value()), frame));
+            if (loop) {
+                auto seen = npr::delayed_visibility(visible.empty() ? Image() : visible.back(),
+                                                    frame.disocclusion, frame.backward_flow);
+                if (!seen.ok()) return in_folder(n, seen.status());
+                frame.disocclusion = *seen;
+                for (float& v : frame.disocclusion.data()) v = 1.0f - v;
+                visible.push_back(std::move(seen).value());
+            }
+            npr::NprPaper paper_layer;
+            if (paper) {
+                paper_layer.pattern = &*paper;
+                paper_layer.previous = previous_paper ? &*previous_paper : nullptr;
+            }
+            auto styled = npr::stylize_frame(pattern, frame, previous ? &*previous : nullptr, n,
+                                             options, context, paper_layer);
+            if (!styled.ok()) return in_folder(n, styled.status());
+            previous = styled->state;
+            if (paper) previous_paper = styled->paper_state;
+            results.push_back(std::move(styled).value());
+        }
+        // Backward: the rest of each frame coherent with the next (its forward flow and
+        // occlusion), the visible part held
+        for (int n = end - 1; loop && n >= start; --n) {
+            const std::size_t i = static_cast<std::size_t>(n - start);
+            npr::NprFrame frame;
+            std::vector<npr::BufferNeed> needs = npr::needed_buffers(options, true);
+            for (npr::BufferNeed& need : needs) {
+                if (need.role == npr::BufferRole::BackwardFlow) need.name = "forward_flow";
+                if (need.role == npr::BufferRole::Disocclusion) need.name = "occlusion";
+            }
+            EXEMPLAR_RETURN_IF_ERROR(load_frame(n, needs, frame));
+            frame.hold = visible[i];
+            frame.held = &results[i].state;
+            auto styled =
+                npr::stylize_frame(pattern, frame, &results[i + 1].state, n, options, context);
+            if (!styled.ok()) return in_folder(n, styled.status());
+            results[i] = std::move(styled).value();
+        }
+        // Write the block's frames and states
+        for (int n = start; n <= end; ++n) {
+            const npr::NprFrameResult& styled = results[static_cast<std::size_t>(n - start)];
+            const std::string out_path = *frame_path("--output", output_, n);
+            const std::vector<std::string> states = state_files(out_path);
+            EXEMPLAR_RETURN_IF_ERROR(create_folders(fs::path(out_path).parent_path().string()));
+            SaveOptions state_options;
+            state_options.format = PixelFormat::Float;
+            EXEMPLAR_RETURN_IF_ERROR(
+                save_image(npr::pack_state(styled.state), states[0], state_options));
+            if (paper)
+                EXEMPLAR_RETURN_IF_ERROR(
+                    save_image(npr::pack_state(styled.paper_state), states[1], state_options));
+            EXEMPLAR_RETURN_IF_ERROR(video::write_frame(styled.image, output_, n));
+            EXEMPLAR_RETURN_IF_ERROR(add_to_mp4(styled.image));
+            ++written;
+            if (!quiet_) streams.out << out_path << '\n';
+        }
+        bar.update(static_cast<double>(end - first_ + 1) / count,
+                   "frame " + std::to_string(end) + " (" + std::to_string(end - first_ + 1) + "/" +
                        std::to_string(count) + ")");
+        start = end + 1;
     }
     bar.finish();
     return finish_frame_range(streams.out, mp4, mp4_, written, count, quiet_);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -171,6 +172,27 @@ const Image& NprFrame::operator[](BufferRole role) const {
     return tone;
 }
 
+Result<Image> delayed_visibility(const Image& previous, const Image& disocclusion,
+                                 const Image& backward_flow) {
+    const int width = disocclusion.width(), height = disocclusion.height();
+    if (backward_flow.width() != width || backward_flow.height() != height ||
+        backward_flow.channels() < 2 ||
+        (!previous.empty() && (previous.width() != width || previous.height() != height)))
+        return invalid_argument("delayed visibility: the disocclusion (" + size_text(disocclusion) +
+                                "), backward flow (" + size_text(backward_flow) +
+                                ") and previous visibility differ in size");
+    Image visible(width, height, 1);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            if (disocclusion.at(x, y, 0) > 0.5f) continue;
+            const int px = static_cast<int>(std::lround(x + backward_flow.at(x, y, 0)));
+            const int py = static_cast<int>(std::lround(y + backward_flow.at(x, y, 1)));
+            if (px < 0 || py < 0 || px >= width || py >= height) continue;
+            visible.at(x, y, 0) = previous.empty() || previous.at(px, py, 0) > 0.5f ? 1.0f : 0.0f;
+        }
+    return visible;
+}
+
 Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& frame,
                                      const FrameState* previous, int frame_index,
                                      const NprOptions& options, const RunContext& context,
@@ -210,6 +232,10 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
             input.backward_flow = extract_channels(image, 0, 2);
         else if (need.role == BufferRole::Disocclusion)
             input.disocclusion = extract_channels(image, 0, 1);
+    }
+    if (!frame.hold.empty()) {
+        input.hold = extract_channels(frame.hold, 0, 1);
+        input.held = frame.held;
     }
     if (previous != nullptr && !previous->coords.empty() &&
         (previous->coords[0].width() != input.width ||

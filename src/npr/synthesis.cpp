@@ -54,6 +54,7 @@ struct LevelBuffers {
     std::vector<float> cos_angle, sin_angle;
     std::vector<float> flow;           // 2 per pixel, in level pixels; empty = none
     std::vector<unsigned char> valid;  // 1 where the backward flow may be used
+    std::vector<unsigned char> held;   // 1 where the coordinates are held; empty = none
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
 };
 
@@ -70,6 +71,7 @@ LevelBuffers sample_level(const FrameInput& input, int level, int threads) {
         b.flow.assign(2 * n, 0.0f);
         b.valid.assign(n, 1);
     }
+    if (!input.hold.empty()) b.held.assign(n, 0);
     parallel_for(0, b.height, threads, [&](int y) {
         for (int x = 0; x < b.width; ++x) {
             const int cx = std::min(x * b.spacing + b.spacing / 2, input.width - 1);
@@ -79,6 +81,14 @@ LevelBuffers sample_level(const FrameInput& input, int level, int threads) {
                 const float angle = input.orientation.at(cx, cy, 0);
                 b.cos_angle[i] = std::cos(angle);
                 b.sin_angle[i] = std::sin(angle);
+            }
+            if (!input.hold.empty()) {
+                bool all = true;
+                for (int yy = y * b.spacing; yy < std::min((y + 1) * b.spacing, input.height); ++yy)
+                    for (int xx = x * b.spacing; xx < std::min((x + 1) * b.spacing, input.width);
+                         ++xx)
+                        all = all && input.hold.at(xx, yy, 0) > 0.5f;
+                b.held[i] = all ? 1 : 0;
             }
             if (!has_flow) continue;
             b.flow[2 * i] = input.backward_flow.at(cx, cy, 0) / static_cast<float>(b.spacing);
@@ -339,11 +349,19 @@ std::pair<int, int> best_patch_fast(const PatchSearch& p, KeyedRng& rng,
 // frame's coordinates at the patch centre's advected position and a keyed random set of grid
 // positions.
 Field initialize(const Image& stack, const LevelBuffers& b, const Field* previous,
-                 const Advected& advected, const SynthesisOptions& options, int frame_index,
-                 int level) {
+                 const Advected& advected, const Field* held, const SynthesisOptions& options,
+                 int frame_index, int level) {
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     std::vector<unsigned char> filled(static_cast<std::size_t>(b.width) * b.height, 0);
+    // Held pixels are filled already: patches join them and leave them as they are
+    if (held != nullptr)
+        for (int y = 0; y < b.height; ++y)
+            for (int x = 0; x < b.width; ++x)
+                if (b.held[b.index(x, y)]) {
+                    std::copy_n(held->at(x, y), 2, field.at(x, y));
+                    filled[b.index(x, y)] = 1;
+                }
     const int n = std::min({options.init_patch_size, b.width, b.height});
     const int half = n / 2;
     const float h = static_cast<float>(b.spacing);
@@ -390,6 +408,7 @@ Field initialize(const Image& stack, const LevelBuffers& b, const Field* previou
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
                     const std::size_t i = b.index(x, y);
+                    if (held != nullptr && b.held[i]) continue;
                     int ox, oy;
                     pattern_offset(b.cos_angle[i], b.sin_angle[i], static_cast<float>(x - cx),
                                    static_cast<float>(y - cy), h, ox, oy);
@@ -403,7 +422,8 @@ Field initialize(const Image& stack, const LevelBuffers& b, const Field* previou
 }
 
 // S_l[2i + Δ] = S_{l+1}[i] + Rot(-θ) Δ h_l (eq. 4).
-Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, int threads) {
+Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, const Field* held,
+               int threads) {
     Field field{b.width, b.height,
                 std::vector<int>(2 * static_cast<std::size_t>(b.width) * b.height)};
     const float h = static_cast<float>(b.spacing);
@@ -418,6 +438,7 @@ Field upsample(const Field& parent, const LevelBuffers& b, const Image& stack, i
             int* s = field.at(x, y);
             s[0] = wrap(p[0] + ox, stack.width());
             s[1] = wrap(p[1] + oy, stack.height());
+            if (held != nullptr && b.held[i]) std::copy_n(held->at(x, y), 2, s);
         }
     });
     return field;
@@ -447,6 +468,7 @@ Status correct_reference(Field& field, const Image& stack, const LevelBuffers& b
                 candidates.reserve(40);
                 for (int x = sub % 2; x < b.width; x += 2) {
                     const std::size_t i = b.index(x, y);
+                    if (!b.held.empty() && b.held[i]) continue;
                     const float c = b.cos_angle[i], s = b.sin_angle[i];
                     bool any_prior = false;
                     for (int k = 0; k < 9; ++k) {
@@ -599,6 +621,7 @@ Status correct_fast(Field& field, const Image& stack, const LevelBuffers& b, con
                 int candidates[18][2];
                 for (int x = sub % 2; x < b.width; x += 2) {
                     const std::size_t i = b.index(x, y);
+                    if (!b.held.empty() && b.held[i]) continue;
                     const float c = b.cos_angle[i], s = b.sin_angle[i];
                     const int(*offsets)[2] = upright;
                     if (c != 1.0f || s != 0.0f) {
@@ -785,6 +808,14 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
                          previous->coords[0].width() != input.width ||
                          previous->coords[0].height() != input.height))
         return invalid_argument("previous frame: its size or level count differs from this frame");
+    EXEMPLAR_RETURN_IF_ERROR(check_buffer(input.hold, input, 1, "hold"));
+    if (!input.hold.empty() &&
+        (input.held == nullptr || static_cast<int>(input.held->coords.size()) != levels ||
+         input.held->coords[0].width() != input.width ||
+         input.held->coords[0].height() != input.height))
+        return invalid_argument(
+            "held: the hold mask needs held coordinates of this frame's size "
+            "and level count");
 
     FrameState state;
     state.coords.resize(static_cast<std::size_t>(levels));
@@ -805,11 +836,15 @@ Result<FrameState> synthesize_frame(const Pattern& pattern, const FrameInput& in
             advected = advect(previous->appearance[static_cast<std::size_t>(level)], buffers,
                               stack.channels(), context.threads);
         }
+        Field held_field;
+        if (!input.hold.empty())
+            held_field = field_from_image(input.held->coords[static_cast<std::size_t>(level)]);
+        const Field* held = input.hold.empty() ? nullptr : &held_field;
         // Initialize the coarsest level with patches, upsample the finer ones
         field = level == levels - 1
                     ? initialize(stack, buffers, use_previous ? &previous_field : nullptr, advected,
-                                 options, frame_index, level)
-                    : upsample(field, buffers, stack, context.threads);
+                                 held, options, frame_index, level)
+                    : upsample(field, buffers, stack, held, context.threads);
         // Correct with coherence candidates and the advected previous frame
         const auto correct = options.reference_kernels ? &correct_reference : &correct_fast;
         // The previous frame's coordinates as candidates at each pixel: only at the coarsest

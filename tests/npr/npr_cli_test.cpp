@@ -177,6 +177,43 @@ TEST_F(NprCli, PaperLayerResumesToTheSameBytes) {
         << small.err;
 }
 
+// The bidirectional loop: frame 0, then frames 1-2 forward and frame 1 again backward along
+// frame 1's forward flow, the part visible since frame 0 held; resumes to the same bytes.
+TEST_F(NprCli, BidirectionalLoopResumesToTheSameBytes) {
+    const CliRun first = run(npr({"--bidirectional", "2"}));
+    ASSERT_EQ(first.code, 0) << first.err;
+    std::vector<std::string> outputs;
+    for (int n = 0; n <= 2; ++n)
+        outputs.push_back(file_bytes(path("O/000" + std::to_string(n) + ".png")));
+    // The forward-only run has the same first frame; frame 1's hidden strip was redone backward
+    // (its coordinates differ)
+    std::vector<std::string> args = npr({"--bidirectional", "0"});
+    args[10] = path("F/%04d.png");
+    const CliRun forward = run(args);
+    ASSERT_EQ(forward.code, 0) << forward.err;
+    EXPECT_EQ(file_bytes(path("F/0000.png")), outputs[0]);
+    EXPECT_NE(file_bytes(path("F/0001.png.state.exr")), file_bytes(path("O/0001.png.state.exr")));
+    // An unfinished block is done again as a whole
+    fs::remove(path("O/0001.png"));
+    const CliRun again = run(npr({"--bidirectional", "2"}));
+    ASSERT_EQ(again.code, 0) << again.err;
+    for (int n = 0; n <= 2; ++n)
+        EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
+                  outputs[static_cast<std::size_t>(n)])
+            << "frame " << n;
+    // It needs the forward flow
+    fs::remove_all(path("O"));
+    fs::remove(path("R/frame_0001/forward_flow.exr"));
+    const CliRun missing = run(npr({"--bidirectional", "2"}));
+    EXPECT_EQ(missing.code, 1);
+    EXPECT_NE(missing.err.find(path("R/frame_0001") + ": missing buffer 'forward_flow'"),
+              std::string::npos)
+        << missing.err;
+    EXPECT_TRUE(fs::exists(path("O/0000.png")));
+    const CliRun one = run(npr({"--bidirectional", "1"}));
+    EXPECT_EQ(one.err, "exemplar: --bidirectional: 1 is invalid (must be 0 or 2..1000)\n");
+}
+
 TEST_F(NprCli, AMissingBufferIsNamedAndFinishedFramesAreKept) {
     fs::remove(path("R/frame_0002/backward_flow.exr"));
     const CliRun r = run(npr({}));

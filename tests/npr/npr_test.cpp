@@ -148,8 +148,9 @@ TEST(NprStyle, ThresholdsTheToneAndInksTheLines) {
     const Result<NprFrameResult> same = stylize_frame(pattern, encoded, nullptr, 0, options);
     ASSERT_TRUE(same.ok());
     EXPECT_EQ(pixels(same->image), pixels(image));
-    const Result<NprFrameResult> raw = stylize_frame(
-        pattern, {frame.tone, false, {}, {}, {}, frame.lines, {}}, nullptr, 0, options);
+    const Result<NprFrameResult> raw =
+        stylize_frame(pattern, {frame.tone, false, {}, {}, {}, frame.lines, {}, {}, nullptr},
+                      nullptr, 0, options);
     ASSERT_TRUE(raw.ok());
     EXPECT_NE(pixels(raw->image), pixels(image));
 }
@@ -265,6 +266,22 @@ TEST(NprStyle, PaperLayerShadesAndErodesTheShapeBoundary) {
                   .status()
                   .message(),
               "missing buffer 'alpha'");
+}
+
+// Delayed visibility (§5.2.1): visible in every frame since the update frame, followed along
+// the backward flow.
+TEST(NprStyle, DelayedVisibilityChainsAlongTheMotion) {
+    Image flow(8, 1, 2), hidden(8, 1, 1);
+    for (int x = 0; x < 8; ++x) flow.at(x, 0, 0) = -1.0f;  // moved right by 1 px
+    hidden.at(0, 0, 0) = 1.0f;                             // entered at the left
+    const Result<Image> first = delayed_visibility({}, hidden, flow);
+    ASSERT_TRUE(first.ok());
+    EXPECT_EQ(pixels(*first), (std::vector<float>{0, 1, 1, 1, 1, 1, 1, 1}));
+    // Next frame: pixel 1 was pixel 0 (not visible since the update frame), so it stays hidden
+    const Result<Image> second = delayed_visibility(*first, hidden, flow);
+    ASSERT_TRUE(second.ok());
+    EXPECT_EQ(pixels(*second), (std::vector<float>{0, 0, 1, 1, 1, 1, 1, 1}));
+    EXPECT_FALSE(delayed_visibility(Image(4, 1, 1), hidden, flow).ok());
 }
 
 TEST(NprStyle, NamesMissingAndMismatchedBuffers) {

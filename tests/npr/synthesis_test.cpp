@@ -389,6 +389,44 @@ TEST(NprSynthesis, PerPixelMotionCandidatesAtEveryLevelGrowThePatternWithAZoom) 
     EXPECT_GT(ratio, 1.7f);
 }
 
+// The bidirectional loop's backward pass: held pixels keep their coordinates at the finest
+// level exactly, the rest is synthesized again (coherent with the reference frame).
+TEST(NprSynthesis, HeldPixelsKeepTheirCoordinates) {
+    const Pattern pattern = prepared(testing::stipple_pattern(64, 6.0f));
+    const RunContext context(2);
+    FrameInput first;
+    first.width = 96;
+    first.height = 64;
+    const Result<FrameState> forward = synthesize_frame(pattern, first, nullptr, 0, {}, context);
+    const Result<FrameState> next = synthesize_frame(pattern, first, nullptr, 1, {}, context);
+    ASSERT_TRUE(forward.ok() && next.ok());
+    // Hold the left half (x < 40); the reference: the next frame, moved by (2, 1) px
+    FrameInput input = translating_frame(96, 64, 2, 1);
+    input.hold = Image(96, 64, 1);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 40; ++x) input.hold.at(x, y, 0) = 1.0f;
+    input.held = &forward.value();
+    const Result<FrameState> backward =
+        synthesize_frame(pattern, input, &next.value(), 0, {}, context);
+    ASSERT_TRUE(backward.ok()) << backward.status().message();
+    int changed = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 96; ++x)
+            for (int c = 0; c < 2; ++c) {
+                const float kept = forward->coords[0].at(x, y, c);
+                if (x < 40)
+                    EXPECT_EQ(backward->coords[0].at(x, y, c), kept) << x << "," << y;
+                else
+                    changed += backward->coords[0].at(x, y, c) != kept;
+            }
+    EXPECT_GT(changed, 1000);
+    // The rest follows the reference frame
+    EXPECT_LT(temporal_error(next->screen, backward->screen, 2, 1) * 2.0f,
+              temporal_error(next->screen, forward->screen, 2, 1));
+    input.held = nullptr;
+    EXPECT_FALSE(synthesize_frame(pattern, input, &next.value(), 0, {}, context).ok());
+}
+
 TEST(NprSynthesis, PackedStateRestoresTheCoordinatesAndAppearance) {
     const Pattern pattern = prepared(testing::halftone_pattern(64, 8));
     FrameInput input;

@@ -145,10 +145,25 @@ struct NprFrame {
     Image disocclusion;   ///< Channel 0: > 0.5 where the point was not visible before.
     Image lines;          ///< Channel 0: > 0.5 on a line.
     Image mask;           ///< Channel 0: the shape's coverage (`alpha`), 1 = shape.
+    /// The bidirectional loop's backward pass (§5.2.1): where hold > 0.5 the frame keeps the
+    /// coordinates of `held` (its forward pass), and the rest is synthesized around them,
+    /// coherent with `previous` (then the next frame's state, `backward_flow` and
+    /// `disocclusion` its forward flow and occlusion). Empty = none.
+    Image hold;
+    const FrameState* held = nullptr;  ///< The held coordinates (needed with `hold`).
 
     Image& operator[](BufferRole role);
     const Image& operator[](BufferRole role) const;
 };
+
+/// The delayed visibility of the bidirectional loop (§5.2.1, "delayed dis-occlusions"): 1 where
+/// the point seen at a pixel was visible in every frame since the last update frame, else 0.
+/// `previous`: the previous frame's delayed visibility (empty: the previous frame is the update
+/// frame, all visible there); `disocclusion` (channel 0 > 0.5 = hidden before) and
+/// `backward_flow` (channels 0, 1) of this frame; nearest pixel along the flow. InvalidArgument
+/// if the sizes differ.
+Result<Image> delayed_visibility(const Image& previous, const Image& disocclusion,
+                                 const Image& backward_flow);
 
 /// A styled frame.
 struct NprFrameResult {

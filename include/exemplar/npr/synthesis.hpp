@@ -73,6 +73,8 @@ struct SynthesisOptions {
 /// Checks every option; InvalidArgument naming the first bad one and its range.
 Status validate(const SynthesisOptions& options);
 
+struct FrameState;
+
 /// The per-frame inputs, all at the output resolution.
 struct FrameInput {
     int width = 0, height = 0;
@@ -84,6 +86,12 @@ struct FrameInput {
     /// 1 where the point was hidden or off-screen in the previous frame (1 channel); empty =
     /// valid everywhere the flow is given.
     Image disocclusion;
+    /// Pixels to hold (1 channel, > 0.5; the bidirectional loop's backward pass): they keep the
+    /// coordinates of `held` at every level (a level's pixel where all its full-resolution
+    /// pixels are held), and the rest is synthesized around them. Empty = none.
+    Image hold;
+    /// The held coordinates (FrameState::coords; needed with `hold`).
+    const FrameState* held = nullptr;
 };
 
 /// The state of one synthesized frame.
