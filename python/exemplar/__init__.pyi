@@ -975,6 +975,7 @@ def npr_frame(
     levels: int = 3,
     patch_size: int = 12,
     coherence_weight: float = 1.0,
+    motion_levels: int = 0,
     seed: int = 1,
     linear_tone: bool | None = None,
     threads: int = 0,
@@ -1028,6 +1029,13 @@ def npr_frame(
           beta: weight of the temporal coherence term against the texture term (weight 1).
           Higher = steadier elements, which then grow and shrink with a camera zoom. Range
           0.0..100.0.
+      motion_levels (int, default 0)
+          Pyramid levels, from the coarsest, whose correction also tries the previous
+          frame's coordinate at each pixel's advected position. 0 = the previous frame
+          enters through the coarsest level's patches and the coherence term: the pattern
+          keeps its size under a camera zoom. More = steadier on rotations, but the pattern
+          grows with a zoom (all levels: 2x under a 2x zoom, as texture mapping). Range
+          0..6.
       seed (int, default 1)
           Random seed (same seed, same output).
       linear_tone (bool | None, default None)

@@ -550,7 +550,9 @@ def _params(verb: str) -> list[Param]:
             noisy = _verb_table_params(_exemplar._noisy_option_specs(), required=("noise",))
             params += sorted(noisy, key=lambda p: p.default is not _REQUIRED)
         elif param == _NPR:
-            params += _verb_table_params(_exemplar._npr_option_specs())
+            # The paper layer's options need the CLI's --paper, which npr_frame does not offer
+            npr = _verb_table_params(_exemplar._npr_option_specs())
+            params += [p for p in npr if p.name not in ("paper_grain", "erosion")]
         elif param == _BRUSH:
             params += _verb_table_params(_exemplar._feature_brush_option_specs())
         elif param == _FILL:

@@ -51,6 +51,12 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
     npr::NprOptions options;
     if (const py::object style = pop(args, "style"); !style.is_none())
         options.style = take(npr::parse_style(text(style, "style")));
+    // The paper layer (the CLI's --paper) is not offered here yet: its options are refused
+    for (const char* name : {"paper_grain", "erosion"})
+        if (args.contains(name))
+            check(invalid_argument(std::string(name) +
+                                   ": the paper layer (exemplar npr --paper) is not available in "
+                                   "npr_frame yet"));
     pop_table_options(args, options, npr::npr_option_specs(),
                       [](npr::NprOptions& o, const npr::NprOptionSpec& spec, double value) {
                           return npr::set_option(o, spec, value);

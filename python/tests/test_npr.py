@@ -111,7 +111,8 @@ def synthetic(width=WIDTH, height=HEIGHT):
 
 def test_npr_options_come_from_the_table():
     parameters = exemplar.npr_frame.__signature__.parameters
-    for name in ("levels", "patch_size", "coherence_weight", "style", "tone", "orientation",
+    for name in ("levels", "patch_size", "coherence_weight", "motion_levels", "style", "tone",
+                 "orientation",
                  "lines", "tone_correction", "seed", "frame", "previous", "linear_tone"):
         assert name in parameters
     assert parameters["patch_size"].default == 12 and parameters["levels"].default == 3
@@ -152,6 +153,8 @@ def test_npr_refuses_what_the_library_refuses():
         exemplar.npr_frame(pat, buffers, lines=1)
     with pytest.raises(TypeError, match="linear_tone: must be a bool"):
         exemplar.npr_frame(pat, buffers, linear_tone=1)
+    with pytest.raises(exemplar.InvalidArgumentError, match=r"^erosion: the paper layer"):
+        exemplar.npr_frame(pat, buffers, erosion=3)
     with pytest.raises(TypeError, match="unexpected keyword argument 'levles'"):
         exemplar.npr_frame(pat, buffers, levles=2)
 
