@@ -13,6 +13,8 @@
 //   --pattern-size N   generated pattern side in px (default 128)
 //   --out PREFIX       save the two frames as PREFIX0.png, PREFIX1.png
 //   --save-pattern F   save the generated pattern (for timing `exemplar npr --pattern F`)
+//   --paper 1          with the paper layer (tests/data/paper/struc.pgm; level lines then
+//                      include the paper's levels)
 // Prints per stage the wall and CPU time (the machine may be shared: compare CPU times): the
 // pattern preparation; per frame each synthesis level (initialization or upsampling plus
 // correction, from the library's progress events) and the tail (screen, thresholding with tone
@@ -42,6 +44,7 @@ struct Settings {
     npr::Style style = npr::Style::Stipple;
     std::string out;
     std::string save_pattern;
+    bool paper = false;
 };
 
 // Wall and CPU time since the last mark.
@@ -66,6 +69,7 @@ npr::NprFrame frame_buffers(const render::RenderBuffers& b) {
     frame.backward_flow = b.backward_flow;
     frame.disocclusion = b.disocclusion;
     frame.lines = b.lines;
+    frame.mask = b.alpha;
     return frame;
 }
 
@@ -93,6 +97,8 @@ bool parse(int argc, char** argv, Settings& settings) {
                 settings.spp = std::stoi(value);
             } else if (arg == "--pattern-size") {
                 settings.pattern_size = std::stoi(value);
+            } else if (arg == "--paper") {
+                settings.paper = value != "0";
             } else if (arg == "--save-pattern") {
                 settings.save_pattern = value;
             } else if (arg == "--out") {
@@ -156,9 +162,23 @@ int main(int argc, char** argv) {
         return 1;
     }
     clock.print("pattern preparation");
+    std::optional<npr::Pattern> paper;
+    if (settings.paper) {
+        options.paper = true;
+        auto paper_image =
+            load_image(std::string(EXEMPLAR_SOURCE_DIR) + "/tests/data/paper/struc.pgm");
+        auto prepared = paper_image.ok() ? npr::prepare_pattern(*paper_image, options, context)
+                                         : Result<npr::Pattern>(paper_image.status());
+        if (!prepared.ok()) {
+            std::fprintf(stderr, "%s\n", prepared.status().message().c_str());
+            return 1;
+        }
+        paper = std::move(prepared).value();
+        clock.print("paper preparation");
+    }
 
     for (int repeat = 0; repeat < settings.repeats; ++repeat) {
-        std::optional<npr::FrameState> previous;
+        std::optional<npr::FrameState> previous, previous_paper;
         for (int f = 0; f < 2; ++f) {
             std::printf("frame %d (%s)\n", f, f == 0 ? "first" : "continuing");
             Clock stage, total;
@@ -167,8 +187,14 @@ int main(int argc, char** argv) {
                     "level " + std::to_string(options.levels - 1 - event.level);
                 stage.print(label.c_str());
             };
+            npr::NprPaper paper_layer;
+            if (paper) {
+                paper_layer.pattern = &*paper;
+                paper_layer.previous = previous_paper ? &*previous_paper : nullptr;
+            }
             auto result = npr::stylize_frame(*pattern, frame_buffers(rendered[f]),
-                                             previous ? &*previous : nullptr, f, options, context);
+                                             previous ? &*previous : nullptr, f, options, context,
+                                             paper_layer);
             if (!result.ok()) {
                 std::fprintf(stderr, "%s\n", result.status().message().c_str());
                 return 1;
@@ -181,6 +207,7 @@ int main(int argc, char** argv) {
                 if (!saved.is_ok()) std::fprintf(stderr, "%s\n", saved.message().c_str());
             }
             previous = std::move(result->state);
+            if (paper) previous_paper = std::move(result->paper_state);
         }
     }
     return 0;
