@@ -214,6 +214,29 @@ TEST_F(NprCli, BidirectionalLoopResumesToTheSameBytes) {
     EXPECT_EQ(one.err, "exemplar: --bidirectional: 1 is invalid (must be 0 or 2..1000)\n");
 }
 
+// Any exemplar render animation: the bundled camera zoom, squash-and-stretch hop and turntable
+// (two tiny frames each) go through exemplar npr.
+TEST_F(NprCli, RunsOnTheBundledZoomDeformingAndTurntableAnimations) {
+    for (const char* scene : {"spot-zoom", "spot-squash", "spot-turntable"}) {
+        const std::string frames = path(std::string(scene) + "/frame_%04d");
+        const CliRun render =
+            run({"render", "--scene",
+                 std::string(EXEMPLAR_SOURCE_DIR) + "/examples/render/" + scene + ".json",
+                 "--width", "64", "--height", "48", "--spp", "1", "-j", "2", "--frames", "0-1",
+                 "-o", frames, "-q"});
+        ASSERT_EQ(render.code, 0) << scene << ": " << render.err;
+        std::vector<std::string> args = npr({"--style", "hatch"});
+        args[2] = path("hatch.png");
+        args[4] = frames;
+        args[8] = "1";
+        args[10] = path(std::string(scene) + "/O/%04d.png");
+        ASSERT_TRUE(save_image(testing::hatching_pattern(64, 8, 2.5f), path("hatch.png")).is_ok());
+        const CliRun styled = run(args);
+        ASSERT_EQ(styled.code, 0) << scene << ": " << styled.err;
+        EXPECT_TRUE(fs::exists(path(std::string(scene) + "/O/0001.png"))) << scene;
+    }
+}
+
 TEST_F(NprCli, AMissingBufferIsNamedAndFinishedFramesAreKept) {
     fs::remove(path("R/frame_0002/backward_flow.exr"));
     const CliRun r = run(npr({}));
@@ -233,7 +256,9 @@ TEST_F(NprCli, BadInputsFailWithOneLineAndNoOutput) {
     args[2] = path("tiny.png");
     const CliRun small = run(args);
     EXPECT_EQ(small.code, 1);
-    EXPECT_NE(small.err.find("16x16 is too small (needs at least 48x48"), std::string::npos)
+    EXPECT_NE(small.err.find("--pattern " + path("tiny.png") +
+                             ": pattern: 16x16 is too small (needs at least 48x48"),
+              std::string::npos)
         << small.err;
     EXPECT_EQ(std::count(small.err.begin(), small.err.end(), '\n'), 1) << small.err;
     const CliRun style = run(npr({"--style", "crosshatch"}));
