@@ -4,10 +4,13 @@
 // - The per-level buffers (orientation, flow, disocclusion) are sampled from the full-resolution
 //   buffers (block centre; disocclusion = any pixel of the block) instead of re-rendered.
 // - Initialization tries `init_candidates` random pattern positions on the 2^L grid instead of
-//   all of them, and does not reuse the previous frame: temporal coherence comes from the
-//   correction's advected candidates and coherence term (§5.2.4), as in the paper.
-// - The bidirectional loop with delayed disocclusions (§5.2.1) is not implemented: frames are
-//   synthesized forward only.
+//   all of them, plus the previous frame's coordinates at the patch centre's advected position
+//   (which the paper's exhaustive grid holds up to the grid spacing).
+// - The correction offers the previous frame's coordinates around each pixel's advected
+//   position (§5.2.4) only at the `motion_levels` coarsest levels (default none): at every
+//   level they carry the motion's scaling and a zoom grows the pattern (docs/npr.md, "Zoom").
+// - The bidirectional loop (§5.2.1) is the caller's order of frames; here only its backward
+//   pass's held pixels (FrameInput::hold).
 // - Neighbourhoods are 3x3 in the appearance space (the paper does not give a size).
 #include "exemplar/npr/synthesis.hpp"
 
