@@ -967,6 +967,7 @@ def npr_frame(
     *,
     previous: NprState | None = None,
     frame: int = 0,
+    paper: Image | None = None,
     style: str = 'stipple',
     tone: str | None = None,
     orientation: str | None = None,
@@ -976,6 +977,8 @@ def npr_frame(
     patch_size: int = 12,
     coherence_weight: float = 1.0,
     motion_levels: int = 0,
+    paper_grain: float = 0.15,
+    erosion: float = 2.0,
     seed: int = 1,
     linear_tone: bool | None = None,
     threads: int = 0,
@@ -1006,6 +1009,11 @@ def npr_frame(
       frame (int, default 0)
           The frame's number (keys its randomness with the seed, as the CLI's frame numbers
           do).
+      paper (Image | None, default None)
+          A paper texture (the CLI's --paper): synthesized like the pattern along the same
+          motion, its grain shades the result and its noise erodes the boundary of the shape
+          in buffers['alpha'] (then read). Its state travels in the returned NprState. None
+          = no paper layer.
       style (str, default 'stipple')
           'stipple', 'halftone' (isotropic, thresholded), 'hatch' (oriented, thresholded) or
           'pattern' (the synthesized pattern, no tone).
@@ -1036,6 +1044,12 @@ def npr_frame(
           keeps its size under a camera zoom. More = steadier on rotations, but the pattern
           grows with a zoom (all levels: 2x under a 2x zoom, as texture mapping). Range
           0..6.
+      paper_grain (float, default 0.15)
+          With --paper: how much the paper texture's dark parts darken the white (0 = no
+          grain). Range 0.0..1.0.
+      erosion (float, default 2.0)
+          With --paper: width of the shape boundary's erosion by the paper noise (the blur
+          of the alpha mask). Range 0.5..20.0 px.
       seed (int, default 1)
           Random seed (same seed, same output).
       linear_tone (bool | None, default None)

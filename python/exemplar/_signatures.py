@@ -340,6 +340,11 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
                   "same.", None),
             Param("frame", "int", "The frame's number (keys its randomness with the seed, as "
                   "the CLI's frame numbers do).", 0),
+            Param("paper", "Image | None",
+                  "A paper texture (the CLI's --paper): synthesized like the pattern along the "
+                  "same motion, its grain shades the result and its noise erodes the boundary of "
+                  "the shape in buffers['alpha'] (then read). Its state travels in the returned "
+                  "NprState. None = no paper layer.", None),
             Param("style", "str",
                   "'stipple', 'halftone' (isotropic, thresholded), 'hatch' (oriented, "
                   "thresholded) or 'pattern' (the synthesized pattern, no tone).", "stipple"),
@@ -550,9 +555,7 @@ def _params(verb: str) -> list[Param]:
             noisy = _verb_table_params(_exemplar._noisy_option_specs(), required=("noise",))
             params += sorted(noisy, key=lambda p: p.default is not _REQUIRED)
         elif param == _NPR:
-            # The paper layer's options need the CLI's --paper, which npr_frame does not offer
-            npr = _verb_table_params(_exemplar._npr_option_specs())
-            params += [p for p in npr if p.name not in ("paper_grain", "erosion")]
+            params += _verb_table_params(_exemplar._npr_option_specs())
         elif param == _BRUSH:
             params += _verb_table_params(_exemplar._feature_brush_option_specs())
         elif param == _FILL:

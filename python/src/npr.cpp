@@ -1,8 +1,10 @@
 // exemplar.npr_frame: one frame of `exemplar npr` (the library's npr::stylize_frame): the frame's
 // render buffers as a dict of arrays (what exemplar.render(scene, frame=n) returns, or the files
 // of a frame folder), the previous frame's exemplar.NprState, and keywords from the npr option
-// table (npr_option_specs(): levels, patch_size, coherence_weight) plus the CLI's --style,
-// --tone, --orientation, --lines, --tone-correction and --seed. Returns (image, state).
+// table (npr_option_specs(): levels, patch_size, coherence_weight, motion_levels, paper_grain,
+// erosion) plus the CLI's --style, --tone, --orientation, --lines, --tone-correction, --paper
+// and --seed. Returns (image, state). (The CLI's --bidirectional orders whole blocks of frames
+// and is not a per-frame keyword.)
 
 #include "exemplar/npr/npr.hpp"
 
@@ -29,6 +31,10 @@ struct NprState {
     npr::FrameState state;
     std::shared_ptr<const npr::Pattern> pattern;
     Image pattern_image;
+    // The paper layer's (paper=): its state and prepared paper; null without it
+    npr::FrameState paper_state;
+    std::shared_ptr<const npr::Pattern> paper;
+    Image paper_image;
     int levels = 0;
     int frame = 0;
 };
@@ -51,12 +57,12 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
     npr::NprOptions options;
     if (const py::object style = pop(args, "style"); !style.is_none())
         options.style = take(npr::parse_style(text(style, "style")));
-    // The paper layer (the CLI's --paper) is not offered here yet: its options are refused
+    // The paper layer (the CLI's --paper); its options need it
+    const py::object paper_object = pop(args, "paper");
+    options.paper = !paper_object.is_none();
     for (const char* name : {"paper_grain", "erosion"})
-        if (args.contains(name))
-            check(invalid_argument(std::string(name) +
-                                   ": the paper layer (exemplar npr --paper) is not available in "
-                                   "npr_frame yet"));
+        if (!options.paper && args.contains(name))
+            check(invalid_argument(std::string(name) + ": needs paper="));
     pop_table_options(args, options, npr::npr_option_specs(),
                       [](npr::NprOptions& o, const npr::NprOptionSpec& spec, double value) {
                           return npr::set_option(o, spec, value);
@@ -90,6 +96,8 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
         previous = &previous_object.cast<const NprState&>();
     }
     ImageArg pattern_arg = image_from_array(pattern, "pattern", Shape::Colour);
+    std::optional<ImageArg> paper_arg;
+    if (options.paper) paper_arg = image_from_array(paper_object, "paper", Shape::Colour);
     if (!py::isinstance<py::dict>(buffers))
         throw py::type_error("buffers: must be a dict of buffer name -> array (got " +
                              std::string(py::str(py::type::of(buffers).attr("__name__"))) + ")");
@@ -116,6 +124,16 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
     } else {
         next->pattern_image = pattern_arg.image;
     }
+    if (paper_arg) {
+        if (previous != nullptr && previous->paper != nullptr &&
+            previous->levels == options.levels &&
+            same_pixels(previous->paper_image, paper_arg->image)) {
+            next->paper = previous->paper;
+            next->paper_image = previous->paper_image;
+        } else {
+            next->paper_image = paper_arg->image;
+        }
+    }
     PythonRun run(run_keywords);
     Image image = run([&](const RunContext& context) -> Result<Image> {
         if (next->pattern == nullptr) {
@@ -123,11 +141,25 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
             if (!prepared.ok()) return prepared.status();
             next->pattern = std::make_shared<const npr::Pattern>(std::move(prepared).value());
         }
+        npr::NprPaper paper_layer;
+        if (options.paper) {
+            if (next->paper == nullptr) {
+                auto prepared = npr::prepare_pattern(next->paper_image, options, context);
+                if (!prepared.ok())
+                    return Status(prepared.status().code(),
+                                  "paper: " + prepared.status().message());
+                next->paper = std::make_shared<const npr::Pattern>(std::move(prepared).value());
+            }
+            paper_layer.pattern = next->paper.get();
+            if (previous != nullptr && previous->paper != nullptr)
+                paper_layer.previous = &previous->paper_state;
+        }
         auto styled = npr::stylize_frame(*next->pattern, frame,
                                          previous != nullptr ? &previous->state : nullptr,
-                                         frame_index, options, context);
+                                         frame_index, options, context, paper_layer);
         if (!styled.ok()) return styled.status();
         next->state = std::move(styled->state);
+        next->paper_state = std::move(styled->paper_state);
         return std::move(styled->image);
     });
     return py::make_tuple(array_from_image(std::move(image), pattern_arg.type),

@@ -55,9 +55,16 @@ def frames(cli, tmp_path):
     ("stipple", ["--tone", "fullgi"], {"tone": "fullgi"}),
     ("hatch", ["--seed", "4", "--coherence-weight", "0.5"], {"seed": 4, "coherence_weight": 0.5}),
     ("pattern", ["--no-lines"], {"lines": False}),
+    ("stipple", ["--paper", "PAPER", "--erosion", "1.5"], {"paper": "PAPER", "erosion": 1.5}),
 ])
 def test_npr_frames_are_the_clis(cli, frames, style, flags, keywords):
     exemplar.save_image(screen(), str(frames / "screen.png"))
+    # The paper layer: a finer screen as the paper, a file for the CLI, an array for Python
+    paper = screen(32, 3)
+    exemplar.save_image(paper, str(frames / "paper.png"))
+    flags = [str(frames / "paper.png") if f == "PAPER" else f for f in flags]
+    keywords = {k: paper if isinstance(v, str) and v == "PAPER" else v
+                for k, v in keywords.items()}
     subprocess.run([cli, "npr", "--pattern", str(frames / "screen.png"), "--frames",
                     str(frames / "R/frame_%04d"), "--first", "0", "--last", "2", "--style", style,
                     "--levels", "2", "--patch-size", "8", "-o", str(frames / "O/%04d.png"),
@@ -73,7 +80,7 @@ def test_npr_frames_are_the_clis(cli, frames, style, flags, keywords):
         assert state.frame == n and state.levels == 2
         assert [c.shape for c in state.coords] == [(HEIGHT, WIDTH, 2),
                                                    (HEIGHT // 2, WIDTH // 2, 2)]
-    if style != "pattern":
+    if style != "pattern" and "paper" not in keywords:  # the paper's grain shades the white
         assert set(np.unique(image)) == {0, 255}
 
 
@@ -111,9 +118,9 @@ def synthetic(width=WIDTH, height=HEIGHT):
 
 def test_npr_options_come_from_the_table():
     parameters = exemplar.npr_frame.__signature__.parameters
-    for name in ("levels", "patch_size", "coherence_weight", "motion_levels", "style", "tone",
-                 "orientation",
-                 "lines", "tone_correction", "seed", "frame", "previous", "linear_tone"):
+    for name in ("levels", "patch_size", "coherence_weight", "motion_levels", "paper_grain",
+                 "erosion", "style", "tone", "orientation", "lines", "tone_correction", "seed",
+                 "frame", "previous", "linear_tone", "paper"):
         assert name in parameters
     assert parameters["patch_size"].default == 12 and parameters["levels"].default == 3
     assert "Range 1..6" in exemplar.npr_frame.__doc__
@@ -153,8 +160,10 @@ def test_npr_refuses_what_the_library_refuses():
         exemplar.npr_frame(pat, buffers, lines=1)
     with pytest.raises(TypeError, match="linear_tone: must be a bool"):
         exemplar.npr_frame(pat, buffers, linear_tone=1)
-    with pytest.raises(exemplar.InvalidArgumentError, match=r"^erosion: the paper layer"):
+    with pytest.raises(exemplar.InvalidArgumentError, match=r"^erosion: needs paper=$"):
         exemplar.npr_frame(pat, buffers, erosion=3)
+    with pytest.raises(exemplar.InvalidArgumentError, match=r"^paper: pattern: 8x8 is too small"):
+        exemplar.npr_frame(pat, buffers, paper=pattern(8, 8, 1, 0.3))
     with pytest.raises(TypeError, match="unexpected keyword argument 'levles'"):
         exemplar.npr_frame(pat, buffers, levles=2)
 
