@@ -146,8 +146,6 @@ Status NprCommand::run(const Streams& streams) {
     if (bidirectional_ < 0 || bidirectional_ == 1 || bidirectional_ > 1000)
         return invalid_argument("--bidirectional: " + std::to_string(bidirectional_) +
                                 " is invalid (must be 0 or 2..1000)");
-    if (bidirectional_ > 0 && options.paper)
-        return invalid_argument("--bidirectional: not available with --paper yet");
     if (last_ < first_)
         return invalid_argument("--last: " + std::to_string(last_) + " is before --first " +
                                 std::to_string(first_));
@@ -302,8 +300,10 @@ Status NprCommand::run(const Streams& streams) {
         // The forward states are held only for their coordinates now (a block of 20 frames at
         // 960x540 keeps ~7 MB per frame instead of ~25)
         for (std::size_t i = 0; loop && i + 1 < results.size(); ++i) {
-            results[i].state.appearance.clear();
-            results[i].state.screen = Image();
+            for (npr::FrameState* state : {&results[i].state, &results[i].paper_state}) {
+                state->appearance.clear();
+                state->screen = Image();
+            }
         }
         // Backward: the rest of each frame coherent with the next (its forward flow and
         // occlusion), the visible part held
@@ -318,8 +318,14 @@ Status NprCommand::run(const Streams& streams) {
             EXEMPLAR_RETURN_IF_ERROR(load_frame(n, needs, frame));
             frame.hold = visible[i];
             frame.held = &results[i].state;
-            auto styled =
-                npr::stylize_frame(pattern, frame, &results[i + 1].state, n, options, context);
+            npr::NprPaper paper_layer;
+            if (paper) {
+                paper_layer.pattern = &*paper;
+                paper_layer.previous = &results[i + 1].paper_state;
+                paper_layer.held = &results[i].paper_state;
+            }
+            auto styled = npr::stylize_frame(pattern, frame, &results[i + 1].state, n, options,
+                                             context, paper_layer);
             if (!styled.ok()) return in_folder(n, styled.status());
             results[i] = std::move(styled).value();
         }

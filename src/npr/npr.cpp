@@ -256,6 +256,7 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
     if (options.paper) {
         FrameInput paper_input = input;
         paper_input.orientation = Image();
+        paper_input.held = paper.held;
         SynthesisOptions paper_synthesis = synthesis;
         paper_synthesis.seed = options.seed ^ 0x7061706572ull;  // "paper"
         paper_state = synthesize_frame(*paper.pattern, paper_input, paper.previous, frame_index,

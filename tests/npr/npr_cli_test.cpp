@@ -201,6 +201,14 @@ TEST_F(NprCli, BidirectionalLoopResumesToTheSameBytes) {
         EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
                   outputs[static_cast<std::size_t>(n)])
             << "frame " << n;
+    // With the paper layer: both held and redone backward
+    std::vector<std::string> with_paper =
+        npr({"--bidirectional", "2", "--paper",
+             std::string(EXEMPLAR_TEST_DATA_DIR) + "/paper/struc.pgm"});
+    with_paper[10] = path("P/%04d.png");
+    const CliRun papered = run(with_paper);
+    EXPECT_EQ(papered.code, 0) << papered.err;
+    EXPECT_TRUE(fs::exists(path("P/0002.png.paper.state.exr")));
     // It needs the forward flow
     fs::remove_all(path("O"));
     fs::remove(path("R/frame_0001/forward_flow.exr"));

@@ -182,6 +182,9 @@ struct NprPaper {
     const Pattern* pattern = nullptr;
     /// The previous frame's paper state (NprFrameResult::paper_state), or null.
     const FrameState* previous = nullptr;
+    /// The paper's held coordinates where NprFrame::hold is given (its forward pass; needed
+    /// then).
+    const FrameState* held = nullptr;
 };
 
 /// Styles frame `frame_index` (it keys the randomness with the seed) from its buffers,
