@@ -7,8 +7,11 @@
 // every frame of the range (also resumed ones, read back) to one video. A frame whose
 // output and state exist is skipped (resume) and its state read back as the next frame's
 // previous frame, so a resumed range gives the same bytes as an uninterrupted one. A missing
-// buffer stops the run with one line naming it; the frames written so far are kept. What a
-// frame shows (tone, thresholding, orientation, lines) is the library's npr::stylize_frame.
+// buffer stops the run with one line naming it; the frames written so far are kept. With
+// --bidirectional N the frames after the first go in blocks of N (forward, then backward along
+// the forward flow, then written together), and resume skips or redoes whole blocks. What a
+// frame shows (tone, thresholding, orientation, paper, lines) is the library's
+// npr::stylize_frame.
 
 #include <algorithm>
 #include <filesystem>
