@@ -50,6 +50,13 @@ protected:
     void TearDown() override { fs::remove_all(dir_); }
 
     std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    // The bytes of the outputs O/0000.png .. O/0002.png.
+    std::vector<std::string> outputs() const {
+        std::vector<std::string> bytes;
+        for (int n = 0; n <= 2; ++n)
+            bytes.push_back(file_bytes(path("O/000" + std::to_string(n) + ".png")));
+        return bytes;
+    }
     std::vector<std::string> npr(std::vector<std::string> more) const {
         std::vector<std::string> args = {"npr",
                                          "--pattern",
@@ -76,13 +83,12 @@ protected:
 TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {
     const CliRun first = run(npr({}));
     ASSERT_EQ(first.code, 0) << first.err;
-    std::vector<std::string> outputs;
     for (int n = 0; n <= 2; ++n) {
         const std::string out = path("O/000" + std::to_string(n) + ".png");
         ASSERT_TRUE(fs::exists(out)) << out;
         ASSERT_TRUE(fs::exists(out + ".state.exr")) << out;
-        outputs.push_back(file_bytes(out));
     }
+    const std::vector<std::string> first_outputs = outputs();
     const Result<Image> image = load_image(path("O/0001.png"));
     ASSERT_TRUE(image.ok());
     EXPECT_EQ(image->width(), 64);
@@ -102,10 +108,7 @@ TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {
     fs::remove(path("O/0002.png"));
     again = run(npr({}));
     ASSERT_EQ(again.code, 0) << again.err;
-    for (int n = 0; n <= 2; ++n)
-        EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
-                  outputs[static_cast<std::size_t>(n)])
-            << "frame " << n;
+    EXPECT_EQ(outputs(), first_outputs);
 }
 
 TEST_F(NprCli, WritesAnMp4OfTheRange) {
@@ -138,12 +141,11 @@ TEST_F(NprCli, PaperLayerResumesToTheSameBytes) {
     const std::string paper = std::string(EXEMPLAR_TEST_DATA_DIR) + "/paper/struc.pgm";
     const CliRun first = run(npr({"--paper", paper, "--erosion", "1.5"}));
     ASSERT_EQ(first.code, 0) << first.err;
-    std::vector<std::string> outputs;
     for (int n = 0; n <= 2; ++n) {
         const std::string out = path("O/000" + std::to_string(n) + ".png");
         ASSERT_TRUE(fs::exists(out + ".paper.state.exr")) << out;
-        outputs.push_back(file_bytes(out));
     }
+    const std::vector<std::string> first_outputs = outputs();
     const Result<Image> image = load_image(path("O/0001.png"));
     const Result<Image> alpha = load_image(path("R/frame_0001/alpha.png"));
     const Result<Image> lines = load_image(path("R/frame_0001/lines.png"));
@@ -161,10 +163,7 @@ TEST_F(NprCli, PaperLayerResumesToTheSameBytes) {
     fs::remove(path("O/0002.png"));
     const CliRun again = run(npr({"--paper", paper, "--erosion", "1.5"}));
     ASSERT_EQ(again.code, 0) << again.err;
-    for (int n = 0; n <= 2; ++n)
-        EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
-                  outputs[static_cast<std::size_t>(n)])
-            << "frame " << n;
+    EXPECT_EQ(outputs(), first_outputs);
     // The paper's options need the paper; a paper too small is named
     const CliRun grain = run(npr({"--paper-grain", "0.5"}));
     EXPECT_EQ(grain.code, 1);
@@ -182,25 +181,20 @@ TEST_F(NprCli, PaperLayerResumesToTheSameBytes) {
 TEST_F(NprCli, BidirectionalLoopResumesToTheSameBytes) {
     const CliRun first = run(npr({"--bidirectional", "2"}));
     ASSERT_EQ(first.code, 0) << first.err;
-    std::vector<std::string> outputs;
-    for (int n = 0; n <= 2; ++n)
-        outputs.push_back(file_bytes(path("O/000" + std::to_string(n) + ".png")));
+    const std::vector<std::string> first_outputs = outputs();
     // The forward-only run has the same first frame; frame 1's hidden strip was redone backward
     // (its coordinates differ)
     std::vector<std::string> args = npr({"--bidirectional", "0"});
     args[10] = path("F/%04d.png");
     const CliRun forward = run(args);
     ASSERT_EQ(forward.code, 0) << forward.err;
-    EXPECT_EQ(file_bytes(path("F/0000.png")), outputs[0]);
+    EXPECT_EQ(file_bytes(path("F/0000.png")), first_outputs[0]);
     EXPECT_NE(file_bytes(path("F/0001.png.state.exr")), file_bytes(path("O/0001.png.state.exr")));
     // An unfinished block is done again as a whole
     fs::remove(path("O/0001.png"));
     const CliRun again = run(npr({"--bidirectional", "2"}));
     ASSERT_EQ(again.code, 0) << again.err;
-    for (int n = 0; n <= 2; ++n)
-        EXPECT_EQ(file_bytes(path("O/000" + std::to_string(n) + ".png")),
-                  outputs[static_cast<std::size_t>(n)])
-            << "frame " << n;
+    EXPECT_EQ(outputs(), first_outputs);
     // With the paper layer: both held and redone backward
     std::vector<std::string> with_paper =
         npr({"--bidirectional", "2", "--paper",
