@@ -101,6 +101,15 @@ Status validate(const Stroke& stroke) {
         return invalid_argument("width: " + std::to_string(stroke.width_px) +
                                 " is invalid (must be > 0 and <= 4096 px)");
     }
+    if (stroke.label < 0 || stroke.label > max_stroke_label) {
+        return invalid_argument("label: " + std::to_string(stroke.label) +
+                                " is invalid (must be 0.." + std::to_string(max_stroke_label) +
+                                ")");
+    }
+    if (stroke.comb && stroke.label != 0) {
+        return invalid_argument("label: " + std::to_string(stroke.label) +
+                                " on a combing stroke (it paints no segment; must be 0)");
+    }
     return Status::ok();
 }
 
@@ -150,8 +159,10 @@ Image diffuse_strokes(std::span<const Stroke> strokes, int width, int height) {
 
 PaintCanvas::PaintCanvas(int width, int height)
     : coverage_(std::max(width, 0), std::max(height, 0), 1),
-      directions_(std::max(width, 0), std::max(height, 0), 2) {
+      directions_(std::max(width, 0), std::max(height, 0), 2),
+      labels_(std::max(width, 0), std::max(height, 0), 1) {
     coverage_.set_channel_names({"mask"});
+    labels_.set_channel_names({"label"});
     directions_.set_channel_names({"x", "y"});
 }
 
@@ -181,7 +192,10 @@ Result<PixelRect> PaintCanvas::add_strokes(std::span<const Stroke> strokes) {
             const PixelRect r = bounds_of(s, radius, w, h);
             for (int y = r.y0; y < r.y1; ++y) {
                 for (int x = r.x0; x < r.x1; ++x) {
-                    if (distance_to(s, x + 0.5, y + 0.5) <= radius) coverage_.at(x, y, 0) = 1.0f;
+                    if (distance_to(s, x + 0.5, y + 0.5) <= radius) {
+                        coverage_.at(x, y, 0) = 1.0f;
+                        labels_.at(x, y, 0) = static_cast<float>(s.label);
+                    }
                 }
             }
         }
