@@ -165,7 +165,14 @@ Status PaintCommand::run(const Streams& streams) const {
         const paint::Stroke& stroke = (*strokes)[i];
         if (stroke.comb || segments.count(stroke.label) > 0) continue;
         std::string have;
-        for (int label : segments) have += (have.empty() ? "" : ", ") + label_colour(label);
+        int listed = 0;
+        for (int label : segments) {
+            if (listed++ == 8) {
+                have += ", ...";
+                break;
+            }
+            have += (have.empty() ? "" : ", ") + label_colour(label);
+        }
         return invalid_argument("--strokes " + strokes_ + ": stroke " + std::to_string(i) +
                                 ": label " + label_colour(stroke.label) +
                                 " has no segment in --source-labels " + source_labels_ +
