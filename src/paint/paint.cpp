@@ -283,6 +283,11 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     so.vote_coherence = options.vote_coherence;
     so.vote_histogram = options.vote_histogram;
     so.usage = options.usage;  // default None: Wexler et al.'s EM, as in the paper
+    // Two PatchMatch iterations for a level's first search (the engine's default is 6, for a
+    // cold start): every level but the coarsest starts from the upsampled field of the level
+    // before, and the coarsest runs 6 EM iterations. A third of the time; the tested quality
+    // holds (docs/PERFORMANCE.md "Brushables painting").
+    so.search_iterations = 2;
     auto synthesized = synthesize(std::move(in), so, context);
     if (!synthesized.ok()) return synthesized.status();
 

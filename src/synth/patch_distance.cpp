@@ -1,6 +1,9 @@
 #include "patch_distance.hpp"
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 namespace exemplar::synth {
 
@@ -41,6 +44,48 @@ float general_distance(const Level& L, int tx, int ty, int sx, int sy, float ang
     return sum;
 }
 
+// Rotated patches inside both images, flat and without weight maps (Brushables' direction
+// field, oriented stylization): the rotated source patch is gathered into a contiguous block,
+// whose rows then go through the same SIMD kernel as an unrotated patch (ssd_rows). The scalar
+// loop of general_distance is latency-bound on its chain of additions (one per channel and
+// pixel); this is the fast path's value (the reference's up to float summation order). Returns
+// false (nothing computed) when the patch or its rotated source reaches over a border or does
+// not fit the block.
+bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, float angle,
+                               float bound, float& sum) {
+    const int r = L.radius;
+    const int P = L.patch_size;
+    const int F = L.feature_channels();
+    constexpr int kBlockBytes = 8192;
+    const int row_bytes = P * F;
+    if (P * row_bytes + 16 + kSsdSlack > kBlockBytes) return false;
+    if (tx < r || ty < r || tx >= L.tw - r || ty >= L.th - r) return false;
+    const float c = std::cos(angle);
+    const float s = std::sin(angle);
+    alignas(64) std::uint8_t block[kBlockBytes];
+    std::uint8_t* out = block;
+    for (int dy = -r; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx, out += F) {
+            const RotatedOffset o = rotate_offset(dx, dy, c, s);
+            const int x = sx + o.dx, y = sy + o.dy;
+            if (x < 0 || y < 0 || x >= L.sw || y >= L.sh) return false;
+            // A fixed 16-byte copy is one vector move (the feature images have slack past their
+            // last pixel, the block past its last row, and the next pixel overwrites the rest).
+            if (F <= 16) {
+                std::memcpy(out, L.source_features.pixel(x, y), 16);
+            } else {
+                std::memcpy(out, L.source_features.pixel(x, y), static_cast<std::size_t>(F));
+            }
+        }
+    }
+    std::memset(out, 0, kSsdSlack);  // read by ssd_rows past the last row, weighted 0
+    const FeatureImage& t = L.target_features;
+    sum =
+        ssd_rows(t.pixel(tx - r, ty - r), t.row_bytes(), block, static_cast<std::size_t>(row_bytes),
+                 P, row_bytes, SsdWeights{L.row_weight.data(), 0}, bound);
+    return true;
+}
+
 }  // namespace
 
 float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, float angle) {
@@ -49,6 +94,11 @@ float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, f
 
 float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, float angle,
                              float bound) {
+    float sum = 0.0f;
+    if (angle != 0.0f && L.target_weights.empty() && L.pixel_weight.empty() &&
+        rotated_interior_distance(L, tx, ty, sx, sy, angle, bound, sum)) {
+        return sum;
+    }
     return general_distance<true>(L, tx, ty, sx, sy, angle, bound);
 }
 
