@@ -133,6 +133,15 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", status.message().c_str());
         return 1;
     };
+    // The best of the repeats of `run` (a paint or repaint call) and its last result.
+    auto best_of = [&](Timing& timing, const auto& run) {
+        Result<PaintResult> result = PaintResult{};
+        time_best(repeats, timing, [&] {
+            result = run();
+            return result.ok();
+        });
+        return result;
+    };
 
     // Interactive: one wide stroke of about 0.25 MPix, then one more stroke repainted.
     PaintCanvas quarter(1000, 500);
@@ -144,14 +153,10 @@ int main(int argc, char** argv) {
         return 1;
     }
     report("add_stroke (region, directions)", painted_mpix(quarter), stroke_setup);
-    Result<PaintResult> first = PaintResult{};
     Timing paint_quarter;
-    if (!time_best(repeats, paint_quarter, [&] {
-            first = paint::paint(source, quarter, options, context);
-            return first.ok();
-        })) {
-        return failed(first.status());
-    }
+    const auto first =
+        best_of(paint_quarter, [&] { return paint::paint(source, quarter, options, context); });
+    if (!first.ok()) return failed(first.status());
     report("paint, one stroke", painted_mpix(quarter), paint_quarter);
     std::printf("  (mean patch error of the painted pixels' matches: %.4f)\n",
                 mean_match_error(quarter, first->nnf));
@@ -159,14 +164,11 @@ int main(int argc, char** argv) {
 
     const auto changed = quarter.add_stroke(wave(100.0f, 900.0f, 300.0f, -60.0f, 48.0f));
     if (!changed.ok()) return failed(changed.status());
-    Result<PaintResult> second = PaintResult{};
     Timing repaint_stroke;
-    if (!time_best(repeats, repaint_stroke, [&] {
-            second = paint::repaint(source, quarter, first->image, *changed, options, context);
-            return second.ok();
-        })) {
-        return failed(second.status());
-    }
+    const auto second = best_of(repaint_stroke, [&] {
+        return paint::repaint(source, quarter, first->image, *changed, options, context);
+    });
+    if (!second.ok()) return failed(second.status());
     const double changed_mpix =
         static_cast<double>(changed->x1 - changed->x0) * (changed->y1 - changed->y0) * 1e-6;
     report("repaint, a 48 px stroke (its box)", changed_mpix, repaint_stroke);
@@ -177,14 +179,10 @@ int main(int argc, char** argv) {
         const float y = 110.0f + 170.0f * static_cast<float>(k);
         if (!mega.add_stroke(wave(30.0f, 1370.0f, y, 40.0f, 200.0f)).ok()) return 1;
     }
-    Result<PaintResult> big = PaintResult{};
     Timing paint_mega;
-    if (!time_best(repeats, paint_mega, [&] {
-            big = paint::paint(source, mega, options, context);
-            return big.ok();
-        })) {
-        return failed(big.status());
-    }
+    const auto big =
+        best_of(paint_mega, [&] { return paint::paint(source, mega, options, context); });
+    if (!big.ok()) return failed(big.status());
     report("paint, five strokes", painted_mpix(mega), paint_mega);
     return 0;
 }

@@ -29,6 +29,15 @@ std::string size_of(const Image& image) {
     return std::to_string(image.width()) + "x" + std::to_string(image.height());
 }
 
+// An optional per-pixel map of the exemplar: 1 channel (`what`), the exemplar's size.
+Status check_exemplar_map(const Image& map, const Image& exemplar, const std::string& name,
+                          const std::string& what) {
+    if (map.same_size(exemplar) && map.channels() == 1) return Status::ok();
+    return invalid_argument(name + ": " + size_of(map) + " with " + std::to_string(map.channels()) +
+                            " channels (must be " + what + ", " + size_of(exemplar) +
+                            " like the exemplar)");
+}
+
 // The exemplar as the engine sees it: premultiplied RGBA, its shape mask and its angles.
 struct Exemplar {
     Image style;
@@ -60,12 +69,7 @@ Result<Exemplar> prepare(const PaintSource& source, int threads) {
     }
 
     if (!source.mask.empty()) {
-        if (!source.mask.same_size(in) || source.mask.channels() != 1) {
-            return invalid_argument("source mask: " + size_of(source.mask) + " with " +
-                                    std::to_string(source.mask.channels()) +
-                                    " channels (must be 1 channel, " + size_of(in) +
-                                    " like the exemplar)");
-        }
+        EXEMPLAR_RETURN_IF_ERROR(check_exemplar_map(source.mask, in, "source mask", "1 channel"));
         e.mask = source.mask;
     } else {
         e.mask = Image(in.width(), in.height(), 1);
@@ -83,12 +87,8 @@ Result<Exemplar> prepare(const PaintSource& source, int threads) {
     if (!any) return invalid_argument("source mask: empty (no pixel with alpha > 0 or mask > 0.5)");
 
     if (!source.labels.empty()) {
-        if (!source.labels.same_size(in) || source.labels.channels() != 1) {
-            return invalid_argument("source labels: " + size_of(source.labels) + " with " +
-                                    std::to_string(source.labels.channels()) +
-                                    " channels (must be 1 channel, " + size_of(in) +
-                                    " like the exemplar)");
-        }
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_exemplar_map(source.labels, in, "source labels", "1 channel"));
         e.labels = source.labels;
         for (std::size_t i = 0; i < e.labels.pixel_count(); ++i) {
             float& v = e.labels.data()[i];
@@ -99,12 +99,8 @@ Result<Exemplar> prepare(const PaintSource& source, int threads) {
     }
 
     if (!source.directions.empty()) {
-        if (!source.directions.same_size(in) || source.directions.channels() != 1) {
-            return invalid_argument("source directions: " + size_of(source.directions) + " with " +
-                                    std::to_string(source.directions.channels()) +
-                                    " channels (must be 1 channel of angles, " + size_of(in) +
-                                    " like the exemplar)");
-        }
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_exemplar_map(source.directions, in, "source directions", "1 channel of angles"));
         e.angles = source.directions;
     } else {
         auto field = analyze_directions(in, {}, threads);

@@ -1,6 +1,7 @@
 #include "patch_distance.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -57,25 +58,37 @@ bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, f
     const int P = L.patch_size;
     const int F = L.feature_channels();
     constexpr int kBlockBytes = 8192;
+    constexpr int kMaxPixels = 15 * 15;
     const int row_bytes = P * F;
-    if (P * row_bytes + 16 + kSsdSlack > kBlockBytes) return false;
-    if (tx < r || ty < r || tx >= L.tw - r || ty >= L.th - r) return false;
+    if (P * row_bytes + 16 + kSsdSlack > kBlockBytes || P * P > kMaxPixels) return false;
+    // A rotated offset is at most r·√2 rounded: with that margin no source pixel needs a check.
+    const int margin = static_cast<int>(std::ceil(static_cast<float>(r) * 1.41422f));
+    if (tx < r || ty < r || tx >= L.tw - r || ty >= L.th - r || sx < margin || sy < margin ||
+        sx >= L.sw - margin || sy >= L.sh - margin) {
+        return false;
+    }
     const float c = std::cos(angle);
     const float s = std::sin(angle);
+    // The offsets first, then the copies.
+    int offset[kMaxPixels];
+    const int pixel_stride = L.source_features.stride();
+    const int row_stride = static_cast<int>(L.source_features.row_bytes());
+    for (int dy = -r, k = 0; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx, ++k) {
+            const RotatedOffset o = rotate_offset(dx, dy, c, s);
+            offset[k] = o.dy * row_stride + o.dx * pixel_stride;
+        }
+    }
+    const std::uint8_t* centre = L.source_features.pixel(sx, sy);
     alignas(64) std::uint8_t block[kBlockBytes];
     std::uint8_t* out = block;
-    for (int dy = -r; dy <= r; ++dy) {
-        for (int dx = -r; dx <= r; ++dx, out += F) {
-            const RotatedOffset o = rotate_offset(dx, dy, c, s);
-            const int x = sx + o.dx, y = sy + o.dy;
-            if (x < 0 || y < 0 || x >= L.sw || y >= L.sh) return false;
-            // A fixed 16-byte copy is one vector move (the feature images have slack past their
-            // last pixel, the block past its last row, and the next pixel overwrites the rest).
-            if (F <= 16) {
-                std::memcpy(out, L.source_features.pixel(x, y), 16);
-            } else {
-                std::memcpy(out, L.source_features.pixel(x, y), static_cast<std::size_t>(F));
-            }
+    if (F <= 16) {
+        // A fixed 16-byte copy is one vector move (the feature images have slack past their last
+        // pixel, the block past its last row, and the next pixel overwrites the rest).
+        for (int k = 0; k < P * P; ++k, out += F) std::memcpy(out, centre + offset[k], 16);
+    } else {
+        for (int k = 0; k < P * P; ++k, out += F) {
+            std::memcpy(out, centre + offset[k], static_cast<std::size_t>(F));
         }
     }
     std::memset(out, 0, kSsdSlack);  // read by ssd_rows past the last row, weighted 0

@@ -18,9 +18,9 @@ struct RotatedOffset {
     int dx, dy;
 };
 inline RotatedOffset rotate_offset(int dx, int dy, float c, float s) {
-    // floor(v + 0.5) without std::floor, which the baseline x86-64 target has no instruction for
-    // (a long inline sequence in the rotated patch distance's loop): the same integer for every
-    // |v| < 2^31, and patch offsets are a few pixels.
+    // floor(v + 0.5) without std::floor, for which the baseline x86-64 target has no instruction
+    // (a long inline sequence in the rotated patch distance's offset loop): the same integer for
+    // every |v| < 2^31, and patch offsets are a few pixels.
     const auto round_half_up = [](float v) {
         const float u = v + 0.5f;
         const int i = static_cast<int>(u);
