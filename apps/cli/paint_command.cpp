@@ -40,8 +40,9 @@ PaintCommand::PaintCommand(CLI::App& parent) {
         "paint", "Paint with an exemplar's texture along strokes (Brushables, docs/paint.md)");
     app_->footer(
         "Strokes JSON: [{\"points\": [[x, y], ...], \"width\": 40, \"comb\": false}, ...] in "
-        "canvas "
-        "pixels;\nSVG: every path is a painting stroke (centre line and stroke-width).\n"
+        "canvas pixels, with --source-labels also \"label\": \"#rrggbb\" (or a grey level "
+        "0..255);\nSVG: every path is a painting stroke (centre line and stroke-width; with "
+        "--source-labels its stroke colour is its segment).\n"
         "Example: exemplar paint --source grass.png --strokes strokes.json --width 512 --height "
         "256 -o out.png");
     app_->add_option("--source", source_, "Exemplar: RGBA (alpha = its shape) or RGB")->required();
