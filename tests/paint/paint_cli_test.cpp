@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <utility>
 
 #include "cli_fixture.hpp"
 
@@ -122,9 +123,21 @@ TEST_F(Cli, PaintWithLabelsUsesEachStrokesSegment) {
         << R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 80 48">)"
         << R"(<path d="M 4 12 L 76 12" stroke="#0000ff" stroke-width="16"/>)"
         << R"(<path d="M 4 36 L 76 36" style="stroke:#ff0000;stroke-width:16"/></svg>)";
-    for (const std::string strokes : {"labels.json", "labels.svg"}) {
+    // A grey segmentation (levels 3 and 200) named by grey levels.
+    Image grey(48, 32, 1);
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 48; ++x) grey.at(x, y, 0) = (x < 24 ? 3.0f : 200.0f) / 255.0f;
+    }
+    write("grey_segments.png", grey);
+    std::ofstream(path("grey.json"))
+        << R"([{"points": [[4, 12], [76, 12]], "width": 16, "label": 200},
+               {"points": [[4, 36], [76, 36]], "width": 16, "label": 3}])";
+    for (const auto& [strokes, segments] :
+         {std::pair<std::string, std::string>{"labels.json", "segments.png"},
+          {"labels.svg", "segments.png"},
+          {"grey.json", "grey_segments.png"}}) {
         const CliRun r = run({"paint", "--source", path("two.png"), "--source-labels",
-                              path("segments.png"), "--strokes", path(strokes), "--width", "80",
+                              path(segments), "--strokes", path(strokes), "--width", "80",
                               "--height", "48", "-o", path("labelled.png"), "--threads", "2"});
         ASSERT_EQ(r.code, 0) << r.err;
         const Image out = read("labelled.png");
