@@ -199,7 +199,8 @@ public:
 
 private:
     CLI::App* app_ = nullptr;
-    std::string source_, source_mask_, source_directions_, strokes_, output_, canvas_;
+    std::string source_, source_mask_, source_directions_, source_labels_, strokes_, output_,
+        canvas_;
     std::string save_directions_;
     std::string usage_ = "none";
     int width_ = 0;

@@ -1,6 +1,9 @@
 // `exemplar paint`: Brushables texture painting (docs/paint.md): strokes from a JSON or SVG file
 // paint a region and its direction field on a canvas, which is filled with the exemplar's texture.
 
+#include <algorithm>
+#include <cmath>
+#include <set>
 #include <string>
 
 #include "commands.hpp"
@@ -12,13 +15,34 @@
 
 namespace exemplar::cli {
 
+namespace {
+
+// A segmentation as labels: each pixel's colour, rounded to 8 bits per channel, as the 24-bit
+// number 0xrrggbb (grey images: (v, v, v)); alpha is ignored. Stroke files name segments the
+// same way (parse_label).
+Image label_map(const Image& image) {
+    Image out(image.width(), image.height(), 1);
+    const int channels = image.channels();
+    const auto byte = [](float v) { return std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f); };
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        const float* p = image.data().data() + i * static_cast<std::size_t>(channels);
+        const long r = byte(p[0]);
+        const long g = channels >= 3 ? byte(p[1]) : r, b = channels >= 3 ? byte(p[2]) : r;
+        out.data()[i] = static_cast<float>((r << 16) | (g << 8) | b);
+    }
+    return out;
+}
+
+}  // namespace
+
 PaintCommand::PaintCommand(CLI::App& parent) {
     app_ = parent.add_subcommand(
         "paint", "Paint with an exemplar's texture along strokes (Brushables, docs/paint.md)");
     app_->footer(
         "Strokes JSON: [{\"points\": [[x, y], ...], \"width\": 40, \"comb\": false}, ...] in "
-        "canvas "
-        "pixels;\nSVG: every path is a painting stroke (centre line and stroke-width).\n"
+        "canvas pixels, with --source-labels also \"label\": \"#rrggbb\" (or a grey level "
+        "0..255);\nSVG: every path is a painting stroke (centre line and stroke-width; with "
+        "--source-labels its stroke colour is its segment).\n"
         "Example: exemplar paint --source grass.png --strokes strokes.json --width 512 --height "
         "256 -o out.png");
     app_->add_option("--source", source_, "Exemplar: RGBA (alpha = its shape) or RGB")->required();
@@ -27,6 +51,10 @@ PaintCommand::PaintCommand(CLI::App& parent) {
     app_->add_option("--source-directions", source_directions_,
                      "Direction field of the exemplar (.exr from `exemplar directions`); default: "
                      "analysed with radius 10");
+    app_->add_option("--source-labels", source_labels_,
+                     "Segmentation of the exemplar into several textures, its size: each colour "
+                     "is one segment; a stroke paints only with its segment (JSON \"label\": "
+                     "grey level 0..255 or \"#rrggbb\"; SVG: the stroke colour)");
     app_->add_option("--strokes", strokes_, "Strokes: .json or .svg")->required();
     app_->add_option("--width", width_, "Canvas width in px (or from --canvas)");
     app_->add_option("--height", height_, "Canvas height in px (or from --canvas)");
@@ -115,12 +143,42 @@ Status PaintCommand::run(const Streams& streams) const {
         }
         source.directions = extract_channels(*field, std::max(angle, 0), 1);
     }
+    std::set<int> segments;
+    if (!source_labels_.empty()) {
+        auto labels = load_image(source_labels_);
+        if (!labels.ok()) return labels.status();
+        if (!labels->same_size(source.image)) {
+            return invalid_argument(
+                "--source-labels " + source_labels_ + ": is " + std::to_string(labels->width()) +
+                "x" + std::to_string(labels->height()) + " but --source is " +
+                std::to_string(source.image.width()) + "x" + std::to_string(source.image.height()));
+        }
+        source.labels = label_map(*labels);
+        for (float v : source.labels.data()) segments.insert(static_cast<int>(v));
+    }
     auto canvas_file = load_canvas(canvas_, width_, height_);
     if (!canvas_file.ok()) return canvas_file.status();
     const int width = canvas_file->width, height = canvas_file->height;
     const Image& background = canvas_file->background;
-    auto strokes = read_strokes("--strokes", strokes_, width, height);
+    auto strokes = read_strokes("--strokes", strokes_, width, height, !source_labels_.empty());
     if (!strokes.ok()) return strokes.status();
+    for (std::size_t i = 0; i < strokes->size() && !segments.empty(); ++i) {
+        const paint::Stroke& stroke = (*strokes)[i];
+        if (stroke.comb || segments.count(stroke.label) > 0) continue;
+        std::string have;
+        int listed = 0;
+        for (int label : segments) {
+            if (listed++ == 8) {
+                have += ", ...";
+                break;
+            }
+            have += (have.empty() ? "" : ", ") + label_colour(label);
+        }
+        return invalid_argument("--strokes " + strokes_ + ": stroke " + std::to_string(i) +
+                                ": label " + label_colour(stroke.label) +
+                                " has no segment in --source-labels " + source_labels_ +
+                                " (its colours: " + have + ")");
+    }
 
     // Strokes one after the other (painting, then combing refines), then the synthesis.
     paint::PaintCanvas canvas(width, height);

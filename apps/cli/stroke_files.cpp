@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -25,9 +26,10 @@ bool has_extension(const std::string& path, const std::string& ext) {
     return tail == ext;
 }
 
-// `[{"points": [[x, y], ...], "width": 40, "comb": false}, ...]`, coordinates in canvas pixels.
+// `[{"points": [[x, y], ...], "width": 40, "comb": false, "label": 2}, ...]`, coordinates in
+// canvas pixels.
 Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& flag,
-                                                     const std::string& path) {
+                                                     const std::string& path, bool labels) {
     std::ifstream file(path);
     if (!file) return io_error(flag + " " + path + ": cannot be read");
     std::stringstream text;
@@ -43,7 +45,10 @@ Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& flag,
         const std::string where = flag + " " + path + ": stroke " + std::to_string(i) + ": ";
         if (!s.is_object()) return invalid_argument(where + "must be an object");
         for (const auto& [key, value] : s.items()) {
-            if (key != "points" && key != "width" && key != "comb") {
+            if (key == "label" && !labels) {
+                return invalid_argument(where + "'label' is read only with --source-labels");
+            }
+            if (key != "points" && key != "width" && key != "comb" && key != "label") {
                 return invalid_argument(where + "unknown key '" + key +
                                         "' (known: points, width, comb)");
             }
@@ -68,6 +73,13 @@ Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& flag,
                 return invalid_argument(where + "'comb' must be true or false");
             stroke.comb = s["comb"].get<bool>();
         }
+        if (s.contains("label")) {
+            auto label = parse_label(s["label"].is_string() ? s["label"].get<std::string>()
+                                                            : s["label"].dump());
+            if (!label.ok())
+                return invalid_argument(where + "'label': " + label.status().message());
+            stroke.label = *label;
+        }
         if (Status st = paint::validate(stroke); !st.is_ok()) {
             return invalid_argument(where + st.message());
         }
@@ -79,8 +91,8 @@ Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& flag,
 // Every SVG path is a painting stroke: its centre line sampled every ~1 px and its stroke-width,
 // the viewBox (if any) mapped onto the canvas.
 Result<std::vector<paint::Stroke>> read_svg_strokes(const std::string& flag,
-                                                    const std::string& path, int width,
-                                                    int height) {
+                                                    const std::string& path, int width, int height,
+                                                    bool labels) {
     auto drawing = sketch::load_svg(path);
     if (!drawing.ok()) return drawing.status();
     double sx = 1.0, sy = 1.0, ox = 0.0, oy = 0.0;
@@ -101,6 +113,14 @@ Result<std::vector<paint::Stroke>> read_svg_strokes(const std::string& flag,
             stroke.points.push_back(
                 {static_cast<float>((v.x - ox) * sx), static_cast<float>((v.y - oy) * sy)});
         };
+        if (labels && i < drawing->strokes.size() && !drawing->strokes[i].empty()) {
+            auto label = parse_label(drawing->strokes[i]);
+            if (!label.ok()) {
+                return invalid_argument(flag + " " + path + ": path " + std::to_string(i) +
+                                        ": stroke colour: " + label.status().message());
+            }
+            stroke.label = *label;
+        }
         add(p.start());
         for (const sketch::Cubic& c : p.segments) {
             const double length = sketch::distance(c.p0, c.c1) + sketch::distance(c.c1, c.c2) +
@@ -125,10 +145,39 @@ Status check_stroke_file(const std::string& flag, const std::string& path) {
 }
 
 Result<std::vector<paint::Stroke>> read_strokes(const std::string& flag, const std::string& path,
-                                                int width, int height) {
+                                                int width, int height, bool labels) {
     EXEMPLAR_RETURN_IF_ERROR(check_stroke_file(flag, path));
-    return has_extension(path, ".json") ? read_json_strokes(flag, path)
-                                        : read_svg_strokes(flag, path, width, height);
+    return has_extension(path, ".json") ? read_json_strokes(flag, path, labels)
+                                        : read_svg_strokes(flag, path, width, height, labels);
+}
+
+Result<int> parse_label(const std::string& text) {
+    const std::string valid =
+        "'" + text + "' is invalid (must be 0..255, a grey level, or #rrggbb)";
+    if (!text.empty() && text[0] == '#') {
+        std::string hex = text.substr(1);
+        if (hex.size() == 3) hex = {hex[0], hex[0], hex[1], hex[1], hex[2], hex[2]};
+        if (hex.size() != 6 || !std::all_of(hex.begin(), hex.end(), [](char c) {
+                return std::isxdigit(static_cast<unsigned char>(c)) != 0;
+            })) {
+            return invalid_argument(valid);
+        }
+        return static_cast<int>(std::stol(hex, nullptr, 16));
+    }
+    if (text.empty() || text.size() > 3 || !std::all_of(text.begin(), text.end(), [](char c) {
+            return std::isdigit(static_cast<unsigned char>(c)) != 0;
+        })) {
+        return invalid_argument(valid);
+    }
+    const int grey = std::stoi(text);
+    if (grey > 255) return invalid_argument(valid);
+    return grey * 0x010101;
+}
+
+std::string label_colour(int label) {
+    char text[8];
+    std::snprintf(text, sizeof text, "#%06x", static_cast<unsigned>(label) & 0xffffffu);
+    return text;
 }
 
 Status check_canvas_size(const std::string& canvas, int width, int height) {

@@ -1110,6 +1110,7 @@ def paint(
     canvas: Image | None = None,
     source_mask: Image | None = None,
     source_directions: Image | None = None,
+    source_labels: Image | None = None,
     shape_weight: float = 25.0,
     edge_extent: float = 16.0,
     shape_bins: int = 8,
@@ -1134,7 +1135,8 @@ def paint(
           The exemplar: RGBA (alpha = its shape) or RGB.
       strokes (Sequence[dict[str, Any]])
           Strokes in order: {'points': Nx2 (x, y in canvas px), 'width': brush diameter in
-          px (default 40), 'comb': True to only re-direct painted pixels}.
+          px (default 40), 'comb': True to only re-direct painted pixels, 'label': segment
+          id with source_labels (default 0)}.
       width (int | None, default None)
           Canvas width in px (or canvas's).
       height (int | None, default None)
@@ -1146,6 +1148,9 @@ def paint(
       source_directions (Image | None, default None)
           Direction field of the exemplar (HxW float32 angles, as directions() returns);
           default directions(source).
+      source_labels (Image | None, default None)
+          Segmentation of the exemplar into several textures (HxW integer segment ids): a
+          stroke paints only with the segment of its 'label'.
       shape_weight (float, default 25.0)
           Weight lambda of the Shape Hint against the colour distance (0 = off, ..1000).
       edge_extent (float, default 16.0)

@@ -398,7 +398,8 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
                   positional=True),
             Param("strokes", "Sequence[dict[str, Any]]",
                   "Strokes in order: {'points': Nx2 (x, y in canvas px), 'width': brush "
-                  "diameter in px (default 40), 'comb': True to only re-direct painted pixels}.",
+                  "diameter in px (default 40), 'comb': True to only re-direct painted pixels, "
+                  "'label': segment id with source_labels (default 0)}.",
                   positional=True),
             Param("width", "int | None", "Canvas width in px (or canvas's).", None),
             Param("height", "int | None", "Canvas height in px (or canvas's).", None),
@@ -409,6 +410,9 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
             Param("source_directions", "Image | None",
                   "Direction field of the exemplar (HxW float32 angles, as directions() "
                   "returns); default directions(source).", None),
+            Param("source_labels", "Image | None",
+                  "Segmentation of the exemplar into several textures (HxW integer segment "
+                  "ids): a stroke paints only with the segment of its 'label'.", None),
             Param("shape_weight", "float", "Weight lambda of the Shape Hint against the "
                   "colour distance (0 = off, ..1000).", 25.0),
             Param("edge_extent", "float", "How deep boundary effects reach into the texture, "

@@ -11,6 +11,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,9 +72,10 @@ paint::Stroke stroke_from(const py::handle& dict, const std::string& what) {
     const py::object points = pop(entry, "points");
     const py::object width = pop(entry, "width");
     const py::object comb = pop(entry, "comb");
+    const py::object label = pop(entry, "label");
     for (const auto& key : entry) {
         throw py::type_error(what + ": unknown key '" + std::string(py::str(key.first)) +
-                             "' (keys: points, width, comb)");
+                             "' (keys: points, width, comb, label)");
     }
     if (points.is_none()) throw py::type_error(what + ": needs 'points'");
     const auto array =
@@ -91,7 +93,29 @@ paint::Stroke stroke_from(const py::handle& dict, const std::string& what) {
         if (!py::isinstance<py::bool_>(comb)) throw py::type_error(what + " comb: must be a bool");
         stroke.comb = comb.cast<bool>();
     }
+    if (!label.is_none()) stroke.label = integer(label, what + " label");
     return stroke;
+}
+
+// paint's source_labels: an HxW array of integer segment ids as they are (not scaled like
+// images: uint8 id 3 is label 3), 0..2^24 - 1 like Stroke::label.
+Image segment_ids(const py::object& labels) {
+    const auto array =
+        py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(labels);
+    if (!array || array.ndim() != 2) {
+        throw InputError("source_labels: must be an HxW array of integer segment ids");
+    }
+    Image out(static_cast<int>(array.shape(1)), static_cast<int>(array.shape(0)), 1);
+    for (std::size_t i = 0; i < out.pixel_count(); ++i) {
+        const double v = array.data()[i];
+        if (!(v >= 0.0 && v <= paint::max_stroke_label) || v != std::floor(v)) {
+            throw InputError("source_labels: " + std::to_string(v) +
+                             " is not a segment id (integers 0.." +
+                             std::to_string(paint::max_stroke_label) + ")");
+        }
+        out.data()[i] = static_cast<float>(v);
+    }
+    return out;
 }
 
 // Strokes: a sequence of stroke dicts, `name[i]` in messages.
@@ -162,6 +186,7 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
     const py::object canvas_given = pop(args, "canvas");
     const py::object mask_given = pop(args, "source_mask");
     const py::object directions_given = pop(args, "source_directions");
+    const py::object labels_given = pop(args, "source_labels");
     const RunKeywords run_keywords = pop_run_keywords(args);
     reject_unknown(args, "paint");
 
@@ -188,6 +213,7 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
         }
         input.directions = std::move(arg.image);
     }
+    if (!labels_given.is_none()) input.labels = segment_ids(labels_given);
     const std::vector<paint::Stroke> stroke_list = strokes_from(strokes, "strokes");
     paint::PaintCanvas canvas(width, height);
     for (const paint::Stroke& stroke : stroke_list) take(canvas.add_stroke(stroke));

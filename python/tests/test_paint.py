@@ -55,6 +55,35 @@ def test_paint_is_the_clis(cli, tmp_path):
     assert result[..., 3].max() == 255 and result[0, 63, 3] == 0  # painted, and not everywhere
 
 
+def test_paint_labels_are_the_clis(cli, tmp_path):
+    """Two segments: ids 1 and 2 in Python, colours red and blue in the CLI's label image."""
+    rgb = pattern(24, 32, 3, 0.7)
+    rgb[:, 16:, 2] = 255 - rgb[:, 16:, 2]
+    ids = np.ones((24, 32), np.uint8)
+    ids[:, 16:] = 2
+    colours = np.zeros((24, 32, 3), np.uint8)
+    colours[ids == 1] = (255, 0, 0)
+    colours[ids == 2] = (0, 0, 255)
+    exemplar.save_image(rgb, str(tmp_path / "two.png"))
+    exemplar.save_image(colours, str(tmp_path / "segments.png"))
+    strokes = [{"points": [[4, 10], [60, 10]], "width": 12, "label": "#0000ff"},
+               {"points": [[4, 30], [60, 30]], "width": 12, "label": "#ff0000"}]
+    (tmp_path / "strokes.json").write_text(json.dumps(strokes))
+    subprocess.run([cli, "paint", "--source", str(tmp_path / "two.png"), "--source-labels",
+                    str(tmp_path / "segments.png"), "--strokes", str(tmp_path / "strokes.json"),
+                    "--width", "64", "--height", "40", "-o", str(tmp_path / "out.png"),
+                    "--threads", "2", "-q"], check=True)
+    for stroke, label in zip(strokes, (2, 1)):
+        stroke["label"] = label
+    result = exemplar.paint(rgb, strokes, source_labels=ids, width=64, height=40, threads=2)
+    expected = np.round(exemplar.load_image(str(tmp_path / "out.png")) * 255)
+    np.testing.assert_array_equal(result, expected)
+    with pytest.raises(exemplar.InvalidArgumentError, match="label 3 is painted"):
+        exemplar.paint(rgb, [dict(strokes[0], label=3)], source_labels=ids, width=64, height=40)
+    with pytest.raises(exemplar.InvalidArgumentError, match="^source_labels: 0.500000 is not"):
+        exemplar.paint(rgb, strokes, source_labels=ids * 0.5, width=64, height=40)
+
+
 def test_paint_refuses_what_the_library_refuses():
     with pytest.raises(exemplar.InvalidArgumentError, match="^radius"):
         exemplar.directions(blob(), radius=0)

@@ -5,10 +5,15 @@
 // transparent surroundings of a boundary patch compare equal in the exemplar and on the canvas);
 // the exemplar patches are those centred on the shape mask (the engine's source mask is the
 // mask grown by the patch radius, so a boundary patch may reach into the transparent outside).
+// Several segmented textures (§4, Fig. 9) are the engine's label groups: a painted pixel takes
+// only patches of its stroke's segment, and segment boundaries are Shape Hint edges on both sides.
 
 #include "exemplar/paint/paint.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <deque>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -24,11 +29,22 @@ std::string size_of(const Image& image) {
     return std::to_string(image.width()) + "x" + std::to_string(image.height());
 }
 
+// An optional per-pixel map of the exemplar: 1 channel (`what`), the exemplar's size.
+Status check_exemplar_map(const Image& map, const Image& exemplar, const std::string& name,
+                          const std::string& what) {
+    if (map.same_size(exemplar) && map.channels() == 1) return Status::ok();
+    return invalid_argument(name + ": " + size_of(map) + " with " + std::to_string(map.channels()) +
+                            " channels (must be " + what + ", " + size_of(exemplar) +
+                            " like the exemplar)");
+}
+
 // The exemplar as the engine sees it: premultiplied RGBA, its shape mask and its angles.
 struct Exemplar {
     Image style;
     Image mask;
     Image angles;
+    Image labels;               // empty, or the segmentation (rounded)
+    std::set<long> segments;    // the labels that occur inside the shape
     bool has_boundary = false;  // some pixel outside the shape (else nothing to learn there)
 };
 
@@ -53,12 +69,7 @@ Result<Exemplar> prepare(const PaintSource& source, int threads) {
     }
 
     if (!source.mask.empty()) {
-        if (!source.mask.same_size(in) || source.mask.channels() != 1) {
-            return invalid_argument("source mask: " + size_of(source.mask) + " with " +
-                                    std::to_string(source.mask.channels()) +
-                                    " channels (must be 1 channel, " + size_of(in) +
-                                    " like the exemplar)");
-        }
+        EXEMPLAR_RETURN_IF_ERROR(check_exemplar_map(source.mask, in, "source mask", "1 channel"));
         e.mask = source.mask;
     } else {
         e.mask = Image(in.width(), in.height(), 1);
@@ -75,13 +86,21 @@ Result<Exemplar> prepare(const PaintSource& source, int threads) {
     }
     if (!any) return invalid_argument("source mask: empty (no pixel with alpha > 0 or mask > 0.5)");
 
-    if (!source.directions.empty()) {
-        if (!source.directions.same_size(in) || source.directions.channels() != 1) {
-            return invalid_argument("source directions: " + size_of(source.directions) + " with " +
-                                    std::to_string(source.directions.channels()) +
-                                    " channels (must be 1 channel of angles, " + size_of(in) +
-                                    " like the exemplar)");
+    if (!source.labels.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_exemplar_map(source.labels, in, "source labels", "1 channel"));
+        e.labels = source.labels;
+        for (std::size_t i = 0; i < e.labels.pixel_count(); ++i) {
+            float& v = e.labels.data()[i];
+            if (!std::isfinite(v)) return invalid_argument("source labels: NaN or infinity");
+            v = std::round(v);
+            if (e.mask.data()[i] > 0.5f) e.segments.insert(std::lround(v));
         }
+    }
+
+    if (!source.directions.empty()) {
+        EXEMPLAR_RETURN_IF_ERROR(
+            check_exemplar_map(source.directions, in, "source directions", "1 channel of angles"));
         e.angles = source.directions;
     } else {
         auto field = analyze_directions(in, {}, threads);
@@ -116,6 +135,57 @@ Image grow(const Image& mask, int radius) {
     return out;
 }
 
+// Every pixel outside the painted region takes the label of the nearest painted pixel (4-connected
+// breadth-first, in raster order, so ties are deterministic).
+Image spread_labels(const Image& labels, const Image& coverage) {
+    const int w = labels.width(), h = labels.height();
+    Image out = labels;
+    std::vector<char> done(static_cast<std::size_t>(w) * h, 0);
+    std::deque<int> queue;
+    for (int i = 0; i < w * h; ++i) {
+        if (coverage.data()[static_cast<std::size_t>(i)] > 0.5f) {
+            done[static_cast<std::size_t>(i)] = 1;
+            queue.push_back(i);
+        }
+    }
+    while (!queue.empty()) {
+        const int i = queue.front();
+        queue.pop_front();
+        const int x = i % w, y = i / w;
+        const int next[4] = {x > 0 ? i - 1 : -1, x + 1 < w ? i + 1 : -1, y > 0 ? i - w : -1,
+                             y + 1 < h ? i + w : -1};
+        for (int n : next) {
+            if (n < 0 || done[static_cast<std::size_t>(n)]) continue;
+            done[static_cast<std::size_t>(n)] = 1;
+            out.data()[static_cast<std::size_t>(n)] = out.data()[static_cast<std::size_t>(i)];
+            queue.push_back(n);
+        }
+    }
+    return out;
+}
+
+// Every painted label must name a segment of the exemplar (inside its shape); without a
+// segmentation, every label must be 0.
+Status check_painted_labels(const Exemplar& exemplar, const PaintCanvas& canvas) {
+    std::set<long> painted;
+    for (std::size_t i = 0; i < canvas.labels().pixel_count(); ++i) {
+        if (canvas.coverage().data()[i] > 0.5f)
+            painted.insert(std::lround(canvas.labels().data()[i]));
+    }
+    for (long label : painted) {
+        if (exemplar.labels.empty() && label != 0) {
+            return invalid_argument("labels: label " + std::to_string(label) +
+                                    " is painted but the source has no labels");
+        }
+        if (!exemplar.labels.empty() && exemplar.segments.count(label) == 0) {
+            return invalid_argument("labels: label " + std::to_string(label) +
+                                    " is painted but the source labels have no such segment "
+                                    "inside the exemplar's shape");
+        }
+    }
+    return Status::ok();
+}
+
 Image premultiplied(const Image& rgba) {
     Image out = rgba;
     for (int y = 0; y < out.height(); ++y) {
@@ -133,6 +203,7 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
     auto exemplar = prepare(source, context.threads);
     if (!exemplar.ok()) return exemplar.status();
+    EXEMPLAR_RETURN_IF_ERROR(check_painted_labels(*exemplar, canvas));
     const int w = canvas.width(), h = canvas.height();
     if (previous != nullptr &&
         (previous->width() != w || previous->height() != h || previous->channels() != 4)) {
@@ -177,17 +248,29 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     in.initial_target = previous != nullptr ? premultiplied(*previous) : Image(w, h, 4);
     in.source_orientation = std::move(exemplar->angles);
     in.target_orientation = direction_angles(canvas.directions());
+    if (!exemplar->labels.empty()) {
+        in.source_labels = exemplar->labels;
+        // Outside the strokes the nearest stroke's segment: the engine matches every pixel
+        // within a patch radius of the region (and an opaque exemplar's whole canvas), and drops
+        // the labels on a level where one of them has no source patch.
+        in.target_labels = spread_labels(canvas.labels(), canvas.coverage());
+    }
 
-    if (options.shape_weight > 0.0f && exemplar->has_boundary) {
+    // The Shape Hint: edges of the shape and between segments (an opaque exemplar's whole canvas
+    // has no shape edge, only segment boundaries, if it is segmented at all).
+    const bool segmented = exemplar->segments.size() > 1;
+    if (options.shape_weight > 0.0f && (exemplar->has_boundary || segmented)) {
         const ShapeHintOptions hint{options.edge_extent_px, options.shape_bins};
         const float area = static_cast<float>(options.patch_size * options.patch_size);
-        in.guides.push_back(
-            {"shape hint",
-             shape_hint(shape_edges(exemplar->mask), in.source_orientation, hint, context.threads),
-             shape_hint(shape_edges(canvas.coverage()), in.target_orientation, hint,
-                        context.threads),
-             options.shape_weight / area,
-             {}});
+        const Image target_shape =
+            exemplar->has_boundary ? canvas.coverage() : Image(w, h, 1, 1.0f);
+        in.guides.push_back({"shape hint",
+                             shape_hint(shape_edges(exemplar->mask, exemplar->labels),
+                                        in.source_orientation, hint, context.threads),
+                             shape_hint(shape_edges(target_shape, in.target_labels),
+                                        in.target_orientation, hint, context.threads),
+                             options.shape_weight / area,
+                             {}});
     }
 
     SynthesisOptions so;
@@ -196,6 +279,11 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     so.vote_coherence = options.vote_coherence;
     so.vote_histogram = options.vote_histogram;
     so.usage = options.usage;  // default None: Wexler et al.'s EM, as in the paper
+    // Two PatchMatch iterations for a level's first search (the engine's default is 6, for a
+    // cold start): every level but the coarsest starts from the upsampled field of the level
+    // before, and the coarsest runs 6 EM iterations. A third of the time; the tested quality
+    // holds (docs/PERFORMANCE.md "Brushables painting").
+    so.search_iterations = 2;
     auto synthesized = synthesize(std::move(in), so, context);
     if (!synthesized.ok()) return synthesized.status();
 

@@ -74,18 +74,36 @@ PixelRect unite(const PixelRect& a, const PixelRect& b) {
     return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
-// Distance from (px, py) to the stroke's centre line.
-double distance_to(const Stroke& s, double px, double py) {
-    double best = std::hypot(px - s.points[0].x, py - s.points[0].y);
-    for (std::size_t i = 1; i < s.points.size(); ++i) {
-        const double ax = s.points[i - 1].x, ay = s.points[i - 1].y;
-        const double dx = s.points[i].x - ax, dy = s.points[i].y - ay;
-        const double len2 = dx * dx + dy * dy;
-        double t = len2 > 0.0 ? ((px - ax) * dx + (py - ay) * dy) / len2 : 0.0;
-        t = std::clamp(t, 0.0, 1.0);
-        best = std::min(best, std::hypot(px - ax - t * dx, py - ay - t * dy));
+// Distance from (px, py) to the segment from a to b (a point when they coincide).
+double segment_distance(double px, double py, const StrokePoint& a, const StrokePoint& b) {
+    const double ax = a.x, ay = a.y;
+    const double dx = b.x - ax, dy = b.y - ay;
+    const double len2 = dx * dx + dy * dy;
+    double t = len2 > 0.0 ? ((px - ax) * dx + (py - ay) * dy) / len2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+// Adds the stroke's swept disc (pixel centres within `radius` of the centre line) to `coverage`
+// and paints its label there, segment by segment over each segment's own box: the cost grows
+// with the stroke's area, not with its bounding box times its number of points.
+void cover(const Stroke& s, double radius, Image& coverage, Image& labels) {
+    const int w = coverage.width(), h = coverage.height();
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const StrokePoint& a = s.points[i == 0 ? 0 : i - 1];
+        const StrokePoint& b = s.points[i];
+        if (i > 0 && a.x == b.x && a.y == b.y) continue;  // the point is covered already
+        Stroke segment;
+        segment.points = {a, b};
+        const PixelRect r = bounds_of(segment, radius, w, h);
+        for (int y = r.y0; y < r.y1; ++y) {
+            for (int x = r.x0; x < r.x1; ++x) {
+                if (segment_distance(x + 0.5, y + 0.5, a, b) > radius) continue;
+                coverage.at(x, y, 0) = 1.0f;
+                labels.at(x, y, 0) = static_cast<float>(s.label);
+            }
+        }
     }
-    return best;
 }
 
 }  // namespace
@@ -100,6 +118,15 @@ Status validate(const Stroke& stroke) {
     if (!(stroke.width_px > 0.0f && stroke.width_px <= 4096.0f)) {
         return invalid_argument("width: " + std::to_string(stroke.width_px) +
                                 " is invalid (must be > 0 and <= 4096 px)");
+    }
+    if (stroke.label < 0 || stroke.label > max_stroke_label) {
+        return invalid_argument("label: " + std::to_string(stroke.label) +
+                                " is invalid (must be 0.." + std::to_string(max_stroke_label) +
+                                ")");
+    }
+    if (stroke.comb && stroke.label != 0) {
+        return invalid_argument("label: " + std::to_string(stroke.label) +
+                                " on a combing stroke (it paints no segment; must be 0)");
     }
     return Status::ok();
 }
@@ -150,8 +177,10 @@ Image diffuse_strokes(std::span<const Stroke> strokes, int width, int height) {
 
 PaintCanvas::PaintCanvas(int width, int height)
     : coverage_(std::max(width, 0), std::max(height, 0), 1),
-      directions_(std::max(width, 0), std::max(height, 0), 2) {
+      directions_(std::max(width, 0), std::max(height, 0), 2),
+      labels_(std::max(width, 0), std::max(height, 0), 1) {
     coverage_.set_channel_names({"mask"});
+    labels_.set_channel_names({"label"});
     directions_.set_channel_names({"x", "y"});
 }
 
@@ -178,12 +207,7 @@ Result<PixelRect> PaintCanvas::add_strokes(std::span<const Stroke> strokes) {
     if (!comb) {
         for (const Stroke& s : strokes) {
             const double radius = 0.5 * static_cast<double>(s.width_px);
-            const PixelRect r = bounds_of(s, radius, w, h);
-            for (int y = r.y0; y < r.y1; ++y) {
-                for (int x = r.x0; x < r.x1; ++x) {
-                    if (distance_to(s, x + 0.5, y + 0.5) <= radius) coverage_.at(x, y, 0) = 1.0f;
-                }
-            }
+            cover(s, radius, coverage_, labels_);
         }
     }
 

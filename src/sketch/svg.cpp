@@ -416,19 +416,31 @@ std::string element_paths(const tinyxml2::XMLElement* e, std::vector<Path>& out)
     return ok ? "" : "malformed number attribute";
 }
 
-// The element's own stroke-width (attribute or `style` property, in user units), or `inherited`.
-double stroke_width_of(const tinyxml2::XMLElement* e, double inherited) {
-    std::string text;
+// The element's own presentation property `name`: its `style` declaration (which wins) or its
+// attribute, trimmed; "" if it has neither.
+std::string property_of(const tinyxml2::XMLElement* e, const std::string& name) {
+    const auto trim = [](std::string t) {
+        const auto b = t.find_first_not_of(" \t\n\r");
+        const auto f = t.find_last_not_of(" \t\n\r");
+        return b == std::string::npos ? std::string() : t.substr(b, f - b + 1);
+    };
     if (const char* style = e->Attribute("style")) {
-        const std::string css = style;
-        const auto at = css.find("stroke-width");
-        if (at != std::string::npos) {
-            const auto colon = css.find(':', at);
-            if (colon != std::string::npos) text = css.substr(colon + 1);
+        std::stringstream css(style);
+        std::string declaration;
+        while (std::getline(css, declaration, ';')) {
+            const auto colon = declaration.find(':');
+            if (colon != std::string::npos && trim(declaration.substr(0, colon)) == name) {
+                return trim(declaration.substr(colon + 1));
+            }
         }
     }
-    if (text.empty() && e->Attribute("stroke-width") != nullptr)
-        text = e->Attribute("stroke-width");
+    const char* attribute = e->Attribute(name.c_str());
+    return attribute != nullptr ? trim(attribute) : std::string();
+}
+
+// The element's own stroke-width (in user units), or `inherited`.
+double stroke_width_of(const tinyxml2::XMLElement* e, double inherited) {
+    const std::string text = property_of(e, "stroke-width");
     if (text.empty()) return inherited;
     char* end = nullptr;
     const double width = std::strtod(text.c_str(), &end);
@@ -436,7 +448,7 @@ double stroke_width_of(const tinyxml2::XMLElement* e, double inherited) {
 }
 
 std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transform,
-                 double parent_stroke_width, Drawing& drawing) {
+                 double parent_stroke_width, const std::string& parent_stroke, Drawing& drawing) {
     for (const tinyxml2::XMLElement* e = parent->FirstChildElement(); e != nullptr;
          e = e->NextSiblingElement()) {
         const std::string name = e->Name();
@@ -448,6 +460,8 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
         }
         const Affine m = compose(parent_transform, local);
         const double stroke_width = stroke_width_of(e, parent_stroke_width);
+        std::string stroke = property_of(e, "stroke");
+        if (stroke.empty() || stroke == "inherit") stroke = parent_stroke;
         if (name == "g" || name == "a" || name == "svg" || name == "switch") {
             Affine inner = m;
             if (name == "svg") {  // a nested viewport: its x/y offset
@@ -455,7 +469,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
                 inner = compose(
                     m, Affine::translation({attribute(e, "x", 0, &ok), attribute(e, "y", 0, &ok)}));
             }
-            const std::string error = walk(e, inner, stroke_width, drawing);
+            const std::string error = walk(e, inner, stroke_width, stroke, drawing);
             if (!error.empty()) return error;
             continue;
         }
@@ -467,6 +481,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
             drawing.paths.push_back(transformed(paths[k], m));
             drawing.ids.push_back(k == 0 ? id : id + std::string("#") + std::to_string(k));
             drawing.stroke_widths.push_back(stroke_width * std::sqrt(std::abs(m.determinant())));
+            drawing.strokes.push_back(stroke);
         }
     }
     return "";
@@ -528,7 +543,8 @@ Result<Drawing> parse_svg(const std::string& text, const std::string& name) {
         }
     }
     Affine identity;
-    const std::string error = walk(root, identity, stroke_width_of(root, 1.0), drawing);
+    const std::string error =
+        walk(root, identity, stroke_width_of(root, 1.0), property_of(root, "stroke"), drawing);
     if (!error.empty()) return invalid_argument(name + ": " + error);
     return drawing;
 }

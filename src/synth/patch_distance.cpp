@@ -1,6 +1,10 @@
 #include "patch_distance.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 namespace exemplar::synth {
 
@@ -41,6 +45,60 @@ float general_distance(const Level& L, int tx, int ty, int sx, int sy, float ang
     return sum;
 }
 
+// Rotated patches inside both images, flat and without weight maps (Brushables' direction
+// field, oriented stylization): the rotated source patch is gathered into a contiguous block,
+// whose rows then go through the same SIMD kernel as an unrotated patch (ssd_rows). The scalar
+// loop of general_distance is latency-bound on its chain of additions (one per channel and
+// pixel); this is the fast path's value (the reference's up to float summation order). Returns
+// false (nothing computed) when the patch or its rotated source reaches over a border or does
+// not fit the block.
+bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, float angle,
+                               float bound, float& sum) {
+    const int r = L.radius;
+    const int P = L.patch_size;
+    const int F = L.feature_channels();
+    constexpr int kBlockBytes = 8192;
+    constexpr int kMaxPixels = 15 * 15;
+    const int row_bytes = P * F;
+    if (P * row_bytes + 16 + kSsdSlack > kBlockBytes || P * P > kMaxPixels) return false;
+    // A rotated offset is at most r·√2 rounded: with that margin no source pixel needs a check.
+    const int margin = static_cast<int>(std::ceil(static_cast<float>(r) * 1.41422f));
+    if (tx < r || ty < r || tx >= L.tw - r || ty >= L.th - r || sx < margin || sy < margin ||
+        sx >= L.sw - margin || sy >= L.sh - margin) {
+        return false;
+    }
+    const float c = std::cos(angle);
+    const float s = std::sin(angle);
+    // The offsets first, then the copies.
+    int offset[kMaxPixels];
+    const int pixel_stride = L.source_features.stride();
+    const int row_stride = static_cast<int>(L.source_features.row_bytes());
+    for (int dy = -r, k = 0; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx, ++k) {
+            const RotatedOffset o = rotate_offset(dx, dy, c, s);
+            offset[k] = o.dy * row_stride + o.dx * pixel_stride;
+        }
+    }
+    const std::uint8_t* centre = L.source_features.pixel(sx, sy);
+    alignas(64) std::uint8_t block[kBlockBytes];
+    std::uint8_t* out = block;
+    if (F <= 16) {
+        // A fixed 16-byte copy is one vector move (the feature images have slack past their last
+        // pixel, the block past its last row, and the next pixel overwrites the rest).
+        for (int k = 0; k < P * P; ++k, out += F) std::memcpy(out, centre + offset[k], 16);
+    } else {
+        for (int k = 0; k < P * P; ++k, out += F) {
+            std::memcpy(out, centre + offset[k], static_cast<std::size_t>(F));
+        }
+    }
+    std::memset(out, 0, kSsdSlack);  // read by ssd_rows past the last row, weighted 0
+    const FeatureImage& t = L.target_features;
+    sum =
+        ssd_rows(t.pixel(tx - r, ty - r), t.row_bytes(), block, static_cast<std::size_t>(row_bytes),
+                 P, row_bytes, SsdWeights{L.row_weight.data(), 0}, bound);
+    return true;
+}
+
 }  // namespace
 
 float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, float angle) {
@@ -49,6 +107,11 @@ float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, f
 
 float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, float angle,
                              float bound) {
+    float sum = 0.0f;
+    if (angle != 0.0f && L.target_weights.empty() && L.pixel_weight.empty() &&
+        rotated_interior_distance(L, tx, ty, sx, sy, angle, bound, sum)) {
+        return sum;
+    }
     return general_distance<true>(L, tx, ty, sx, sy, angle, bound);
 }
 

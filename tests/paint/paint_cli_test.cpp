@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <utility>
 
 #include "cli_fixture.hpp"
 
@@ -85,6 +86,137 @@ TEST_F(Cli, PaintFromSvgUsesStrokeWidths) {
     const Image out = read("svg.png");
     EXPECT_GT(out.at(40, 24, 3), 0.5f);
     EXPECT_EQ(out.at(40, 30, 3), 0.0f);  // 6.5 px from the centre line: outside the 4 px radius
+}
+
+// Two textures side by side, opaque: warm horizontal stripes left, cool vertical stripes right;
+// and its segmentation, red left and blue right.
+Image two_textures(int w, int h) {
+    Image im(w, h, 3);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const bool left = x < w / 2;
+            const float stripe =
+                0.5f + 0.4f * std::sin(0.785398f * static_cast<float>(left ? y : x));
+            im.at(x, y, 0) = left ? 0.6f + 0.3f * stripe : 0.1f;
+            im.at(x, y, 1) = left ? 0.4f * stripe : 0.3f * stripe;
+            im.at(x, y, 2) = left ? 0.1f : 0.5f + 0.4f * stripe;
+        }
+    }
+    return im;
+}
+Image two_segments(int w, int h) {
+    Image im(w, h, 3);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) im.at(x, y, x < w / 2 ? 0 : 2) = 1.0f;
+    }
+    return im;
+}
+
+TEST_F(Cli, PaintWithLabelsUsesEachStrokesSegment) {
+    write("two.png", two_textures(48, 32));
+    write("segments.png", two_segments(48, 32));
+    // JSON labels as colours; an SVG's stroke colours.
+    std::ofstream(path("labels.json"))
+        << R"([{"points": [[4, 12], [76, 12]], "width": 16, "label": "#0000ff"},
+               {"points": [[4, 36], [76, 36]], "width": 16, "label": "#f00"}])";
+    std::ofstream(path("labels.svg"))
+        << R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 80 48">)"
+        << R"(<path d="M 4 12 L 76 12" stroke="#0000ff" stroke-width="16"/>)"
+        << R"(<path d="M 4 36 L 76 36" style="stroke:#ff0000;stroke-width:16"/></svg>)";
+    // A grey segmentation (levels 3 and 200) named by grey levels.
+    Image grey(48, 32, 1);
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 48; ++x) grey.at(x, y, 0) = (x < 24 ? 3.0f : 200.0f) / 255.0f;
+    }
+    write("grey_segments.png", grey);
+    std::ofstream(path("grey.json"))
+        << R"([{"points": [[4, 12], [76, 12]], "width": 16, "label": 200},
+               {"points": [[4, 36], [76, 36]], "width": 16, "label": 3}])";
+    for (const auto& [strokes, segments] :
+         {std::pair<std::string, std::string>{"labels.json", "segments.png"},
+          {"labels.svg", "segments.png"},
+          {"grey.json", "grey_segments.png"}}) {
+        const CliRun r = run({"paint", "--source", path("two.png"), "--source-labels",
+                              path(segments), "--strokes", path(strokes), "--width", "80",
+                              "--height", "48", "-o", path("labelled.png"), "--threads", "2"});
+        ASSERT_EQ(r.code, 0) << r.err;
+        const Image out = read("labelled.png");
+        // Top stroke: the blue segment's texture; bottom stroke: the red one's.
+        for (int x = 10; x < 70; x += 6) {
+            EXPECT_GT(out.at(x, 12, 2), out.at(x, 12, 0)) << strokes << " x " << x;
+            EXPECT_GT(out.at(x, 36, 0), out.at(x, 36, 2)) << strokes << " x " << x;
+        }
+    }
+}
+
+TEST_F(Cli, PaintRejectsBadLabels) {
+    write("two.png", two_textures(48, 32));
+    write("segments.png", two_segments(48, 32));
+    write("small.png", two_segments(40, 32));
+    std::ofstream(path("green.json"))
+        << R"([{"points": [[4, 12], [76, 12]], "width": 16, "label": "#ff0000"},
+               {"points": [[4, 36], [76, 36]], "width": 16, "label": "#00ff00"}])";
+    const std::vector<std::string> base = {"paint",    "--source", path("two.png"), "--width", "80",
+                                           "--height", "48"};
+    auto args = [&](std::vector<std::string> more) {
+        std::vector<std::string> a = base;
+        a.insert(a.end(), more.begin(), more.end());
+        return a;
+    };
+    expect_failure(args({"--source-labels", path("segments.png"), "--strokes", path("green.json")}),
+                   1,
+                   "green.json: stroke 1: label #00ff00 has no segment in --source-labels " +
+                       path("segments.png") + " (its colours: #0000ff, #ff0000)");
+    expect_failure(args({"--source-labels", path("small.png"), "--strokes", path("green.json")}), 1,
+                   "--source-labels " + path("small.png") + ": is 40x32 but --source is 48x32");
+    // A label without --source-labels, and labels that name no colour.
+    expect_failure(args({"--strokes", path("green.json")}), 1,
+                   "stroke 0: 'label' is read only with --source-labels");
+    std::ofstream(path("bad_label.json")) << R"([{"points": [[4, 12]], "label": 300}])";
+    expect_failure(
+        args({"--source-labels", path("segments.png"), "--strokes", path("bad_label.json")}), 1,
+        "stroke 0: 'label': '300' is invalid (must be 0..255, a grey level, or #rrggbb)");
+    std::ofstream(path("bad_colour.svg"))
+        << R"svg(<svg xmlns="http://www.w3.org/2000/svg"><path d="M 4 12 L 40 12" stroke="url(#g)"/></svg>)svg";
+    expect_failure(
+        args({"--source-labels", path("segments.png"), "--strokes", path("bad_colour.svg")}), 1,
+        "path 0: stroke colour: 'url(#g)' is invalid");
+    expect_failure(args({"--source-labels", path("none.png"), "--strokes", path("green.json")}), 1,
+                   "none.png");
+}
+
+// Issue 18's bad-input list: a stroke partly outside the canvas is clipped, an empty stroke list
+// paints nothing, an opaque RGB source without a mask is painted whole (no boundary), malformed
+// SVG is one line naming the file.
+TEST_F(Cli, PaintClipsStrokesAndAcceptsEmptyListsAndRgbSources) {
+    write("two.png", two_textures(48, 32));
+    std::ofstream(path("outside.json")) << R"([{"points": [[-30, 10], [50, 10]], "width": 12},
+               {"points": [[200, 200], [300, 260]], "width": 12}])";
+    CliRun r = run({"paint", "--source", path("two.png"), "--strokes", path("outside.json"),
+                    "--width", "40", "--height", "24", "-o", path("clipped.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    Image out = read("clipped.png");
+    EXPECT_EQ(out.width(), 40);
+    EXPECT_EQ(out.at(0, 10, 3), 1.0f);   // the clipped stroke, up to the canvas' left edge
+    EXPECT_EQ(out.at(20, 20, 3), 0.0f);  // the stroke far outside painted nothing
+    std::ofstream(path("empty.json")) << "[]";
+    r = run({"paint", "--source", path("two.png"), "--strokes", path("empty.json"), "--width", "40",
+             "--height", "24", "-o", path("empty.png")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    out = read("empty.png");
+    float alpha = 0.0f;
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 40; ++x) alpha = std::max(alpha, out.at(x, y, 3));
+    }
+    EXPECT_EQ(alpha, 0.0f);
+    std::ofstream(path("broken.svg")) << "<svg><path d=";
+    expect_failure({"paint", "--source", path("two.png"), "--strokes", path("broken.svg"),
+                    "--width", "40", "--height", "24"},
+                   1, "broken.svg");
+    std::ofstream(path("notobject.json")) << "[3]";
+    expect_failure({"paint", "--source", path("two.png"), "--strokes", path("notobject.json"),
+                    "--width", "40", "--height", "24"},
+                   1, "stroke 0: must be an object");
 }
 
 TEST_F(Cli, PaintRejectsBadInputs) {

@@ -355,6 +355,142 @@ TEST(Paint, RepaintChangesOnlyTheTouchedRegion) {
     EXPECT_GT(painted_new, 300);
 }
 
+// Two textures side by side (Brushables Fig. 9): warm horizontal stripes on the left (label 1),
+// cool vertical stripes on the right (label 2); `transparent_rim` fades alpha out over the outer
+// 6 px, so the exemplar has a shape boundary besides the segment boundary.
+PaintSource two_textures(bool transparent_rim) {
+    PaintSource s;
+    const int w = 64, h = 40;
+    s.image = Image(w, h, 4);
+    s.labels = Image(w, h, 1);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const bool left = x < w / 2;
+            const float grain = 0.1f * (hash01(x, y, 3) - 0.5f);
+            const float stripe =
+                0.5f + 0.4f * std::sin(static_cast<float>(left ? y : x) * 0.785398f);
+            float* p = s.image.pixel(x, y);
+            p[0] = left ? 0.6f + 0.3f * stripe + grain : 0.1f + grain;
+            p[1] = left ? 0.4f * stripe + grain : 0.3f * stripe + grain;
+            p[2] = left ? 0.1f + grain : 0.5f + 0.4f * stripe + grain;
+            const int rim = std::min({x, y, w - 1 - x, h - 1 - y});
+            p[3] =
+                transparent_rim ? std::clamp(static_cast<float>(rim - 2) / 4.0f, 0.0f, 1.0f) : 1.0f;
+            s.labels.at(x, y, 0) = left ? 1.0f : 2.0f;
+        }
+    }
+    s.directions = Image(w, h, 1);
+    return s;
+}
+
+// Share of the painted pixels whose exemplar patch lies in the segment their stroke painted.
+double own_segment_share(const PaintSource& source, const PaintCanvas& canvas, const Nnf& nnf) {
+    int own = 0, painted = 0;
+    for (int y = 0; y < canvas.height(); ++y) {
+        for (int x = 0; x < canvas.width(); ++x) {
+            if (canvas.coverage().at(x, y, 0) == 0.0f) continue;
+            const Match& m = nnf.at(x, y);
+            if (m.x < 0) continue;
+            ++painted;
+            own += source.labels.at(m.x, m.y, 0) == canvas.labels().at(x, y, 0) ? 1 : 0;
+        }
+    }
+    return painted > 0 ? static_cast<double>(own) / painted : 0.0;
+}
+
+TEST(Paint, LabelledStrokesTakeSourcesOnlyFromTheirSegment) {
+    for (const bool rim : {false, true}) {
+        const PaintSource source = two_textures(rim);
+        // Stroke 1 across the top with label 2, stroke 2 across the bottom with label 1; they
+        // touch in the middle, where the later one wins.
+        PaintCanvas canvas(96, 64);
+        Stroke top = stroke({{8, 20}, {88, 22}}, 26), bottom = stroke({{8, 44}, {88, 40}}, 26);
+        top.label = 2;
+        bottom.label = 1;
+        ASSERT_TRUE(canvas.add_stroke(top).ok());
+        ASSERT_TRUE(canvas.add_stroke(bottom).ok());
+        EXPECT_EQ(canvas.labels().at(48, 18, 0), 2.0f);
+        EXPECT_EQ(canvas.labels().at(48, 42, 0), 1.0f);
+        const auto labelled = paint(source, canvas, {}, RunContext(2));
+        ASSERT_TRUE(labelled.ok()) << labelled.status().message();
+        PaintSource unlabelled = source;
+        unlabelled.labels = Image();
+        PaintCanvas plain(96, 64);
+        top.label = bottom.label = 0;
+        ASSERT_TRUE(plain.add_stroke(top).ok() && plain.add_stroke(bottom).ok());
+        const auto free = paint(unlabelled, plain, {}, RunContext(2));
+        ASSERT_TRUE(free.ok());
+        const double with = own_segment_share(source, canvas, labelled->nnf);
+        const double without = own_segment_share(source, canvas, free->nnf);
+        std::printf("own-segment share (%s exemplar): labelled %.3f, unlabelled %.3f\n",
+                    rim ? "transparent-rim" : "opaque", with, without);
+        EXPECT_EQ(with, 1.0);
+        EXPECT_LT(without, 0.8);
+        // The colours follow: the top stroke is blue-dominant, the bottom one red-dominant.
+        const float* t = labelled->image.pixel(48, 16);
+        const float* b = labelled->image.pixel(48, 46);
+        EXPECT_GT(t[2], t[0]);
+        EXPECT_GT(b[0], b[2]);
+    }
+}
+
+TEST(Paint, LabelledRepaintKeepsTheSegments) {
+    const PaintSource source = two_textures(true);
+    PaintCanvas canvas(96, 64);
+    Stroke first = stroke({{8, 18}, {88, 18}}, 22);
+    first.label = 1;
+    ASSERT_TRUE(canvas.add_stroke(first).ok());
+    const auto before = paint(source, canvas, {}, RunContext(2));
+    ASSERT_TRUE(before.ok());
+    Stroke second = stroke({{8, 48}, {60, 44}}, 20);
+    second.label = 2;
+    const auto changed = canvas.add_stroke(second);
+    ASSERT_TRUE(changed.ok());
+    const auto after = repaint(source, canvas, before->image, *changed, {}, RunContext(2));
+    ASSERT_TRUE(after.ok()) << after.status().message();
+    // The repainted pixels (within the changed rectangle) come from their own segment.
+    int own = 0, painted = 0;
+    for (int y = changed->y0; y < changed->y1; ++y) {
+        for (int x = changed->x0; x < changed->x1; ++x) {
+            const Match& m = after->nnf.at(x, y);
+            if (canvas.coverage().at(x, y, 0) == 0.0f || m.x < 0) continue;
+            ++painted;
+            own += source.labels.at(m.x, m.y, 0) == canvas.labels().at(x, y, 0) ? 1 : 0;
+        }
+    }
+    EXPECT_GT(painted, 500);
+    EXPECT_EQ(own, painted);
+}
+
+TEST(Paint, LabelsWithoutASegmentAreRejectedByName) {
+    PaintSource source = two_textures(false);
+    PaintCanvas canvas(48, 32);
+    Stroke s = stroke({{4, 16}, {44, 16}}, 12);
+    s.label = 3;
+    ASSERT_TRUE(canvas.add_stroke(s).ok());
+    auto r = paint(source, canvas);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().message(),
+              "labels: label 3 is painted but the source labels have no such segment inside the "
+              "exemplar's shape");
+    source.labels = Image();
+    r = paint(source, canvas);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().message(), "labels: label 3 is painted but the source has no labels");
+    source = two_textures(false);
+    source.labels = Image(8, 8, 1);
+    r = paint(source, canvas);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.status().message().find("source labels: 8x8"), std::string::npos);
+    // A combing stroke paints no segment; labels outside 24 bits do not survive a float.
+    Stroke comb = stroke({{4, 16}, {44, 16}}, 12, true);
+    comb.label = 1;
+    EXPECT_EQ(canvas.add_stroke(comb).status().message(),
+              "label: 1 on a combing stroke (it paints no segment; must be 0)");
+    s.label = 1 << 24;
+    EXPECT_FALSE(canvas.add_stroke(s).ok());
+}
+
 TEST(Paint, BadInputsAreRejectedByName) {
     PaintCanvas canvas(32, 32);
     ASSERT_TRUE(canvas.add_stroke(stroke({{4, 16}, {28, 16}}, 10)).ok());

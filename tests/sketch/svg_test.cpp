@@ -34,6 +34,17 @@ TEST(SketchSvg, StrokeWidthsFromAttributesStylesAncestorsAndTransforms) {
     EXPECT_DOUBLE_EQ(d.stroke_widths[3], 6.0);  // 2 user units scaled by 3
 }
 
+TEST(SketchSvg, StrokePaintsFromAttributesStylesAndAncestors) {
+    const Drawing d = parse_ok(
+        R"svg(<path d="M0 0 L1 1"/>)svg"
+        R"svg(<g stroke="#ff0000"><path d="M0 0 L1 1"/><path style="stroke-width:2; stroke : blue" d="M0 0 L1 1"/></g>)svg");
+    ASSERT_EQ(d.strokes.size(), 3u);
+    EXPECT_EQ(d.strokes[0], "");         // none given
+    EXPECT_EQ(d.strokes[1], "#ff0000");  // inherited from the group
+    EXPECT_EQ(d.strokes[2], "blue");     // the style property wins, not confused with stroke-width
+    EXPECT_DOUBLE_EQ(d.stroke_widths[2], 2.0);
+}
+
 TEST(SketchSvg, AbsoluteAndRelativeCommands) {
     const Drawing d = parse_ok(
         R"svg(<path id="p" d="M10 10 L20 10 h5 v5 H40 V0 l-5-5 c1 1 2 2 3 3 S10 10 12 12 Q20 20 30 20 t10 0 Z"/>)svg");

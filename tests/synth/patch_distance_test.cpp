@@ -4,6 +4,7 @@
 #include <hwy/targets.h>
 
 #include <cmath>
+#include <utility>
 
 #include "level_builder.hpp"
 #include "ssd.hpp"
@@ -26,12 +27,12 @@ std::vector<float> random_weights(std::size_t n, std::uint64_t seed) {
     return v;
 }
 
-Level make_level(int patch, bool weight_map, float falloff, bool rotated) {
+Level make_level(int patch, bool weight_map, float falloff, bool rotated, int guide_channels = 2) {
     SynthesisInput in;
     in.style = testing::texture(30, 26, 3, 1);
     GuidePair g;
-    g.source = testing::texture(30, 26, 2, 2);
-    g.target = testing::texture(22, 20, 2, 3);
+    g.source = testing::texture(30, 26, guide_channels, 2);
+    g.target = testing::texture(22, 20, guide_channels, 3);
     g.weight = 0.7f;
     if (weight_map) g.target_weight_map = testing::texture(22, 20, 1, 4);
     in.guides.push_back(g);
@@ -74,6 +75,34 @@ TEST(PatchDistance, WeightedAndRotatedPathsMatchReference) {
             const float angle = L.angle_for(L.target_index(tx, ty), 12, 11);
             EXPECT_FLOAT_EQ(patch_distance(L, tx, ty, 12, 11, angle),
                             patch_distance_reference(L, tx, ty, 12, 11, angle));
+        }
+    }
+}
+
+// The rotated path without weight maps gathers the rotated source patch and runs the SIMD row
+// kernel: the reference's value up to float summation order, at every position (inside, where it
+// applies, and over the borders, where the general path takes over), for feature counts up to
+// and over the 16 bytes it copies per pixel, and with early termination.
+TEST(PatchDistance, RotatedGatherMatchesReference) {
+    for (int guide_channels : {2, 9, 15}) {
+        for (int patch : {3, 5, 7}) {
+            const Level L = make_level(patch, false, 0.0f, true, guide_channels);
+            for (int ty = 0; ty < L.th; ty += 2) {
+                for (int tx = 0; tx < L.tw; tx += 2) {
+                    for (const auto& [sx, sy] : {std::pair{12, 11}, {3, 4}, {27, 24}, {0, 13}}) {
+                        const float angle = L.angle_for(L.target_index(tx, ty), sx, sy);
+                        const float ref = patch_distance_reference(L, tx, ty, sx, sy, angle);
+                        ASSERT_NEAR(patch_distance(L, tx, ty, sx, sy, angle), ref,
+                                    1e-5f * (1.0f + ref))
+                            << "F " << L.feature_channels() << " patch " << patch << " t " << tx
+                            << "," << ty << " s " << sx << "," << sy;
+                        if (ref > 0.0f) {
+                            EXPECT_GT(patch_distance(L, tx, ty, sx, sy, angle, 0.5f * ref),
+                                      0.5f * ref);
+                        }
+                    }
+                }
+            }
         }
     }
 }

@@ -15,7 +15,9 @@
 ///   total is ≈ λ·D_shape of eq. 4);
 /// - the coherence-weighted vote (eq. 8, σ_c² = `vote_coherence`) and its colour-histogram
 ///   weight (eq. 7, `vote_histogram`);
-/// - only exemplar patches centred on the exemplar's shape (alpha > 0 or the given mask) are used.
+/// - only exemplar patches centred on the exemplar's shape (alpha > 0 or the given mask) are used;
+/// - with a segmented exemplar (`PaintSource::labels`), only patches of the stroke's segment, the
+///   engine's label groups; segment boundaries are Shape Hint edges (§4).
 /// An exemplar without a boundary (RGB, opaque, or a mask covering all of it) has no boundary
 /// effects to transfer: the whole canvas (on a repaint, the whole changed rectangle) is then
 /// synthesized and cut to the strokes, and the Shape Hint is off.
@@ -42,6 +44,13 @@ struct PaintSource {
     /// Optional direction field d_s as angles (1 channel, radians, counter-clockwise on screen;
     /// `exemplar directions` writes it); default: `analyze_directions` with its defaults.
     Image directions;
+    /// Optional segmentation of the exemplar into several textures (Brushables §4, Fig. 9): 1
+    /// channel, the exemplar's size, one integer label per pixel (compared after rounding). A
+    /// painted pixel then takes only exemplar patches centred on its stroke's segment
+    /// (`Stroke::label`), and segment boundaries count as edges for the Shape Hint, on the
+    /// exemplar and between differently labelled strokes on the canvas. Without it every stroke
+    /// label must be 0.
+    Image labels;
 };
 
 /// Options of `paint`. Defaults are the paper's (§3.3-3.4) unless noted.
@@ -91,7 +100,9 @@ struct PaintResult {
 
 /// Synthesizes the painted region of `canvas` from `source`. An empty painted region gives a
 /// transparent image. Errors (InvalidArgument) name the input: an exemplar without 3 or 4
-/// channels, a mask or direction field of another size, an empty shape mask, invalid options.
+/// channels, a mask, direction field or label map of another size, an empty shape mask, a
+/// painted label with no segment in the exemplar (inside its shape), a label ≠ 0 painted without
+/// source labels, invalid options.
 /// `context`: threads (the result does not depend on them), progress and cancellation.
 Result<PaintResult> paint(const PaintSource& source, const PaintCanvas& canvas,
                           const PaintOptions& options = {}, const RunContext& context = {});

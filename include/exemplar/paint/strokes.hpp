@@ -40,10 +40,18 @@ struct Stroke {
     /// A combing stroke changes only the directions of pixels already painted and paints no new
     /// ones; a painting stroke (false, the default) adds its swept disc and gives it direction.
     bool comb = false;
+    /// Segment label of a painting stroke (several segmented textures, Brushables §4): its pixels
+    /// take only exemplar patches of this segment (`PaintSource::labels`). 0..2^24 − 1 (exact as
+    /// a float); default 0. A combing stroke paints no segment: its label must stay 0.
+    int label = 0;
 };
 
-/// Checks a stroke: at least one point, finite coordinates, 0 < width ≤ 4096 px. The message
-/// names the field (`points`, `width`).
+/// Largest stroke label (2^24 − 1: labels travel as floats, exact up to 2^24; a 24-bit colour).
+inline constexpr int max_stroke_label = (1 << 24) - 1;
+
+/// Checks a stroke: at least one point, finite coordinates, 0 < width ≤ 4096 px, label in
+/// 0..max_stroke_label (0 for a combing stroke). The message names the field (`points`,
+/// `width`, `label`).
 Status validate(const Stroke& stroke);
 
 /// A rectangle of pixels [x0, x1) × [y0, y1) (empty when x0 ≥ x1 or y0 ≥ y1).
@@ -72,10 +80,11 @@ public:
     int height() const { return coverage_.height(); }
 
     /// Applies one stroke (painting or combing): a painting stroke adds its swept disc to the
-    /// region, and both kinds blend their diffused direction into the field (eq. 3) — a combing
-    /// stroke only inside the painted region, a painting stroke wherever its kernel reaches.
-    /// Returns the pixels that may have changed (the stroke's bounding box grown by its support,
-    /// clipped to the canvas), or the validation error (the canvas is then unchanged).
+    /// region (and paints its label there, over earlier strokes), and both kinds blend their
+    /// diffused direction into the field (eq. 3) — a combing stroke only inside the painted region,
+    /// a painting stroke wherever its kernel reaches. Returns the pixels that may have changed (the
+    /// stroke's bounding box grown by its support, clipped to the canvas), or the validation error
+    /// (the canvas is then unchanged).
     Result<PixelRect> add_stroke(const Stroke& stroke);
 
     /// Applies several strokes at once: their kernels are summed before the blend (Brushables
@@ -87,10 +96,14 @@ public:
     const Image& coverage() const { return coverage_; }
     /// The direction field: 2 channels "x", "y", unit vectors, zero where no stroke has reached.
     const Image& directions() const { return directions_; }
+    /// The painted segmentation: 1 channel "label", the label of the last painting stroke that
+    /// covered each pixel (0 where none did).
+    const Image& labels() const { return labels_; }
 
 private:
     Image coverage_;
     Image directions_;
+    Image labels_;
 };
 
 }  // namespace exemplar::paint

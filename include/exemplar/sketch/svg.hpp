@@ -32,6 +32,9 @@ struct Drawing {
     /// else its ancestors', else 1, SVG's default) in root user units: scaled by the square root
     /// of the transform's determinant.
     std::vector<double> stroke_widths;
+    /// Per path: its stroke paint as written (the element's `stroke` attribute or `style`
+    /// property, else its ancestors', trimmed; "" if none), e.g. "#ff0000", "red", "none".
+    std::vector<std::string> strokes;
 };
 
 /// Parses SVG text. `name` is used in messages. Errors (InvalidArgument): not XML, no `<svg>`
