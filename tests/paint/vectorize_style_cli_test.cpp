@@ -37,9 +37,9 @@ protected:
 TEST_F(VectorizeStyleCli, RendersTheDrawingAsTheLibraryDoes) {
     text("drawing.svg", kDrawing);
     text("style.json", palette_json(R"({"default": "ink"})", R"(, "background": "paper")"));
-    const CliRun r = run({"vectorize-style", path("drawing.svg"), "--palette", path("style.json"),
-                          "-o", path("out/styled.png"), "--width", "120", "--threads", "2",
-                          "--rotations", "1"});
+    const CliRun r =
+        run({"vectorize-style", path("drawing.svg"), "--palette", path("style.json"), "-o",
+             path("out/styled.png"), "--width", "120", "--threads", "2", "--rotations", "1"});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out, path("out/styled.png") + "\n");
     const Image out = read("out/styled.png");

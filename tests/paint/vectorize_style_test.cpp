@@ -19,8 +19,8 @@ namespace exemplar::paint {
 namespace {
 
 float noise(int x, int y) {
-    std::uint32_t h = static_cast<std::uint32_t>(x) * 0x8da6b343u ^
-                      static_cast<std::uint32_t>(y) * 0xd8163841u;
+    std::uint32_t h =
+        static_cast<std::uint32_t>(x) * 0x8da6b343u ^ static_cast<std::uint32_t>(y) * 0xd8163841u;
     h ^= h >> 13;
     h *= 0x5bd1e995u;
     h ^= h >> 15;
@@ -127,7 +127,7 @@ TEST(VectorizeStyle, BackgroundFillsTheCanvasAndShapesGoOverIt) {
         for (int x = 0; x < 20; ++x) yellow += out->at(x, y, 1) - out->at(x, y, 2);
     }
     EXPECT_EQ(alpha, 1.0);
-    EXPECT_GT(yellow / (20 * 50), 0.6);  // green minus blue: yellow
+    EXPECT_GT(yellow / (20 * 50), 0.6);                       // green minus blue: yellow
     EXPECT_GT(out->at(60, 45, 1) - out->at(60, 45, 0), 0.4);  // the shape stays green
 }
 
@@ -174,10 +174,10 @@ TEST(VectorizeStyle, RejectsBadDrawingsAndPalettes) {
         return r.ok() ? std::string("ok") : r.status().message();
     };
     // A drawing without paths.
-    EXPECT_EQ(message(vectorize_style(
-                  drawing(R"(<svg xmlns="http://www.w3.org/2000/svg"><g/></svg>)"), style(), 50,
-                  50)),
-              "drawing: holds no path");
+    EXPECT_EQ(
+        message(vectorize_style(drawing(R"(<svg xmlns="http://www.w3.org/2000/svg"><g/></svg>)"),
+                                style(), 50, 50)),
+        "drawing: holds no path");
     // A stroke colour nothing is assigned to.
     StylePalette p = style();
     p.strokes = {{".sea", "blue"}};
@@ -216,8 +216,8 @@ TEST(PolygonMask, NonzeroKeepsOppositelyWoundHolesAndEvenOddAnyHole) {
     int inside = 0;
     for (float v : nonzero.data()) inside += v > 0.5f ? 1 : 0;
     EXPECT_EQ(inside, 16 * 16 - 8 * 8);
-    const std::vector<std::vector<StrokePoint>> same_way = {
-        {{2, 2}, {18, 2}, {18, 18}, {2, 18}}, {{6, 6}, {14, 6}, {14, 14}, {6, 14}}};
+    const std::vector<std::vector<StrokePoint>> same_way = {{{2, 2}, {18, 2}, {18, 18}, {2, 18}},
+                                                            {{6, 6}, {14, 6}, {14, 14}, {6, 14}}};
     EXPECT_EQ(polygon_mask(same_way, 20, 20).at(10, 10, 0), 1.0f);
     EXPECT_EQ(polygon_mask(same_way, 20, 20, /*even_odd=*/true).at(10, 10, 0), 0.0f);
 }
@@ -269,8 +269,9 @@ TEST(StylePaletteFile, ReadsFeaturesAssignmentsAndRelativeImages) {
                   "unknown key 'colours' (known: palette, line_features, area_features, strokes, "
                   "fills, background)");
     EXPECT_EQ(fails(R"({"palette": "img/p.pgm", "fills": {"#fff": "sky"}})"),
-              bad + "fills: \"#ffffff\" names area feature \"sky\", which is not defined "
-                    "(defined: none)");
+              bad +
+                  "fills: \"#ffffff\" names area feature \"sky\", which is not defined "
+                  "(defined: none)");
     EXPECT_NE(fails(R"({"palette": "missing.png"})").find(bad + "palette: "), std::string::npos);
     fs::remove_all(dir);
 }
