@@ -217,11 +217,11 @@ def stylize(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level searches plain nearest neighbours from the budget's
-          field, this many iterations instead of finest-em-iterations budget ones: the seams
-          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
-          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
-          iterations.
+          Error budget and uniform usage: the finest level searches plain nearest neighbours
+          from the field the usage laid out, this many iterations instead of finest-em-
+          iterations ones: the seams of its mosaic move to where the pieces agree (closer to
+          the exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -416,11 +416,11 @@ def stylit(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level searches plain nearest neighbours from the budget's
-          field, this many iterations instead of finest-em-iterations budget ones: the seams
-          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
-          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
-          iterations.
+          Error budget and uniform usage: the finest level searches plain nearest neighbours
+          from the field the usage laid out, this many iterations instead of finest-em-
+          iterations ones: the seams of its mosaic move to where the pieces agree (closer to
+          the exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -667,11 +667,11 @@ def animate(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level searches plain nearest neighbours from the budget's
-          field, this many iterations instead of finest-em-iterations budget ones: the seams
-          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
-          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
-          iterations.
+          Error budget and uniform usage: the finest level searches plain nearest neighbours
+          from the field the usage laid out, this many iterations instead of finest-em-
+          iterations ones: the seams of its mosaic move to where the pieces agree (closer to
+          the exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -1273,6 +1273,7 @@ def fill(
     rotations: int = 5,
     rotation_range: float = 30.0,
     vote_histogram: float = 0.0,
+    polish_iterations: int = 2,
     threads: int = 0,
     progress: Callable[[Progress], bool | None] | None = None,
     cancel: CancelToken | None = None,
@@ -1311,6 +1312,10 @@ def fill(
       vote_histogram (float, default 0.0)
           Colour-histogram weight of the vote: favours colours the fill lacks; 0 = off
           (default; with --usage uniform it overshoots, docs/feature.md). Range 0.0..100.0.
+      polish_iterations (int, default 2)
+          Plain nearest-neighbour EM iterations on the finest level, from the layout the
+          usage made on the coarser ones; 0 = the usage on the finest level too (ours: half
+          the time at 1 MPix, docs/feature.md). Range 0..100 iterations.
       threads (int, default 0)
           Threads; 0 = all cores. The result is the same for any count.
       progress (Callable[[Progress], bool | None] | None, default None)
@@ -1347,6 +1352,7 @@ def vectorize_style(
     rotations: int = 5,
     rotation_range: float = 30.0,
     vote_histogram: float = 0.0,
+    polish_iterations: int = 2,
     threads: int = 0,
     progress: Callable[[Progress], bool | None] | None = None,
     cancel: CancelToken | None = None,
@@ -1414,6 +1420,10 @@ def vectorize_style(
       vote_histogram (float, default 0.0)
           Colour-histogram weight of the vote: favours colours the fill lacks; 0 = off
           (default; with --usage uniform it overshoots, docs/feature.md). Range 0.0..100.0.
+      polish_iterations (int, default 2)
+          Plain nearest-neighbour EM iterations on the finest level, from the layout the
+          usage made on the coarser ones; 0 = the usage on the finest level too (ours: half
+          the time at 1 MPix, docs/feature.md). Range 0..100 iterations.
       threads (int, default 0)
           Threads; 0 = all cores. The result is the same for any count.
       progress (Callable[[Progress], bool | None] | None, default None)
