@@ -446,6 +446,7 @@ struct Presentation {
     std::string stroke = "none";   // SVG's default: no stroke
     std::string fill = "#000000";  // SVG's default: black
     bool even_odd = false;         // fill-rule
+    std::string classes;           // the element's and its ancestors' `class` attributes
 };
 
 // `inherited` with the element's own properties applied.
@@ -466,6 +467,11 @@ Presentation presentation_of(const tinyxml2::XMLElement* e, Presentation inherit
     }
     if (const std::string rule = property_of(e, "fill-rule"); !rule.empty()) {
         if (rule != "inherit") inherited.even_odd = rule == "evenodd";
+    }
+    if (const char* classes = e->Attribute("class")) {
+        // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "literal" + string.
+        if (!inherited.classes.empty()) inherited.classes.push_back(' ');
+        inherited.classes.append(classes);
     }
     return inherited;
 }
@@ -498,7 +504,6 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
         const std::string error = element_paths(e, paths);
         if (!error.empty()) return describe(e) + ": " + error;
         const std::string id = e->Attribute("id") != nullptr ? e->Attribute("id") : "";
-        const std::string classes = e->Attribute("class") != nullptr ? e->Attribute("class") : "";
         for (std::size_t k = 0; k < paths.size(); ++k) {
             drawing.paths.push_back(transformed(paths[k], m));
             drawing.ids.push_back(k == 0 ? id : id + std::string("#") + std::to_string(k));
@@ -506,7 +511,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
                                             std::sqrt(std::abs(m.determinant())));
             drawing.strokes.push_back(style.stroke);
             drawing.fills.push_back(style.fill);
-            drawing.classes.push_back(classes);
+            drawing.classes.push_back(style.classes);
             drawing.elements.push_back(drawing.element_count);
             drawing.even_odd.push_back(style.even_odd ? 1 : 0);
         }

@@ -57,6 +57,20 @@ TEST_F(VectorizeStyleCli, RendersTheDrawingAsTheLibraryDoes) {
     EXPECT_LE(max_abs_diff(out, *expected), 0.5f / 255.0f);  // PNG's 8 bits
 }
 
+// The fjord of examples/feature: filled shapes, a background and two line features.
+TEST_F(VectorizeStyleCli, BundledExampleGivesItsPicture) {
+    const std::string dir = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/feature/";
+    const CliRun r = run({"vectorize-style", dir + "fjord.svg", "--palette",
+                          dir + "fjord_style.json", "-o", path("fjord.png"), "-q", "--threads",
+                          "2"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Image out = read("fjord.png");
+    const Result<Image> picture = load_image(dir + "fjord.png");
+    ASSERT_TRUE(picture.ok()) << picture.status().message();
+    ASSERT_TRUE(out.same_size(*picture));
+    EXPECT_LE(max_abs_diff(out, *picture), 1.5f / 255.0f);
+}
+
 TEST_F(VectorizeStyleCli, RejectsBadInputs) {
     text("drawing.svg", kDrawing);
     text("empty.svg", R"(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 10 10"/>)");

@@ -37,14 +37,15 @@ TEST(SketchSvg, StrokeWidthsFromAttributesStylesAncestorsAndTransforms) {
 TEST(SketchSvg, StrokeAndFillColoursClassesAndElements) {
     const Drawing d = parse_ok(
         R"svg(<path d="M0 0 L1 1"/>)svg"
-        R"svg(<g fill="none" stroke="Black"><path class="a b" d="M0 0 L1 1 M2 2 L3 3"/>)svg"
+        R"svg(<g fill="none" stroke="Black" class="g"><path class="a b" d="M0 0 L1 1 M2 2 L3 3"/>)svg"
         R"svg(<rect style="fill: rgb(255, 0, 0); stroke:#0F0" width="2" height="2"/></g>)svg"
         R"svg(<circle fill="transparent" stroke="url(#g)" fill-rule="evenodd" r="1"/>)svg");
     ASSERT_EQ(d.paths.size(), 5u);
     EXPECT_EQ(d.strokes,
               (std::vector<std::string>{"none", "#000000", "#000000", "#00ff00", "url(#g)"}));
     EXPECT_EQ(d.fills, (std::vector<std::string>{"#000000", "none", "none", "#ff0000", "none"}));
-    EXPECT_EQ(d.classes[1], "a b");
+    EXPECT_EQ(d.classes[1], "g a b");  // the group's class, then the path's
+    EXPECT_EQ(d.classes[4], "");
     EXPECT_EQ(d.elements, (std::vector<int>{0, 1, 1, 2, 3}));  // two subpaths, one element
     EXPECT_EQ(d.element_count, 4);
     EXPECT_EQ(d.even_odd[4], 1);

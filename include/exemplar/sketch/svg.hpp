@@ -38,7 +38,8 @@ struct Drawing {
     std::vector<std::string> strokes;
     /// Per path: its `fill` colour, the same way (SVG's default: black, "#000000").
     std::vector<std::string> fills;
-    /// Per path: the element's `class` attribute ("" if none).
+    /// Per path: the `class` attributes of its ancestors and of the element, outermost first,
+    /// separated by spaces ("" if none), so that a group's class applies to its paths.
     std::vector<std::string> classes;
     /// Per path: the index of the element it came from (subpaths of one element share it, as
     /// they share one fill: holes are subpaths), counting drawable elements from 0.
