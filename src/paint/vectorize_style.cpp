@@ -122,6 +122,28 @@ Image crop(const Image& image, const PixelRect& box) {
     return out;
 }
 
+// doc[key] as {name: {...}}: `read(name, object, at)` for each entry, `at` the message prefix.
+template <class Read>
+Status read_features(const json& doc, const char* key, const std::string& where, Read read) {
+    if (!doc.contains(key)) return Status::ok();
+    if (!doc[key].is_object()) {
+        return invalid_argument(where + key + ": must be an object {name: feature}");
+    }
+    for (const auto& [name, f] : doc[key].items()) {
+        const std::string at = where + key + ": \"" + name + "\": ";
+        if (!f.is_object()) return invalid_argument(at + "must be an object");
+        EXEMPLAR_RETURN_IF_ERROR(read(name, f, at));
+    }
+    return Status::ok();
+}
+
+// The feature called `name` (validate made sure it exists).
+template <class Feature>
+const Feature& named(const std::vector<Feature>& features, const std::string& name) {
+    return *std::find_if(features.begin(), features.end(),
+                         [&](const Feature& f) { return f.name == name; });
+}
+
 // Pastes `piece` into `picture` at (x0, y0) where `mask` (piece size) is inside.
 void paste_inside(Image& picture, const Image& piece, const Image& mask, int x0, int y0) {
     for (int y = 0; y < piece.height(); ++y) {
@@ -307,67 +329,59 @@ Result<StylePalette> load_style_palette(const std::string& path) {
     if (!image.ok()) return image.status();
     palette.palette = std::move(image).value();
 
-    if (doc.contains("line_features")) {
-        if (!doc["line_features"].is_object()) {
-            return invalid_argument(where + "line_features: must be an object {name: feature}");
+    const auto read_line = [&](const std::string& name, const json& f,
+                               const std::string& at) -> Status {
+        EXEMPLAR_RETURN_IF_ERROR(check_keys(f, {"path", "width", "brush_width", "snap"}, at));
+        StyleLineFeature feature;
+        feature.name = name;
+        if (!f.contains("path") || !read_points(f["path"], feature.selection.points)) {
+            return invalid_argument(at + "path: must be an array of [x, y] palette pixels");
         }
-        for (const auto& [name, f] : doc["line_features"].items()) {
-            const std::string at = where + "line_features: \"" + name + "\": ";
-            if (!f.is_object()) return invalid_argument(at + "must be an object");
-            EXEMPLAR_RETURN_IF_ERROR(check_keys(f, {"path", "width", "brush_width", "snap"}, at));
-            StyleLineFeature feature;
-            feature.name = name;
-            if (!f.contains("path") || !read_points(f["path"], feature.selection.points)) {
-                return invalid_argument(at + "path: must be an array of [x, y] palette pixels");
-            }
-            if (f.contains("width")) {
-                if (!f["width"].is_number()) return invalid_argument(at + "width: not a number");
-                feature.selection.width_px = f["width"].get<float>();
-            }
-            if (f.contains("brush_width")) {
-                if (!f["brush_width"].is_number()) {
-                    return invalid_argument(at + "brush_width: not a number");
-                }
-                feature.brush_width_px = f["brush_width"].get<float>();
-            }
-            if (f.contains("snap")) {
-                if (!f["snap"].is_boolean()) return invalid_argument(at + "snap: not true/false");
-                feature.snap = f["snap"].get<bool>();
-            }
-            palette.line_features.push_back(std::move(feature));
+        if (f.contains("width")) {
+            if (!f["width"].is_number()) return invalid_argument(at + "width: not a number");
+            feature.selection.width_px = f["width"].get<float>();
         }
-    }
-    if (doc.contains("area_features")) {
-        if (!doc["area_features"].is_object()) {
-            return invalid_argument(where + "area_features: must be an object {name: feature}");
-        }
-        for (const auto& [name, f] : doc["area_features"].items()) {
-            const std::string at = where + "area_features: \"" + name + "\": ";
-            if (!f.is_object()) return invalid_argument(at + "must be an object");
-            EXEMPLAR_RETURN_IF_ERROR(check_keys(f, {"region", "polygon"}, at));
-            StyleAreaFeature feature;
-            feature.name = name;
-            if (f.contains("region") == f.contains("polygon")) {
-                return invalid_argument(at + "needs either region (an image) or polygon");
+        if (f.contains("brush_width")) {
+            if (!f["brush_width"].is_number()) {
+                return invalid_argument(at + "brush_width: not a number");
             }
-            if (f.contains("region")) {
-                if (!f["region"].is_string()) return invalid_argument(at + "region: not a file");
-                auto region = image_at("area_features: \"" + name + "\": region",
-                                       f["region"].get<std::string>());
-                if (!region.ok()) return region.status();
-                feature.region = std::move(region).value();
-            } else {
-                std::vector<StrokePoint> polygon;
-                if (!read_points(f["polygon"], polygon) || polygon.size() < 3) {
-                    return invalid_argument(
-                        at + "polygon: must be an array of at least 3 [x, y] palette pixels");
-                }
-                feature.region =
-                    polygon_mask({&polygon, 1}, palette.palette.width(), palette.palette.height());
-            }
-            palette.area_features.push_back(std::move(feature));
+            feature.brush_width_px = f["brush_width"].get<float>();
         }
-    }
+        if (f.contains("snap")) {
+            if (!f["snap"].is_boolean()) return invalid_argument(at + "snap: not true/false");
+            feature.snap = f["snap"].get<bool>();
+        }
+        palette.line_features.push_back(std::move(feature));
+        return Status::ok();
+    };
+    const auto read_area = [&](const std::string& name, const json& f,
+                               const std::string& at) -> Status {
+        EXEMPLAR_RETURN_IF_ERROR(check_keys(f, {"region", "polygon"}, at));
+        StyleAreaFeature feature;
+        feature.name = name;
+        if (f.contains("region") == f.contains("polygon")) {
+            return invalid_argument(at + "needs either region (an image) or polygon");
+        }
+        if (f.contains("region")) {
+            if (!f["region"].is_string()) return invalid_argument(at + "region: not a file");
+            auto region =
+                image_at("area_features: \"" + name + "\": region", f["region"].get<std::string>());
+            if (!region.ok()) return region.status();
+            feature.region = std::move(region).value();
+        } else {
+            std::vector<StrokePoint> polygon;
+            if (!read_points(f["polygon"], polygon) || polygon.size() < 3) {
+                return invalid_argument(
+                    at + "polygon: must be an array of at least 3 [x, y] palette pixels");
+            }
+            feature.region =
+                polygon_mask({&polygon, 1}, palette.palette.width(), palette.palette.height());
+        }
+        palette.area_features.push_back(std::move(feature));
+        return Status::ok();
+    };
+    EXEMPLAR_RETURN_IF_ERROR(read_features(doc, "line_features", where, read_line));
+    EXEMPLAR_RETURN_IF_ERROR(read_features(doc, "area_features", where, read_area));
     EXEMPLAR_RETURN_IF_ERROR(read_assignments(doc, "strokes", where, palette.strokes));
     EXEMPLAR_RETURN_IF_ERROR(read_assignments(doc, "fills", where, palette.fills));
     if (doc.contains("background")) {
@@ -428,8 +442,7 @@ Result<Image> vectorize_style(const sketch::Drawing& drawing, const StylePalette
         }
     }
     auto area_feature = [&](const std::string& name) -> const StyleAreaFeature& {
-        return *std::find_if(palette.area_features.begin(), palette.area_features.end(),
-                             [&](const StyleAreaFeature& f) { return f.name == name; });
+        return named(palette.area_features, name);
     };
     const Image palette_rgba = with_channels(palette.palette, 4);
 
@@ -484,9 +497,7 @@ Result<Image> vectorize_style(const sketch::Drawing& drawing, const StylePalette
     std::map<std::string, LineFeature> features;
     for (std::size_t i = 0; i < n; ++i) {
         if (line_of[i].empty() || features.contains(line_of[i])) continue;
-        const StyleLineFeature& spec =
-            *std::find_if(palette.line_features.begin(), palette.line_features.end(),
-                          [&](const StyleLineFeature& f) { return f.name == line_of[i]; });
+        const StyleLineFeature& spec = named(palette.line_features, line_of[i]);
         auto feature = pick_line_feature(palette.palette, spec.selection, options.brush, spec.snap,
                                          context.threads);
         if (!feature.ok()) {
@@ -499,9 +510,7 @@ Result<Image> vectorize_style(const sketch::Drawing& drawing, const StylePalette
         if (line_of[i].empty()) continue;
         if (context.cancelled()) return cancelled();
         const LineFeature& feature = features.at(line_of[i]);
-        const StyleLineFeature& spec =
-            *std::find_if(palette.line_features.begin(), palette.line_features.end(),
-                          [&](const StyleLineFeature& f) { return f.name == line_of[i]; });
+        const StyleLineFeature& spec = named(palette.line_features, line_of[i]);
         const float brush_width =
             spec.brush_width_px > 0.0f ? spec.brush_width_px : strokes[i].width_px;
         if (Status st = validate(Stroke{strokes[i].points, brush_width, false}); !st.is_ok()) {
