@@ -60,9 +60,9 @@ TEST_F(VectorizeStyleCli, RendersTheDrawingAsTheLibraryDoes) {
 // The fjord of examples/feature: filled shapes, a background and two line features.
 TEST_F(VectorizeStyleCli, BundledExampleGivesItsPicture) {
     const std::string dir = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/feature/";
-    const CliRun r = run({"vectorize-style", dir + "fjord.svg", "--palette",
-                          dir + "fjord_style.json", "-o", path("fjord.png"), "-q", "--threads",
-                          "2"});
+    const CliRun r =
+        run({"vectorize-style", dir + "fjord.svg", "--palette", dir + "fjord_style.json", "-o",
+             path("fjord.png"), "-q", "--threads", "2"});
     ASSERT_EQ(r.code, 0) << r.err;
     const Image out = read("fjord.png");
     const Result<Image> picture = load_image(dir + "fjord.png");
