@@ -218,10 +218,10 @@ def stylize(
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
           Error budget and uniform usage: the finest level searches plain nearest neighbours
-          from the field the usage laid out, this many iterations instead of finest-em-
-          iterations ones: the seams of its mosaic move to where the pieces agree (closer to
-          the exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
-          published). Range 0..100 iterations.
+          from the field the usage laid out, this many iterations instead of
+          finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
+          (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
+          (StyLit as published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -417,10 +417,10 @@ def stylit(
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
           Error budget and uniform usage: the finest level searches plain nearest neighbours
-          from the field the usage laid out, this many iterations instead of finest-em-
-          iterations ones: the seams of its mosaic move to where the pieces agree (closer to
-          the exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
-          published). Range 0..100 iterations.
+          from the field the usage laid out, this many iterations instead of
+          finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
+          (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
+          (StyLit as published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -668,10 +668,10 @@ def animate(
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
           Error budget and uniform usage: the finest level searches plain nearest neighbours
-          from the field the usage laid out, this many iterations instead of finest-em-
-          iterations ones: the seams of its mosaic move to where the pieces agree (closer to
-          the exemplar, faster), but the finest grain partly washes out; 0 = off (StyLit as
-          published). Range 0..100 iterations.
+          from the field the usage laid out, this many iterations instead of
+          finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
+          (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
+          (StyLit as published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -906,8 +906,8 @@ def noisy_frame(
       noise (float)
           Low-pass strength f: width of the box separating the reference's low frequencies
           (kept) from the details (re-synthesized at random in every frame). Larger = more
-          temporal noise; <= 1 = the least (finest level only). At most min side / patch-
-          size. Range 0.0..256.0 px.
+          temporal noise; <= 1 = the least (finest level only). At most min side /
+          patch-size. Range 0.0..256.0 px.
       level_ratio (float, default 0.85)
           Ratio of the sampling rates of consecutive pyramid levels between strength f and 1
           (chapter: 0.85). Range 0.5..0.95.
@@ -1139,8 +1139,8 @@ def paint(
           Colour-histogram weight of the vote: rarer exemplar colours are not averaged away
           (0 = off, ..100).
       usage (str, default 'none')
-          Patch usage: 'none' (the paper's EM) or 'uniform' (keeps sparse flecks; 'error-
-          budget', 'occurrence' as in stylize).
+          Patch usage: 'none' (the paper's EM) or 'uniform' (keeps sparse flecks;
+          'error-budget', 'occurrence' as in stylize).
       patch_size (int, default 5)
           Patch width in px (odd, 3..15).
       seed (int, default 1)
@@ -1210,8 +1210,8 @@ def brush(
           Width of every painted stroke in px (0 = each path's width; at most 4096); the
           feature is scaled by brush width / feature width.
       snap (bool, default True)
-          Snap the feature's rough path onto the palette's edge (False: the CLI's --no-
-          snap).
+          Snap the feature's rough path onto the palette's edge (False: the CLI's
+          --no-snap).
       walk (str, default 'randomized')
           Walk through the feature: 'randomized', or 'looping' and 'dp' (comparison modes).
       seed (int, default 1)

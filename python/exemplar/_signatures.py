@@ -596,11 +596,13 @@ def signature(verb: str) -> inspect.Signature:
 
 def docstring(verb: str) -> str:
     """The docstring of `verb`: its summary, then one entry per parameter."""
-    lines = textwrap.wrap(_VERBS[verb][0], 88) + ["", "Parameters:"]
+    # Flags such as finest-em-iterations are not broken at their hyphens.
+    lines = textwrap.wrap(_VERBS[verb][0], 88, break_on_hyphens=False) + ["", "Parameters:"]
     for p in _params(verb):
         default = "" if p.default is _REQUIRED else f", default {p.default!r}"
         lines.append(f"  {p.name} ({p.annotation}{default})")
-        lines += textwrap.wrap(p.doc, 88, initial_indent="      ", subsequent_indent="      ")
+        lines += textwrap.wrap(p.doc, 88, initial_indent="      ", subsequent_indent="      ",
+                               break_on_hyphens=False)
     lines += ["", f"Returns {_VERBS[verb][2]}. Errors raise exemplar.Error subclasses with the "
               "library's one-line message."]
     return "\n".join(lines)
