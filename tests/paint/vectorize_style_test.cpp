@@ -15,16 +15,16 @@
 #include <string>
 #include <vector>
 
+#include "exemplar/core/rng.hpp"
+
 namespace exemplar::paint {
 namespace {
 
+// In [0, 1), a pure function of the pixel (the core's counter-based hash).
 float noise(int x, int y) {
-    std::uint32_t h =
-        static_cast<std::uint32_t>(x) * 0x8da6b343u ^ static_cast<std::uint32_t>(y) * 0xd8163841u;
-    h ^= h >> 13;
-    h *= 0x5bd1e995u;
-    h ^= h >> 15;
-    return static_cast<float>(h & 0xffffu) / 65536.0f;
+    return static_cast<float>(
+               hash_keys(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y)) >> 40) /
+           static_cast<float>(1ull << 24);
 }
 
 // 160 x 100: a red band (rows 0-39), a blue band (40-69), then green (left) and yellow (right)
