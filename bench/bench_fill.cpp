@@ -5,7 +5,7 @@
 // dark diagonal band (a painted line feature) and the target region is all of the paper
 // (about 0.97 MPix). Wall time (best of the repeats) and the process's CPU time per fill (the
 // machine may be shared: CPU time is what the fill costs).
-// Usage: bench_fill [threads] [repeats] [usage] [out.png]
+// Usage: bench_fill [threads] [repeats] [usage] [rotations] [out.png]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
         }
         options.usage = *usage;
     }
+    if (argc > 4) options.rotations = std::atoi(argv[4]);
     const std::string dir = std::string(EXEMPLAR_SOURCE_DIR) + "/examples/feature/";
     auto palette = load_image(dir + "scream_railing.png");
     auto source_region = load_image(dir + "water_region.png");
@@ -76,12 +77,12 @@ int main(int argc, char** argv) {
             return 1;
         }
         best_ms = std::min(best_ms, ms);
-        if (r == 0 && argc > 4) (void)save_image(*filled, argv[4]);
+        if (r == 0 && argc > 5) (void)save_image(*filled, argv[5]);
     }
     std::printf(
-        "fill of %d px (%dx%d canvas), usage %s, %d threads: best %.0f ms wall, "
+        "fill of %d px (%dx%d canvas), usage %s, %d rotations, %d threads: best %.0f ms wall, "
         "%.1f CPU-s per fill (mean of %d)\n",
-        target_pixels, size, size, std::string(to_string(options.usage)).c_str(), threads, best_ms,
-        cpu_s, repeats);
+        target_pixels, size, size, std::string(to_string(options.usage)).c_str(), options.rotations,
+        threads, best_ms, cpu_s, repeats);
     return 0;
 }

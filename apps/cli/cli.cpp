@@ -65,6 +65,7 @@ struct CommandLine {
     PaintCommand paint{app};
     BrushCommand brush{app};
     FillCommand fill{app};
+    VectorizeStyleCommand vectorize_style{app};
     NprCommand npr{app};
 };
 
@@ -188,6 +189,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.brush.run(streams);
         } else if (cli.fill.parsed()) {
             status = cli.fill.run(streams);
+        } else if (cli.vectorize_style.parsed()) {
+            status = cli.vectorize_style.run(streams);
         } else if (cli.npr.parsed()) {
             status = cli.npr.run(streams);
         }

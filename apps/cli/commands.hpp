@@ -261,6 +261,31 @@ private:
     bool quiet_ = false;
 };
 
+/// `exemplar vectorize-style`: renders an SVG drawing with line features on its stroked paths and
+/// area features in its filled shapes (Painting by Feature's vector stylization, docs/feature.md).
+class VectorizeStyleCommand {
+public:
+    /// Adds the `vectorize-style` subcommand and its flags to `app`.
+    explicit VectorizeStyleCommand(CLI::App& app);
+    VectorizeStyleCommand(const VectorizeStyleCommand&) = delete;
+    VectorizeStyleCommand& operator=(const VectorizeStyleCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Runs the parsed command.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    std::string drawing_, palette_, output_, walk_ = "randomized";
+    std::string usage_{to_string(paint::FeatureFillOptions{}.usage)};
+    int width_ = 0;
+    std::uint64_t seed_ = 1;
+    std::map<std::string, double> numeric_values_;
+    std::map<std::string, CLI::Option*> numeric_flags_;
+    int threads_ = 0;
+    bool quiet_ = false;
+};
+
 /// `exemplar beautify`: ShipShape beautification of an SVG sketch, stroke by stroke.
 class BeautifyCommand {
 public:

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/sketch/svg.hpp"
 
 namespace exemplar::cli {
@@ -88,51 +89,30 @@ Result<std::vector<paint::Stroke>> read_json_strokes(const std::string& flag,
     return strokes;
 }
 
-// Every SVG path is a painting stroke: its centre line sampled every ~1 px and its stroke-width,
-// the viewBox (if any) mapped onto the canvas.
+// Every SVG path is a painting stroke (paint::drawing_strokes), empty paths left out.
 Result<std::vector<paint::Stroke>> read_svg_strokes(const std::string& flag,
                                                     const std::string& path, int width, int height,
                                                     bool labels) {
     auto drawing = sketch::load_svg(path);
     if (!drawing.ok()) return drawing.status();
-    double sx = 1.0, sy = 1.0, ox = 0.0, oy = 0.0;
-    if (drawing->view_width > 0.0 && drawing->view_height > 0.0) {
-        sx = width / drawing->view_width;
-        sy = height / drawing->view_height;
-        ox = drawing->view_x;
-        oy = drawing->view_y;
-    }
+    std::vector<paint::Stroke> all = paint::drawing_strokes(*drawing, width, height);
     std::vector<paint::Stroke> strokes;
-    for (std::size_t i = 0; i < drawing->paths.size(); ++i) {
-        const sketch::Path& p = drawing->paths[i];
-        if (p.empty()) continue;
-        paint::Stroke stroke;
-        stroke.width_px =
-            static_cast<float>(drawing->stroke_widths[i] * std::sqrt(std::abs(sx * sy)));
-        auto add = [&](sketch::Vec2 v) {
-            stroke.points.push_back(
-                {static_cast<float>((v.x - ox) * sx), static_cast<float>((v.y - oy) * sy)});
-        };
-        if (labels && i < drawing->strokes.size() && !drawing->strokes[i].empty()) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (drawing->paths[i].empty()) continue;
+        if (labels && i < drawing->strokes.size() && !drawing->strokes[i].empty() &&
+            drawing->strokes[i] != "none") {
             auto label = parse_label(drawing->strokes[i]);
             if (!label.ok()) {
                 return invalid_argument(flag + " " + path + ": path " + std::to_string(i) +
                                         ": stroke colour: " + label.status().message());
             }
-            stroke.label = *label;
+            all[i].label = *label;
         }
-        add(p.start());
-        for (const sketch::Cubic& c : p.segments) {
-            const double length = sketch::distance(c.p0, c.c1) + sketch::distance(c.c1, c.c2) +
-                                  sketch::distance(c.c2, c.p3);
-            const int steps = std::clamp(static_cast<int>(std::ceil(length * sx)), 1, 4096);
-            for (int k = 1; k <= steps; ++k) add(c.point(static_cast<double>(k) / steps));
-        }
-        if (Status st = paint::validate(stroke); !st.is_ok()) {
+        if (Status st = paint::validate(all[i]); !st.is_ok()) {
             return invalid_argument(flag + " " + path + ": path " + std::to_string(i) + ": " +
                                     st.message());
         }
-        strokes.push_back(std::move(stroke));
+        strokes.push_back(std::move(all[i]));
     }
     return strokes;
 }

@@ -37,7 +37,7 @@ from ._exemplar import (
 )
 from ._exemplar import _animate, _apply_nnf, _beautify, _flow, _render, _stylit, _stylize
 from ._exemplar import _brush, _directions, _fill, _fluid_frame, _fluid_simulate, _noisy_frame
-from ._exemplar import _npr_frame, _paint
+from ._exemplar import _npr_frame, _paint, _vectorize_style
 
 __all__ = [
     "BeautifyResult", "CancelToken", "Cancelled", "Error", "InternalError",
@@ -45,6 +45,7 @@ __all__ = [
     "UnsupportedError", "__version__", "animate", "apply_nnf", "beautify", "brush",
     "builtin_scenes", "directions", "fill", "flow", "fluid_frame", "fluid_simulate", "load_image", "noisy_frame",
     "npr_frame", "option_specs", "paint", "render", "save_image", "stylit", "stylize",
+    "vectorize_style",
 ]
 
 
@@ -123,3 +124,8 @@ def brush(palette, feature, paths, **options):
 @_signatures.decorate
 def fill(palette, source_region, target_region, **options):
     return _fill(palette, source_region, target_region, **options)
+
+
+@_signatures.decorate
+def vectorize_style(drawing, palette, **options):
+    return _vectorize_style(drawing, palette, **options)

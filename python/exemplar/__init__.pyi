@@ -217,11 +217,11 @@ def stylize(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level searches plain nearest neighbours from the budget's
-          field, this many iterations instead of finest-em-iterations budget ones: the seams
-          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
-          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
-          iterations.
+          Error budget and uniform usage: the finest level searches plain nearest neighbours
+          from the field the usage laid out, this many iterations instead of
+          finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
+          (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
+          (StyLit as published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -416,11 +416,11 @@ def stylit(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level searches plain nearest neighbours from the budget's
-          field, this many iterations instead of finest-em-iterations budget ones: the seams
-          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
-          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
-          iterations.
+          Error budget and uniform usage: the finest level searches plain nearest neighbours
+          from the field the usage laid out, this many iterations instead of
+          finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
+          (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
+          (StyLit as published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -667,11 +667,11 @@ def animate(
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_iterations (int, default 0)
-          Error budget: the finest level searches plain nearest neighbours from the budget's
-          field, this many iterations instead of finest-em-iterations budget ones: the seams
-          of its mosaic move to where the pieces agree (closer to the exemplar, faster), but
-          the finest grain partly washes out; 0 = off (StyLit as published). Range 0..100
-          iterations.
+          Error budget and uniform usage: the finest level searches plain nearest neighbours
+          from the field the usage laid out, this many iterations instead of
+          finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
+          (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
+          (StyLit as published). Range 0..100 iterations.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -906,8 +906,8 @@ def noisy_frame(
       noise (float)
           Low-pass strength f: width of the box separating the reference's low frequencies
           (kept) from the details (re-synthesized at random in every frame). Larger = more
-          temporal noise; <= 1 = the least (finest level only). At most min side / patch-
-          size. Range 0.0..256.0 px.
+          temporal noise; <= 1 = the least (finest level only). At most min side /
+          patch-size. Range 0.0..256.0 px.
       level_ratio (float, default 0.85)
           Ratio of the sampling rates of consecutive pyramid levels between strength f and 1
           (chapter: 0.85). Range 0.5..0.95.
@@ -1166,8 +1166,8 @@ def paint(
           Colour-histogram weight of the vote: rarer exemplar colours are not averaged away
           (0 = off, ..100).
       usage (str, default 'none')
-          Patch usage: 'none' (the paper's EM) or 'uniform' (keeps sparse flecks; 'error-
-          budget', 'occurrence' as in stylize).
+          Patch usage: 'none' (the paper's EM) or 'uniform' (keeps sparse flecks;
+          'error-budget', 'occurrence' as in stylize).
       patch_size (int, default 5)
           Patch width in px (odd, 3..15).
       seed (int, default 1)
@@ -1237,8 +1237,8 @@ def brush(
           Width of every painted stroke in px (0 = each path's width; at most 4096); the
           feature is scaled by brush width / feature width.
       snap (bool, default True)
-          Snap the feature's rough path onto the palette's edge (False: the CLI's --no-
-          snap).
+          Snap the feature's rough path onto the palette's edge (False: the CLI's
+          --no-snap).
       walk (str, default 'randomized')
           Walk through the feature: 'randomized', or 'looping' and 'dp' (comparison modes).
       seed (int, default 1)
@@ -1300,6 +1300,7 @@ def fill(
     rotations: int = 5,
     rotation_range: float = 30.0,
     vote_histogram: float = 0.0,
+    polish_iterations: int = 2,
     threads: int = 0,
     progress: Callable[[Progress], bool | None] | None = None,
     cancel: CancelToken | None = None,
@@ -1338,6 +1339,118 @@ def fill(
       vote_histogram (float, default 0.0)
           Colour-histogram weight of the vote: favours colours the fill lacks; 0 = off
           (default; with --usage uniform it overshoots, docs/feature.md). Range 0.0..100.0.
+      polish_iterations (int, default 2)
+          Plain nearest-neighbour EM iterations on the finest level, from the layout the
+          usage made on the coarser ones; 0 = the usage on the finest level too (ours: half
+          the time at 1 MPix, docs/feature.md). Range 0..100 iterations.
+      threads (int, default 0)
+          Threads; 0 = all cores. The result is the same for any count.
+      progress (Callable[[Progress], bool | None] | None, default None)
+          Called (with the GIL) with an exemplar.Progress as the run advances; returning
+          False or raising cancels the run (the exception is re-raised, False raises
+          exemplar.Cancelled).
+      cancel (CancelToken | None, default None)
+          A CancelToken another thread may set to stop the run (exemplar.Cancelled); a
+          progress callback that returns False sets it too.
+
+    Returns numpy.ndarray. Errors raise exemplar.Error subclasses with the library's one-line message.
+    """
+
+def vectorize_style(
+    drawing: str,
+    palette: str,
+    *,
+    width: int = 0,
+    walk: str = 'randomized',
+    usage: str = 'uniform',
+    seed: int = 1,
+    sample_spacing: float = 2.0,
+    blend_radius: float = 16.0,
+    base_sigma: float = 4.0,
+    base_range_sigma: float = 0.1,
+    min_jump: float = 8.0,
+    snap_elasticity: float = 1.0,
+    snap_rigidity: float = 1.0,
+    snap_edge_weight: float = 1.2,
+    snap_sigma: float = 2.0,
+    snap_spacing: float = 4.0,
+    snap_iterations: int = 100,
+    patch_size: int = 5,
+    rotations: int = 5,
+    rotation_range: float = 30.0,
+    vote_histogram: float = 0.0,
+    polish_iterations: int = 2,
+    threads: int = 0,
+    progress: Callable[[Progress], bool | None] | None = None,
+    cancel: CancelToken | None = None,
+) -> numpy.ndarray:
+    """Painting by Feature's vector image stylization (Lukac et al. 2013): the stroked paths of
+    an SVG drawing are painted with line features and its filled shapes with area features
+    picked in a palette image, as a style palette file assigns them (by stroke and fill
+    colour or class; docs/feature.md). The CLI's `exemplar vectorize-style`; returns RGBA
+    uint8 (straight alpha), the drawing's size or width wide.
+
+    Parameters:
+      drawing (str)
+          The path of the SVG drawing.
+      palette (str)
+          The path of the style palette file (.json).
+      width (int, default 0)
+          Canvas width in px, the height in the drawing's proportion (0 = the drawing's
+          size).
+      walk (str, default 'randomized')
+          Walk through the line features: 'randomized', 'looping' or 'dp'.
+      usage (str, default 'uniform')
+          Patch usage of the fills: 'uniform', 'none', 'error-budget' or 'occurrence'.
+      seed (int, default 1)
+          Random seed of the walks and fills.
+      sample_spacing (float, default 2.0)
+          Distance between consecutive samples of the feature's and the target's paths, in
+          source pixels (ours). Range 0.5..64.0 px.
+      blend_radius (float, default 16.0)
+          Half-length along the path of the base-layer blend across each jump of the walk,
+          in target pixels; 0 = no blending (ours). Range 0.0..256.0 px.
+      base_sigma (float, default 4.0)
+          Spatial sigma of the bilateral filter that makes the base layer (ours; Durand and
+          Dorsey: 2% of the image). Range 0.5..64.0 px.
+      base_range_sigma (float, default 0.1)
+          Range sigma of the bilateral filter, on colour distance with values in [0, 1]
+          (ours). Range 0.01..10.0.
+      min_jump (float, default 8.0)
+          Shortest jump of the walk along the source, in source pixels: no stutter of
+          repeated or skipped samples (ours). Range 0.0..1000.0 px.
+      snap_elasticity (float, default 1.0)
+          Active contour: weight of the continuity term (Williams and Shah: 1). Range
+          0.0..100.0.
+      snap_rigidity (float, default 1.0)
+          Active contour: weight of the curvature term (Williams and Shah: 1). Range
+          0.0..100.0.
+      snap_edge_weight (float, default 1.2)
+          Active contour: weight of the edge term (Williams and Shah: 1.2). Range
+          0.0..100.0.
+      snap_sigma (float, default 2.0)
+          Active contour: blur before the gradient; the rough path may be about 3 sigma off
+          the edge (ours). Range 0.0..32.0 px.
+      snap_spacing (float, default 4.0)
+          Active contour: spacing of its points (ours). Range 1.0..64.0 px.
+      snap_iterations (int, default 100)
+          Active contour: most greedy iterations; stops when under 1% of the points move
+          (ours). Range 0..10000 iterations.
+      patch_size (int, default 5)
+          Patch width of the synthesis, odd; larger keeps larger structures (ours). Range
+          3..31 px.
+      rotations (int, default 5)
+          Pre-rotated copies of the palette region over [-rotation-range, +rotation-range];
+          1 = unrotated (ours; the chapter: 'a limited range of rotations'). Range 1..36.
+      rotation_range (float, default 30.0)
+          Half-range of the pre-rotation angles (ours). Range 0.0..180.0 deg.
+      vote_histogram (float, default 0.0)
+          Colour-histogram weight of the vote: favours colours the fill lacks; 0 = off
+          (default; with --usage uniform it overshoots, docs/feature.md). Range 0.0..100.0.
+      polish_iterations (int, default 2)
+          Plain nearest-neighbour EM iterations on the finest level, from the layout the
+          usage made on the coarser ones; 0 = the usage on the finest level too (ours: half
+          the time at 1 MPix, docs/feature.md). Range 0..100 iterations.
       threads (int, default 0)
           Threads; 0 = all cores. The result is the same for any count.
       progress (Callable[[Progress], bool | None] | None, default None)

@@ -491,6 +491,29 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         ],
         "numpy.ndarray",
     ),
+    "vectorize_style": (
+        "Painting by Feature's vector image stylization (Lukac et al. 2013): the stroked paths "
+        "of an SVG drawing are painted with line features and its filled shapes with area "
+        "features picked in a palette image, as a style palette file assigns them (by stroke "
+        "and fill colour or class; docs/feature.md). The CLI's `exemplar vectorize-style`; "
+        "returns RGBA uint8 (straight alpha), the drawing's size or width wide.",
+        [
+            Param("drawing", "str", "The path of the SVG drawing.", positional=True),
+            Param("palette", "str", "The path of the style palette file (.json).",
+                  positional=True),
+            Param("width", "int", "Canvas width in px, the height in the drawing's proportion "
+                  "(0 = the drawing's size).", 0),
+            Param("walk", "str", "Walk through the line features: 'randomized', 'looping' or "
+                  "'dp'.", "randomized"),
+            Param("usage", "str", "Patch usage of the fills: 'uniform', 'none', 'error-budget' "
+                  "or 'occurrence'.", "uniform"),
+            Param("seed", "int", "Random seed of the walks and fills.", 1),
+            _BRUSH,
+            _FILL,
+            *_RUN,
+        ],
+        "numpy.ndarray",
+    ),
     "beautify": (
         "ShipShape: beautifies a sketch stroke by stroke (lines, arcs, snapping, parallel, "
         "perpendicular, equal length, copies, mirrors, steps, offsets), each against the strokes "
@@ -582,11 +605,13 @@ def signature(verb: str) -> inspect.Signature:
 
 def docstring(verb: str) -> str:
     """The docstring of `verb`: its summary, then one entry per parameter."""
-    lines = textwrap.wrap(_VERBS[verb][0], 88) + ["", "Parameters:"]
+    # Flags such as finest-em-iterations are not broken at their hyphens.
+    lines = textwrap.wrap(_VERBS[verb][0], 88, break_on_hyphens=False) + ["", "Parameters:"]
     for p in _params(verb):
         default = "" if p.default is _REQUIRED else f", default {p.default!r}"
         lines.append(f"  {p.name} ({p.annotation}{default})")
-        lines += textwrap.wrap(p.doc, 88, initial_indent="      ", subsequent_indent="      ")
+        lines += textwrap.wrap(p.doc, 88, initial_indent="      ", subsequent_indent="      ",
+                               break_on_hyphens=False)
     lines += ["", f"Returns {_VERBS[verb][2]}. Errors raise exemplar.Error subclasses with the "
               "library's one-line message."]
     return "\n".join(lines)

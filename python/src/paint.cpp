@@ -2,8 +2,9 @@
 // and `exemplar paint` do it (apps/cli/directions_command.cpp, paint_command.cpp), arrays where
 // they read and write files, strokes as dicts with the keys of their JSON stroke files. Neither
 // verb has an option table: the keywords are the CLI's flags with '_' for '-'.
-// exemplar.brush and exemplar.fill: Painting by Feature as `exemplar brush` and `exemplar fill`
-// do it (brush_command.cpp, fill_command.cpp); their numeric keywords come from the option
+// exemplar.brush, exemplar.fill and exemplar.vectorize_style: Painting by Feature as `exemplar
+// brush`, `exemplar fill` and `exemplar vectorize-style` do it (brush_command.cpp,
+// fill_command.cpp, vectorize_style_command.cpp); their numeric keywords come from the option
 // tables feature_brush_option_specs() and feature_fill_option_specs().
 
 #include "exemplar/paint/paint.hpp"
@@ -22,6 +23,7 @@
 #include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/feature_fill.hpp"
 #include "exemplar/paint/strokes.hpp"
+#include "exemplar/paint/vectorize_style.hpp"
 #include "keywords.hpp"
 #include "run.hpp"
 
@@ -304,6 +306,46 @@ py::array fill_py(const py::object& palette, const py::object& source_region,
     return array_from_image(std::move(out), palette_arg.type);
 }
 
+// exemplar.vectorize_style: `exemplar vectorize-style` (apps/cli/vectorize_style_command.cpp)
+// with the drawing and the style palette as files; keywords: the CLI's flags and the brush's and
+// fill's option tables.
+py::array vectorize_style_py(const std::string& drawing_path, const std::string& palette_path,
+                             py::kwargs kwargs) {
+    py::dict args(kwargs);
+    paint::VectorizeStyleOptions options;
+    pop_table_options(args, options.brush, paint::feature_brush_option_specs(),
+                      [](paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec,
+                         double value) { return paint::set_option(o, spec, value); });
+    pop_table_options(args, options.fill, paint::feature_fill_option_specs(),
+                      [](paint::FeatureFillOptions& o, const paint::FeatureFillOptionSpec& spec,
+                         double value) { return paint::set_option(o, spec, value); });
+    if (const py::object walk = pop(args, "walk"); !walk.is_none()) {
+        options.brush.walk = take(paint::parse_walk_mode(text(walk, "walk")));
+    }
+    if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
+        options.fill.usage = take(parse_usage_strategy(text(usage, "usage")));
+    }
+    pop_seed(args, options.brush.seed);
+    options.fill.seed = options.brush.seed;
+    int width = 0;
+    set_number(args, "width", width);
+    const RunKeywords run_keywords = pop_run_keywords(args);
+    reject_unknown(args, "vectorize_style");
+    if (width < 0 || width > 32768) {
+        check(invalid_argument("width: " + std::to_string(width) +
+                               " is invalid (must be 1..32768, or 0 for the drawing's size)"));
+    }
+
+    const sketch::Drawing drawing = take(sketch::load_svg(drawing_path));
+    const paint::StylePalette palette = take(paint::load_style_palette(palette_path));
+    const auto [w, h] = paint::drawing_canvas_size(drawing, width);
+    PythonRun run(run_keywords);
+    Image out = run([&](const RunContext& context) {
+        return paint::vectorize_style(drawing, palette, w, h, options, context);
+    });
+    return array_from_image(std::move(out), SampleType::UInt8);
+}
+
 }  // namespace
 
 void register_paint(py::module_& module) {
@@ -312,6 +354,7 @@ void register_paint(py::module_& module) {
     module.def("_brush", &brush_py, py::arg("palette"), py::arg("feature"), py::arg("paths"));
     module.def("_fill", &fill_py, py::arg("palette"), py::arg("source_region"),
                py::arg("target_region"));
+    module.def("_vectorize_style", &vectorize_style_py, py::arg("drawing"), py::arg("palette"));
     module.def("_feature_brush_option_specs", [] {
         return table_specs_for_python<paint::FeatureBrushOptions>(
             paint::feature_brush_option_specs(),

@@ -110,3 +110,48 @@ def test_fill_refuses_what_the_library_refuses():
         exemplar.fill(np.ascontiguousarray(palette()[..., :2]), source, target)
     with pytest.raises(exemplar.Cancelled):
         exemplar.fill(palette(), source, target, progress=lambda p: False)
+
+
+DRAWING = """<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 60 40">
+  <rect x="10" y="8" width="40" height="24" fill="#0000ff"/>
+  <g fill="none" stroke="black" stroke-width="5">
+    <path d="M4 20 C20 6 40 34 56 20"/>
+  </g>
+</svg>"""
+
+
+def style_palette(tmp_path, fills='{"#0000ff": "paper"}'):
+    """A style palette file beside palette.png: one line and one area feature."""
+    exemplar.save_image(palette(), str(tmp_path / "palette.png"))
+    (tmp_path / "style.json").write_text(
+        '{"palette": "palette.png", '
+        '"line_features": {"band": {"path": [[4, 23], [58, 23]], "width": 10}}, '
+        '"area_features": {"paper": {"polygon": [[4, 30], [60, 30], [60, 46], [4, 46]]}}, '
+        '"strokes": {"default": "band"}, "fills": ' + fills + '}')
+    return str(tmp_path / "style.json")
+
+
+def test_vectorize_style_is_the_clis(cli, tmp_path):
+    (tmp_path / "drawing.svg").write_text(DRAWING)
+    style = style_palette(tmp_path)
+    subprocess.run([cli, "vectorize-style", str(tmp_path / "drawing.svg"), "--palette", style,
+                    "--width", "90", "--seed", "4", "--rotations", "3", "--threads", "2", "-q",
+                    "-o", str(tmp_path / "a.png")], check=True)
+    a = exemplar.vectorize_style(str(tmp_path / "drawing.svg"), style, width=90, seed=4,
+                                 rotations=3, threads=2)
+    assert a.shape == (60, 90, 4) and a.dtype == np.uint8
+    np.testing.assert_array_equal(a, png(str(tmp_path / "a.png")))
+    assert a[30, 45, 3] == 255 and a[2, 2, 3] == 0  # the shape and stroke, no background
+
+
+def test_vectorize_style_refuses_what_the_library_refuses(tmp_path):
+    (tmp_path / "drawing.svg").write_text(DRAWING)
+    (tmp_path / "empty.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg"/>')
+    with pytest.raises(exemplar.InvalidArgumentError, match="^drawing: holds no path"):
+        exemplar.vectorize_style(str(tmp_path / "empty.svg"), style_palette(tmp_path))
+    with pytest.raises(exemplar.InvalidArgumentError, match='names area feature "sky"'):
+        exemplar.vectorize_style(str(tmp_path / "drawing.svg"),
+                                 style_palette(tmp_path, '{"#0000ff": "sky"}'))
+    with pytest.raises(exemplar.InvalidArgumentError, match="^rotations: 0 is invalid"):
+        exemplar.vectorize_style(str(tmp_path / "drawing.svg"), style_palette(tmp_path),
+                                 rotations=0)

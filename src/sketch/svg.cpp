@@ -416,39 +416,68 @@ std::string element_paths(const tinyxml2::XMLElement* e, std::vector<Path>& out)
     return ok ? "" : "malformed number attribute";
 }
 
-// The element's own presentation property `name`: its `style` declaration (which wins) or its
-// attribute, trimmed; "" if it has neither.
+// The element's own presentation property `name` (its `style` declaration, which wins, or its
+// attribute), trimmed; "" if it sets none.
 std::string property_of(const tinyxml2::XMLElement* e, const std::string& name) {
-    const auto trim = [](std::string t) {
-        const auto b = t.find_first_not_of(" \t\n\r");
-        const auto f = t.find_last_not_of(" \t\n\r");
-        return b == std::string::npos ? std::string() : t.substr(b, f - b + 1);
+    auto trim = [](std::string text) {
+        const auto b = text.find_first_not_of(" \t\r\n");
+        const auto e2 = text.find_last_not_of(" \t\r\n");
+        return b == std::string::npos ? std::string() : text.substr(b, e2 - b + 1);
     };
     if (const char* style = e->Attribute("style")) {
-        std::stringstream css(style);
-        std::string declaration;
-        while (std::getline(css, declaration, ';')) {
+        const std::string css = style;
+        for (std::size_t at = 0; at < css.size();) {
+            const auto end = std::min(css.find(';', at), css.size());
+            const std::string declaration = css.substr(at, end - at);
             const auto colon = declaration.find(':');
             if (colon != std::string::npos && trim(declaration.substr(0, colon)) == name) {
                 return trim(declaration.substr(colon + 1));
             }
+            at = end + 1;
         }
     }
-    const char* attribute = e->Attribute(name.c_str());
-    return attribute != nullptr ? trim(attribute) : std::string();
+    if (const char* value = e->Attribute(name.c_str())) return trim(value);
+    return "";
 }
 
-// The element's own stroke-width (in user units), or `inherited`.
-double stroke_width_of(const tinyxml2::XMLElement* e, double inherited) {
-    const std::string text = property_of(e, "stroke-width");
-    if (text.empty()) return inherited;
-    char* end = nullptr;
-    const double width = std::strtod(text.c_str(), &end);
-    return end != text.c_str() && std::isfinite(width) && width >= 0.0 ? width : inherited;
+// The inherited presentation properties the drawing records per path.
+struct Presentation {
+    double stroke_width = 1.0;     // user units; SVG's default 1
+    std::string stroke = "none";   // SVG's default: no stroke
+    std::string fill = "#000000";  // SVG's default: black
+    bool even_odd = false;         // fill-rule
+    std::string classes;           // the element's and its ancestors' `class` attributes
+};
+
+// `inherited` with the element's own properties applied.
+Presentation presentation_of(const tinyxml2::XMLElement* e, Presentation inherited) {
+    const std::string width_text = property_of(e, "stroke-width");
+    if (!width_text.empty()) {
+        char* end = nullptr;
+        const double width = std::strtod(width_text.c_str(), &end);
+        if (end != width_text.c_str() && std::isfinite(width) && width >= 0.0) {
+            inherited.stroke_width = width;
+        }
+    }
+    if (const std::string stroke = property_of(e, "stroke"); !stroke.empty()) {
+        if (stroke != "inherit") inherited.stroke = normalize_colour(stroke);
+    }
+    if (const std::string fill = property_of(e, "fill"); !fill.empty()) {
+        if (fill != "inherit") inherited.fill = normalize_colour(fill);
+    }
+    if (const std::string rule = property_of(e, "fill-rule"); !rule.empty()) {
+        if (rule != "inherit") inherited.even_odd = rule == "evenodd";
+    }
+    if (const char* classes = e->Attribute("class")) {
+        // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "literal" + string.
+        if (!inherited.classes.empty()) inherited.classes.push_back(' ');
+        inherited.classes.append(classes);
+    }
+    return inherited;
 }
 
 std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transform,
-                 double parent_stroke_width, const std::string& parent_stroke, Drawing& drawing) {
+                 const Presentation& parent_style, Drawing& drawing) {
     for (const tinyxml2::XMLElement* e = parent->FirstChildElement(); e != nullptr;
          e = e->NextSiblingElement()) {
         const std::string name = e->Name();
@@ -459,9 +488,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
             if (!error.empty()) return describe(e) + ": " + error;
         }
         const Affine m = compose(parent_transform, local);
-        const double stroke_width = stroke_width_of(e, parent_stroke_width);
-        std::string stroke = property_of(e, "stroke");
-        if (stroke.empty() || stroke == "inherit") stroke = parent_stroke;
+        const Presentation style = presentation_of(e, parent_style);
         if (name == "g" || name == "a" || name == "svg" || name == "switch") {
             Affine inner = m;
             if (name == "svg") {  // a nested viewport: its x/y offset
@@ -469,7 +496,7 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
                 inner = compose(
                     m, Affine::translation({attribute(e, "x", 0, &ok), attribute(e, "y", 0, &ok)}));
             }
-            const std::string error = walk(e, inner, stroke_width, stroke, drawing);
+            const std::string error = walk(e, inner, style, drawing);
             if (!error.empty()) return error;
             continue;
         }
@@ -480,9 +507,15 @@ std::string walk(const tinyxml2::XMLElement* parent, const Affine& parent_transf
         for (std::size_t k = 0; k < paths.size(); ++k) {
             drawing.paths.push_back(transformed(paths[k], m));
             drawing.ids.push_back(k == 0 ? id : id + std::string("#") + std::to_string(k));
-            drawing.stroke_widths.push_back(stroke_width * std::sqrt(std::abs(m.determinant())));
-            drawing.strokes.push_back(stroke);
+            drawing.stroke_widths.push_back(style.stroke_width *
+                                            std::sqrt(std::abs(m.determinant())));
+            drawing.strokes.push_back(style.stroke);
+            drawing.fills.push_back(style.fill);
+            drawing.classes.push_back(style.classes);
+            drawing.elements.push_back(drawing.element_count);
+            drawing.even_odd.push_back(style.even_odd ? 1 : 0);
         }
+        ++drawing.element_count;
     }
     return "";
 }
@@ -512,6 +545,45 @@ std::string xml_escape(const std::string& s) {
 }
 
 }  // namespace
+
+std::string normalize_colour(const std::string& colour) {
+    std::string c;
+    for (char ch : colour) {
+        if (!std::isspace(static_cast<unsigned char>(ch))) {
+            c += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        }
+    }
+    auto hex = [](char ch) { return std::isxdigit(static_cast<unsigned char>(ch)) != 0; };
+    if (c.size() == 4 && c[0] == '#' && hex(c[1]) && hex(c[2]) && hex(c[3])) {
+        return std::string{'#', c[1], c[1], c[2], c[2], c[3], c[3]};
+    }
+    if (c.size() == 7 && c[0] == '#' && std::all_of(c.begin() + 1, c.end(), hex)) return c;
+    if (c.rfind("rgb(", 0) == 0 && c.back() == ')') {
+        Scanner s(c.c_str() + 4);
+        double v[3];
+        if (s.number(v[0]) && s.number(v[1]) && s.number(v[2])) {
+            char out[8];
+            std::snprintf(out, sizeof out, "#%02x%02x%02x",
+                          static_cast<unsigned>(std::clamp(std::lround(v[0]), 0L, 255L)),
+                          static_cast<unsigned>(std::clamp(std::lround(v[1]), 0L, 255L)),
+                          static_cast<unsigned>(std::clamp(std::lround(v[2]), 0L, 255L)));
+            return out;
+        }
+    }
+    // CSS's basic colour keywords.
+    static const std::pair<const char*, const char*> kNamed[] = {
+        {"black", "#000000"},   {"silver", "#c0c0c0"}, {"gray", "#808080"},
+        {"grey", "#808080"},    {"white", "#ffffff"},  {"maroon", "#800000"},
+        {"red", "#ff0000"},     {"purple", "#800080"}, {"fuchsia", "#ff00ff"},
+        {"green", "#008000"},   {"lime", "#00ff00"},   {"olive", "#808000"},
+        {"yellow", "#ffff00"},  {"navy", "#000080"},   {"blue", "#0000ff"},
+        {"teal", "#008080"},    {"aqua", "#00ffff"},   {"orange", "#ffa500"},
+        {"transparent", "none"}};
+    for (const auto& [name, value] : kNamed) {
+        if (c == name) return value;
+    }
+    return c;
+}
 
 Result<Drawing> parse_svg(const std::string& text, const std::string& name) {
     tinyxml2::XMLDocument doc;
@@ -543,8 +615,7 @@ Result<Drawing> parse_svg(const std::string& text, const std::string& name) {
         }
     }
     Affine identity;
-    const std::string error =
-        walk(root, identity, stroke_width_of(root, 1.0), property_of(root, "stroke"), drawing);
+    const std::string error = walk(root, identity, presentation_of(root, {}), drawing);
     if (!error.empty()) return invalid_argument(name + ": " + error);
     return drawing;
 }

@@ -171,8 +171,9 @@ const std::array<OptionSpec, 24> kSpecs{{
      "that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
     {"budget-polish-iterations",
-     "Error budget: the finest level searches plain nearest neighbours from the budget's field, "
-     "this many iterations instead of finest-em-iterations budget ones: the seams of its mosaic "
+     "Error budget and uniform usage: the finest level searches plain nearest neighbours from "
+     "the field the usage laid out, this many iterations instead of finest-em-iterations ones: "
+     "the seams of its mosaic "
      "move to where the pieces agree (closer to the exemplar, faster), but the finest grain "
      "partly washes out; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::budget_polish_iterations},

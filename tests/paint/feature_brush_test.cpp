@@ -2,7 +2,8 @@
 // claims (Fig. 3.3 and the text): the randomized walk has no period where looping has one, its
 // discontinuity cost stays within a bounded factor of the optimal (dynamic programming) walk's,
 // a longer stroke never changes what is already drawn, blending lowers the colour jump at the
-// walk's discontinuities, and the snapped path lies on the palette's edge. Synthetic palettes.
+// walk's discontinuities, and the snapped path lies on the palette's edge (a known one, and the
+// Canny edge of the bundled painting). Synthetic palettes otherwise.
 
 #include "exemplar/paint/feature_brush.hpp"
 
@@ -10,11 +11,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "exemplar/core/rng.hpp"
+#include "exemplar/filters/resample.hpp"
+#include "exemplar/io/image_io.hpp"
 
 namespace exemplar::paint {
 namespace {
@@ -327,6 +332,122 @@ TEST(SnapToEdges, SnappedPathLiesOnThePalettesEdge) {
     EXPECT_GT(rough_mean, 3.5);
     EXPECT_LT(mean, 1.0);
     EXPECT_LT(worst, 2.0);
+}
+
+// Canny's edge pixels (Canny 1986) of an image's mean colour: Gaussian blur (σ = 2 px), Sobel
+// gradient, non-maximum suppression across the edge (four directions), hysteresis between 10% and
+// 25% of the largest gradient magnitude. 1 on the edge, 0 elsewhere.
+std::vector<std::uint8_t> canny_edges(const Image& image) {
+    const int w = image.width(), h = image.height();
+    Image luma(w, h, 1);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const int colours = std::min(3, image.channels());
+            for (int c = 0; c < colours; ++c) luma.at(x, y, 0) += image.at(x, y, c) / colours;
+        }
+    }
+    const Image blurred = gaussian_blur(luma, 2.0f, 1);
+    auto at = [&](int x, int y) {
+        return blurred.at(std::clamp(x, 0, w - 1), std::clamp(y, 0, h - 1), 0);
+    };
+    std::vector<float> gx(static_cast<std::size_t>(w) * h), gy(gx.size()), mag(gx.size());
+    float largest = 0.0f;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            gx[i] = at(x + 1, y - 1) + 2 * at(x + 1, y) + at(x + 1, y + 1) - at(x - 1, y - 1) -
+                    2 * at(x - 1, y) - at(x - 1, y + 1);
+            gy[i] = at(x - 1, y + 1) + 2 * at(x, y + 1) + at(x + 1, y + 1) - at(x - 1, y - 1) -
+                    2 * at(x, y - 1) - at(x + 1, y - 1);
+            mag[i] = std::hypot(gx[i], gy[i]);
+            largest = std::max(largest, mag[i]);
+        }
+    }
+    // 0 = suppressed, 1 = weak, 2 = strong.
+    std::vector<std::uint8_t> kind(gx.size(), 0);
+    for (int y = 1; y + 1 < h; ++y) {
+        for (int x = 1; x + 1 < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            const float angle = std::atan2(gy[i], gx[i]) * 180.0f / std::numbers::pi_v<float>;
+            const int sector = static_cast<int>(std::lround((angle + 180.0f) / 45.0f)) % 4;
+            const int dx = sector == 0 ? 1 : sector == 2 ? 0 : sector == 1 ? 1 : -1;
+            const int dy = sector == 0 ? 0 : 1;
+            const float m = mag[i];
+            if (m < mag[i + dx + static_cast<std::size_t>(dy) * w] ||
+                m < mag[i - dx - static_cast<std::size_t>(dy) * w])
+                continue;
+            kind[i] = m >= 0.25f * largest ? 2 : m >= 0.10f * largest ? 1 : 0;
+        }
+    }
+    std::vector<std::uint8_t> edge(gx.size(), 0);
+    std::vector<std::size_t> stack;
+    for (std::size_t i = 0; i < kind.size(); ++i) {
+        if (kind[i] == 2) stack.push_back(i);
+    }
+    while (!stack.empty()) {
+        const std::size_t i = stack.back();
+        stack.pop_back();
+        if (edge[i]) continue;
+        edge[i] = 1;
+        const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
+        for (int ny = std::max(0, y - 1); ny <= std::min(h - 1, y + 1); ++ny) {
+            for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1); ++nx) {
+                const std::size_t j = static_cast<std::size_t>(ny) * w + nx;
+                if (kind[j] > 0 && !edge[j]) stack.push_back(j);
+            }
+        }
+    }
+    return edge;
+}
+
+// Distance from p to the nearest edge pixel's centre.
+double distance_to_canny(const std::vector<std::uint8_t>& edge, int w, StrokePoint p) {
+    double best = 1e9;
+    for (std::size_t i = 0; i < edge.size(); ++i) {
+        if (!edge[i]) continue;
+        best = std::min(best, std::hypot(static_cast<double>(i % w) + 0.5 - p.x,
+                                         static_cast<double>(i / w) + 0.5 - p.y));
+    }
+    return best;
+}
+
+// The bundled Scream crop and the example's rough path along its railing (examples/feature):
+// snapped, the path lies on the Canny edge of the painting. Measured: the rough path 1.52 px from
+// the nearest edge pixel on average (a painting has edges everywhere), the snapped one 0.48 px,
+// none of its 41 points more than 2 px off.
+TEST(SnapToEdges, SnappedPathLiesOnTheCannyEdgeOfAPainting) {
+    auto palette =
+        load_image(std::string(EXEMPLAR_SOURCE_DIR) + "/examples/feature/scream_railing.png");
+    ASSERT_TRUE(palette.ok()) << palette.status().message();
+    const std::vector<StrokePoint> rough = {{25, 39}, {90, 84}, {155, 130}};  // railing.json
+    auto snapped = snap_to_edges(*palette, rough);
+    ASSERT_TRUE(snapped.ok()) << snapped.status().message();
+    const std::vector<std::uint8_t> edge = canny_edges(*palette);
+    const int w = palette->width();
+    double snapped_mean = 0.0, rough_mean = 0.0;
+    int far = 0;
+    for (StrokePoint p : *snapped) {
+        const double d = distance_to_canny(edge, w, p);
+        snapped_mean += d / static_cast<double>(snapped->size());
+        far += d > 2.0 ? 1 : 0;
+    }
+    // The rough path as the contour starts from it (resampled every snap spacing).
+    int samples = 0;
+    for (std::size_t k = 0; k + 1 < rough.size(); ++k) {
+        for (int t = 0; t < 20; ++t) {
+            const float f = static_cast<float>(t) / 20.0f;
+            rough_mean += distance_to_canny(edge, w,
+                                            {rough[k].x + f * (rough[k + 1].x - rough[k].x),
+                                             rough[k].y + f * (rough[k + 1].y - rough[k].y)});
+            ++samples;
+        }
+    }
+    rough_mean /= samples;
+    std::printf("distance to the Canny edge: rough %.2f px, snapped %.2f px (%d of %zu > 2 px)\n",
+                rough_mean, snapped_mean, far, snapped->size());
+    EXPECT_LT(snapped_mean, 1.0);
+    EXPECT_LT(snapped_mean, 0.5 * rough_mean);
+    EXPECT_LE(far, static_cast<int>(snapped->size()) / 10);
 }
 
 TEST(LineFeature, RejectsBadSelections) {

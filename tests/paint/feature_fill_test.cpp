@@ -190,17 +190,22 @@ TEST(FeatureFill, MeetsTheCanvasWithoutASeam) {
     FeatureFillOptions plain;
     plain.usage = UsageStrategy::None;
     const double plain_step = mean_step(fill(plain), c.region, 1);
-    // The default (uniform usage) keeps the flecks but cuts some of the canvas's flecks at the
-    // border: the patches that would complete them are spent elsewhere (docs/feature.md).
+    // The default (uniform usage, plain nearest neighbours on the finest level) keeps the flecks
+    // but cuts some of the canvas's flecks at the border: the patches that would complete them
+    // are spent elsewhere (docs/feature.md). The uniform usage on the finest level too cuts more.
     const double default_step = mean_step(fill(), c.region, 1);
+    FeatureFillOptions unpolished;
+    unpolished.polish_iterations = 0;
+    const double unpolished_step = mean_step(fill(unpolished), c.region, 1);
     // The magenta inside left in place: a seam.
     const double seam_step = mean_step(c.image, c.region, 1);
     std::printf(
         "mean colour step: inside the palette region %.4f, across the border: plain EM "
-        "%.4f, default %.4f, unfilled %.4f\n",
-        palette_step, plain_step, default_step, seam_step);
+        "%.4f, default %.4f, uniform on the finest level too %.4f, unfilled %.4f\n",
+        palette_step, plain_step, default_step, unpolished_step, seam_step);
     EXPECT_LE(plain_step, palette_step);
-    EXPECT_LE(default_step, 1.6 * palette_step);
+    EXPECT_LE(default_step, 1.35 * palette_step);
+    EXPECT_LE(unpolished_step, 1.6 * palette_step);
     EXPECT_GT(seam_step, 5.0 * palette_step);
 }
 
@@ -222,7 +227,13 @@ TEST(FeatureFill, KeepsTheSourceRegionsColourDistribution) {
         "histogram distance to the source region: default %.3f, plain EM %.3f, "
         "histogram weight 3 (no uniform usage) %.3f\n",
         d, d_plain, d_weighted);
-    EXPECT_LT(d, 0.45);
+    // With the uniform usage on the finest level too (polish-iterations 0) 0.428 (bound 0.45);
+    // the default's plain finest level gives up 0.026 of it (the grain, which the histogram
+    // counts too) for half the CPU time and a lower seam step, keeping the flecks (below).
+    FeatureFillOptions unpolished;
+    unpolished.polish_iterations = 0;
+    EXPECT_LT(histogram_distance(p.image, p.region, fill(unpolished), c.region), 0.45);
+    EXPECT_LT(d, 0.47);
     EXPECT_LT(d, 0.9 * d_plain);
     // The flecks survive: their share of the fill is within a factor 1.5 of the region's
     // (plain EM keeps almost none).

@@ -39,10 +39,30 @@ TEST(SketchSvg, StrokePaintsFromAttributesStylesAndAncestors) {
         R"svg(<path d="M0 0 L1 1"/>)svg"
         R"svg(<g stroke="#ff0000"><path d="M0 0 L1 1"/><path style="stroke-width:2; stroke : blue" d="M0 0 L1 1"/></g>)svg");
     ASSERT_EQ(d.strokes.size(), 3u);
-    EXPECT_EQ(d.strokes[0], "");         // none given
+    EXPECT_EQ(d.strokes[0], "none");     // none given: SVG's default
     EXPECT_EQ(d.strokes[1], "#ff0000");  // inherited from the group
-    EXPECT_EQ(d.strokes[2], "blue");     // the style property wins, not confused with stroke-width
+    EXPECT_EQ(d.strokes[2], "#0000ff");  // the style property wins, not confused with stroke-width
     EXPECT_DOUBLE_EQ(d.stroke_widths[2], 2.0);
+}
+
+TEST(SketchSvg, StrokeAndFillColoursClassesAndElements) {
+    const Drawing d = parse_ok(
+        R"svg(<path d="M0 0 L1 1"/>)svg"
+        R"svg(<g fill="none" stroke="Black" class="g"><path class="a b" d="M0 0 L1 1 M2 2 L3 3"/>)svg"
+        R"svg(<rect style="fill: rgb(255, 0, 0); stroke:#0F0" width="2" height="2"/></g>)svg"
+        R"svg(<circle fill="transparent" stroke="url(#g)" fill-rule="evenodd" r="1"/>)svg");
+    ASSERT_EQ(d.paths.size(), 5u);
+    EXPECT_EQ(d.strokes,
+              (std::vector<std::string>{"none", "#000000", "#000000", "#00ff00", "url(#g)"}));
+    EXPECT_EQ(d.fills, (std::vector<std::string>{"#000000", "none", "none", "#ff0000", "none"}));
+    EXPECT_EQ(d.classes[1], "g a b");  // the group's class, then the path's
+    EXPECT_EQ(d.classes[4], "");
+    EXPECT_EQ(d.elements, (std::vector<int>{0, 1, 1, 2, 3}));  // two subpaths, one element
+    EXPECT_EQ(d.element_count, 4);
+    EXPECT_EQ(d.even_odd[4], 1);
+    EXPECT_EQ(d.even_odd[0], 0);
+    EXPECT_EQ(normalize_colour(" #AbC "), "#aabbcc");
+    EXPECT_EQ(normalize_colour("grey"), "#808080");
 }
 
 TEST(SketchSvg, AbsoluteAndRelativeCommands) {

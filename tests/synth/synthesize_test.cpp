@@ -113,9 +113,9 @@ TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
     }
 }
 
-// The error budget's polish (budget-polish-iterations): only the finest level changes; it runs
-// that many iterations of plain nearest-neighbour search, whose matches are closer to the same B'
-// than the budget's. Other strategies ignore it.
+// The polish of the error budget and the uniform usage (budget-polish-iterations): only the
+// finest level changes; it runs that many iterations of plain nearest-neighbour search, whose
+// matches are closer to the same B' than the budget's. Other strategies ignore it.
 TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
     const SynthesisInput in = two_level_input();
     SynthesisOptions opt;
@@ -158,11 +158,20 @@ TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
     ASSERT_TRUE(one.ok());
     EXPECT_TRUE(same(one->image, polished.back().current));
 
+    // The uniform usage honours it too (paint::fill_area's default): the coarse level is the
+    // same, the finest level runs the polish's iterations instead.
     opt.usage = UsageStrategy::Uniform;
     const std::vector<Frame> uniform_plain = run(0);
     const std::vector<Frame> uniform_polished = run(3);
-    ASSERT_EQ(uniform_plain.size(), uniform_polished.size());
-    EXPECT_TRUE(same(uniform_plain.back().current, uniform_polished.back().current));
+    ASSERT_EQ(uniform_plain.size(), coarse + 2);
+    ASSERT_EQ(uniform_polished.size(), coarse + 3);
+    for (std::size_t i = 0; i < coarse; ++i) {
+        EXPECT_TRUE(same(uniform_plain[i].current, uniform_polished[i].current)) << "frame " << i;
+    }
+    EXPECT_FALSE(same(uniform_plain.back().current, uniform_polished.back().current));
+    // The other strategies ignore it: nothing to polish (none is plain already).
+    opt.usage = UsageStrategy::None;
+    EXPECT_TRUE(same(run(0).back().current, run(3).back().current));
 }
 
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces

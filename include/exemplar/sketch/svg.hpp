@@ -32,10 +32,28 @@ struct Drawing {
     /// else its ancestors', else 1, SVG's default) in root user units: scaled by the square root
     /// of the transform's determinant.
     std::vector<double> stroke_widths;
-    /// Per path: its stroke paint as written (the element's `stroke` attribute or `style`
-    /// property, else its ancestors', trimmed; "" if none), e.g. "#ff0000", "red", "none".
+    /// Per path: its `stroke` colour (the element's, else its ancestors', else "none", SVG's
+    /// default), through normalize_colour: "#rrggbb", "none", or the text as written (lower case)
+    /// for what it does not know (gradients, currentColor).
     std::vector<std::string> strokes;
+    /// Per path: its `fill` colour, the same way (SVG's default: black, "#000000").
+    std::vector<std::string> fills;
+    /// Per path: the `class` attributes of its ancestors and of the element, outermost first,
+    /// separated by spaces ("" if none), so that a group's class applies to its paths.
+    std::vector<std::string> classes;
+    /// Per path: the index of the element it came from (subpaths of one element share it, as
+    /// they share one fill: holes are subpaths), counting drawable elements from 0.
+    std::vector<int> elements;
+    /// Per path: 1 if its `fill-rule` is evenodd, 0 for nonzero (SVG's default).
+    std::vector<unsigned char> even_odd;
+    /// Number of drawable elements read.
+    int element_count = 0;
 };
+
+/// An SVG colour as "#rrggbb" (from "#rgb", "#rrggbb", "rgb(r, g, b)" or one of CSS's basic
+/// colour keywords, any case), "none" (also for "transparent"), or else the text in lower case
+/// without spaces.
+std::string normalize_colour(const std::string& colour);
 
 /// Parses SVG text. `name` is used in messages. Errors (InvalidArgument): not XML, no `<svg>`
 /// root, a malformed number or path command (the message names the element and its id).

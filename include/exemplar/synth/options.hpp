@@ -154,15 +154,17 @@ struct SynthesisOptions {
     /// Closer to the exemplar and more of its grain kept; 0 = off (StyLit as published).
     /// Measurements in docs/PERFORMANCE.md.
     int coherence_sweeps = 2;
-    /// Error budget: the finest level runs this many EM iterations of plain nearest-neighbour
-    /// search from the field the budget laid out on the coarser levels, instead of
-    /// finest_em_iterations budget iterations. The coarser levels fix the layout (which exemplar
-    /// region goes where); the budget on the finest level adds a mosaic of small pieces whose
-    /// seams no exemplar patch contains, and the plain search moves those seams to where
-    /// neighbouring pieces agree: closer to the exemplar (stylit's patch fidelity as ebsynth's)
-    /// and cheaper, but the finest grain partly washes out again (facestyle keeps 4-7% less
-    /// gradient energy) and highlights take fewer highlight patches. 0 = off (default: StyLit as
-    /// published; the `best` preset uses it). Not in the 3x3 final pass. Measurements in
+    /// Error budget and uniform usage: the finest level runs this many EM iterations of plain
+    /// nearest-neighbour search from the field the usage strategy laid out on the coarser
+    /// levels, instead of finest_em_iterations iterations with the strategy. (With the uniform
+    /// usage and a target much larger than the exemplar, the finest level's reversed rounds cost
+    /// most of the run; paint::fill_area uses 2: docs/feature.md.) The coarser levels fix the
+    /// layout (which exemplar region goes where); the budget on the finest level adds a mosaic of
+    /// small pieces whose seams no exemplar patch contains, and the plain search moves those seams
+    /// to where neighbouring pieces agree: closer to the exemplar (stylit's patch fidelity as
+    /// ebsynth's) and cheaper, but the finest grain partly washes out again (facestyle keeps 4-7%
+    /// less gradient energy) and highlights take fewer highlight patches. 0 = off (default: StyLit
+    /// as published; the `best` preset uses it). Not in the 3x3 final pass. Measurements in
     /// docs/PERFORMANCE.md.
     int budget_polish_iterations = 0;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
@@ -187,7 +189,9 @@ struct SynthesisOptions {
 /// Whether the finest level searches plain nearest neighbours instead of the error budget
 /// (SynthesisOptions::budget_polish_iterations).
 inline bool budget_polish(const SynthesisOptions& options) {
-    return options.usage == UsageStrategy::ErrorBudget && options.budget_polish_iterations > 0;
+    return (options.usage == UsageStrategy::ErrorBudget ||
+            options.usage == UsageStrategy::Uniform) &&
+           options.budget_polish_iterations > 0;
 }
 
 /// EM iterations of the level `depth` steps above the finest (0 = finest) of a pyramid with
