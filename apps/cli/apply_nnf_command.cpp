@@ -26,6 +26,8 @@ ApplyNnfCommand::ApplyNnfCommand(CLI::App& parent) {
     app_->add_option("--vote-size", vote_size_,
                      "Central part of each patch that votes, as the stylize run's "
                      "--final-vote-size (default 3; 0 = whole patches)");
+    app_->add_flag("--vote-seams", vote_seams_,
+                   "Seams blended as by the stylize run's --final-vote-seams 1 (--quality best)");
     app_->add_option("--output,-o", output_,
                      "Output image; PNG/TIFF keep the source's bit depth (16-bit in, 16-bit out)")
         ->required();
@@ -70,8 +72,8 @@ Status ApplyNnfCommand::run(const Streams& streams) const {
     const SaveOptions save = output_options(*source, source_, output_);
     EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", output_, *source, save));
 
-    auto result =
-        apply_nnf(*nnf, *source, patch_size_, *vote, threads_, vote_size_, vote_coherence_);
+    auto result = apply_nnf(*nnf, *source, patch_size_, *vote, threads_, vote_size_,
+                            vote_coherence_, vote_seams_);
     if (!result.ok()) {
         return Status(result.status().code(), "--nnf " + nnf_ + " with --source " + source_ + ": " +
                                                   result.status().message());

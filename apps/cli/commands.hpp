@@ -86,6 +86,7 @@ private:
     int patch_size_ = 0;
     int vote_size_ = 3;  // as stylize's --final-vote-size default
     float vote_coherence_ = SynthesisOptions{}.vote_coherence;  // as stylize's default
+    bool vote_seams_ = false;                                   // as stylize's default
     int threads_ = 0;
     bool quiet_ = false;
 };

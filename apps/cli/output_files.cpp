@@ -201,8 +201,9 @@ std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outp
     const std::string p = std::to_string(result.nnf_patch_size);
     const std::string v = std::to_string(result.vote_size);
     return "exemplar: note: " + outputs.save_nnf + " was made with patch size " + p +
-           " and voted with the central " + v + "x" + v +
-           " of each patch (apply-nnf --patch-size " + p + " --vote-size " + v + ")\n";
+           " and voted with the central " + v + "x" + v + " of each patch" +
+           (result.vote_seams ? ", seams blended" : "") + " (apply-nnf --patch-size " + p +
+           " --vote-size " + v + (result.vote_seams ? " --vote-seams" : "") + ")\n";
 }
 
 std::string guide_compression_note(const SynthesisResult& result, float guide_pca) {

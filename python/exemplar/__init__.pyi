@@ -37,6 +37,7 @@ class StylizeResult:
     error: numpy.ndarray
     nnf_patch_size: int
     vote_size: int
+    vote_seams: bool
     guide_channels: int
     explained_variance: float
 
@@ -95,6 +96,7 @@ def stylize(
     finest_first_round_iterations: int = 1,
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
+    final_vote_seams: int = 0,
     vote_coherence: float = 0.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
@@ -189,6 +191,11 @@ def stylize(
       final_vote_size (int, default 3)
           The last vote averages only the central NxN pixels of each patch, which keeps the
           exemplar's fine grain; odd, 0 = the whole patch. Range 0..31 px.
+      final_vote_seams (int, default 0)
+          1: where the patches of the last vote's footprint disagree on a pixel's source (a
+          seam between pieces), the pixel takes the plain average of the whole patches
+          instead: seams blend, pieces keep their grain; closer to the exemplar, a little
+          less grain. 0 = off. Range 0..1.
       vote_coherence (float, default 0.0)
           Weighted vote: each patch also weighs by how many patches around it map
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
@@ -259,6 +266,7 @@ def apply_nnf(
     vote_size: int = 3,
     vote: str = 'weighted',
     vote_coherence: float = 0.0,
+    vote_seams: bool = False,
     threads: int = 0,
 ) -> numpy.ndarray:
     """Re-applies a correspondence field to another image on the style's grid (a 16-bit or
@@ -279,6 +287,8 @@ def apply_nnf(
           'average' or 'weighted', as the run.
       vote_coherence (float, default 0.0)
           Coherence weighting of the weighted vote, as the run's vote_coherence.
+      vote_seams (bool, default False)
+          Seams blended, as the run's final_vote_seams (StylizeResult.vote_seams).
       threads (int, default 0)
           Threads; 0 = all cores. The result is the same for any count.
 
@@ -308,6 +318,7 @@ def stylit(
     finest_first_round_iterations: int = 1,
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
+    final_vote_seams: int = 0,
     vote_coherence: float = 0.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
@@ -388,6 +399,11 @@ def stylit(
       final_vote_size (int, default 3)
           The last vote averages only the central NxN pixels of each patch, which keeps the
           exemplar's fine grain; odd, 0 = the whole patch. Range 0..31 px.
+      final_vote_seams (int, default 0)
+          1: where the patches of the last vote's footprint disagree on a pixel's source (a
+          seam between pieces), the pixel takes the plain average of the whole patches
+          instead: seams blend, pieces keep their grain; closer to the exemplar, a little
+          less grain. 0 = off. Range 0..1.
       vote_coherence (float, default 0.0)
           Weighted vote: each patch also weighs by how many patches around it map
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
@@ -533,6 +549,7 @@ def animate(
     finest_first_round_iterations: int = 1,
     final_pass_iterations: int = 1,
     final_vote_size: int = 0,
+    final_vote_seams: int = 0,
     vote_coherence: float = 0.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
@@ -639,6 +656,11 @@ def animate(
       final_vote_size (int, default 0)
           The last vote averages only the central NxN pixels of each patch, which keeps the
           exemplar's fine grain; odd, 0 = the whole patch. Range 0..31 px.
+      final_vote_seams (int, default 0)
+          1: where the patches of the last vote's footprint disagree on a pixel's source (a
+          seam between pieces), the pixel takes the plain average of the whole patches
+          instead: seams blend, pieces keep their grain; closer to the exemplar, a little
+          less grain. 0 = off. Range 0..1.
       vote_coherence (float, default 0.0)
           Weighted vote: each patch also weighs by how many patches around it map
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);

@@ -116,6 +116,8 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
             Param("vote", "str", "'average' or 'weighted', as the run.", "weighted"),
             Param("vote_coherence", "float", "Coherence weighting of the weighted vote, as the "
                   "run's vote_coherence.", 0.0),
+            Param("vote_seams", "bool", "Seams blended, as the run's final_vote_seams "
+                  "(StylizeResult.vote_seams).", False),
             _RUN[0],
         ],
         "numpy.ndarray",
@@ -664,6 +666,7 @@ class StylizeResult:
     error: numpy.ndarray
     nnf_patch_size: int
     vote_size: int
+    vote_seams: bool
     guide_channels: int
     explained_variance: float
 

@@ -31,6 +31,7 @@ struct StylizeResult {
     py::array error;
     int nnf_patch_size = 0;
     int vote_size = 0;
+    bool vote_seams = false;
     int guide_channels = 0;
     double explained_variance = 1.0;
 };
@@ -43,6 +44,7 @@ StylizeResult make_result(SynthesisResult&& result, SampleType type, int guide_c
     out.error = grey_array_from_image(std::move(result.error));
     out.nnf_patch_size = result.nnf_patch_size;
     out.vote_size = result.vote_size;
+    out.vote_seams = result.vote_seams;
     out.guide_channels = guide_channels;
     out.explained_variance = explained_variance;
     return out;
@@ -276,6 +278,7 @@ py::array apply_nnf_py(const py::object& nnf, const py::object& source, py::kwar
         check(set_option(options, *find_option("vote-coherence"),
                          number(coherence, "vote_coherence")));
     }
+    const bool vote_seams = pop_bool(args, "vote_seams", false);
     const py::object threads = pop(args, "threads");
     const int thread_count = threads_keyword(threads);
     reject_unknown(args, "apply_nnf");
@@ -295,7 +298,7 @@ py::array apply_nnf_py(const py::object& nnf, const py::object& source, py::kwar
     Result<Image> result = [&] {
         py::gil_scoped_release release;
         return apply_nnf(*field, source_arg.image, options.patch_size, options.vote, thread_count,
-                         options.final_vote_size, options.vote_coherence);
+                         options.final_vote_size, options.vote_coherence, vote_seams);
     }();
     return array_from_image(take(std::move(result)), source_arg.type);
 }
@@ -383,6 +386,9 @@ void register_synthesis(py::module_& module) {
                       "apply_nnf's patch_size.")
         .def_readonly("vote_size", &StylizeResult::vote_size,
                       "Footprint of the last vote; apply_nnf's vote_size.")
+        .def_readonly("vote_seams", &StylizeResult::vote_seams,
+                      "Whether the last vote blended seams (final_vote_seams); apply_nnf's "
+                      "vote_seams.")
         .def_readonly("guide_channels", &StylizeResult::guide_channels,
                       "Guide channels the patch distance compared (fewer with guide_pca or a "
                       "stylit preview).")

@@ -58,11 +58,12 @@ def test_a_quality_preset_is_its_options_and_explicit_options_override_it(pair):
     style, source, target = pair
     fast = exemplar.stylize(style, [(source, target)], quality="fast")
     spelled_out = exemplar.stylize(style, [(source, target)], finest_em_iterations=1,
-                                   second_finest_em_iterations=2, warm_search_iterations=1)
+                                   second_finest_em_iterations=2, warm_search_iterations=1,
+                                   budget_polish_iterations=1)
     default = exemplar.stylize(style, [(source, target)])
     overridden = exemplar.stylize(style, [(source, target)], quality="fast",
                                   finest_em_iterations=2, second_finest_em_iterations=4,
-                                  warm_search_iterations=2)
+                                  warm_search_iterations=2, budget_polish_iterations=0)
     np.testing.assert_array_equal(fast.nnf, spelled_out.nnf)
     assert not np.array_equal(fast.nnf, default.nnf)
     np.testing.assert_array_equal(overridden.nnf, default.nnf)
@@ -107,6 +108,13 @@ def test_apply_nnf_reproduces_the_image(pair):
     np.testing.assert_array_equal(extra[..., :3], result.image)
     as_bytes = exemplar.apply_nnf(result.nnf, style, patch_size=5)
     assert as_bytes.dtype == np.uint8
+    # A run that blended its seams (quality best) is reproduced with vote_seams.
+    assert not result.vote_seams
+    best = exemplar.stylize(style_float, [(source, target)], quality="best")
+    assert best.vote_seams
+    again = exemplar.apply_nnf(best.nnf, style_float, patch_size=best.nnf_patch_size,
+                               vote_size=best.vote_size, vote_seams=best.vote_seams)
+    np.testing.assert_array_equal(again, best.image)
 
 
 def test_unguided_texture_synthesis_takes_a_size(pair):

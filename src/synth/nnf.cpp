@@ -83,7 +83,7 @@ Result<Nnf> nnf_from_image(const Image& image) {
 }
 
 Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, VoteMode mode,
-                        int threads, int vote_size, float vote_coherence) {
+                        int threads, int vote_size, float vote_coherence, bool vote_seams) {
     if (patch_size < 1 || patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(patch_size) +
                                 " is invalid (must be odd and positive)");
@@ -110,6 +110,7 @@ Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size, Vot
     synth::VoteParams params;
     params.patch_size = patch_size;
     params.footprint = vote_size;
+    params.blend_seams = vote_seams;
     params.clamp_source = true;
     std::vector<float> weights;
     if (mode == VoteMode::Weighted) {

@@ -60,9 +60,12 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // Measured on bench_examples stylit and facestyle, seeds 1-3 (docs/PERFORMANCE.md, "Quality
     // presets"). Fast: the finest levels iterate less and warm searches run once; the coarse
     // levels keep their iterations (3 instead of 6 there saves little and costs stylit a fifth
-    // of its fidelity). Best: the coarse levels iterate much more, which is nearly free and
+    // of its fidelity); the finest level's one iteration is a plain nearest-neighbour polish
+    // of the budget's field (a third less CPU, closer to the exemplar, as much texture but on
+    // facestyle). Best: the coarse levels iterate much more, which is nearly free and
     // brings the most fidelity, then the two finest levels converge further.
     static constexpr std::array kFast{
+        QualityChange{"budget-polish-iterations", 1},
         QualityChange{"finest-em-iterations", 1},
         QualityChange{"second-finest-em-iterations", 2},
         QualityChange{"warm-search-iterations", 1},
@@ -72,6 +75,7 @@ std::span<const QualityChange> quality_changes(Quality quality) {
         QualityChange{"finest-em-iterations", 3},
         QualityChange{"second-finest-em-iterations", 8},
         QualityChange{"budget-polish-iterations", 4},
+        QualityChange{"final-vote-seams", 1},
     };
     switch (quality) {
         case Quality::Fast: return kFast;
@@ -107,7 +111,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 24> kSpecs{{
+const std::array<OptionSpec, 25> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -142,6 +146,11 @@ const std::array<OptionSpec, 24> kSpecs{{
      "The last vote averages only the central NxN pixels of each patch, which keeps the "
      "exemplar's fine grain; odd, 0 = the whole patch.",
      "px", 0, 31, &O::final_vote_size},
+    {"final-vote-seams",
+     "1: where the patches of the last vote's footprint disagree on a pixel's source (a seam "
+     "between pieces), the pixel takes the plain average of the whole patches instead: seams "
+     "blend, pieces keep their grain; closer to the exemplar, a little less grain. 0 = off.",
+     "", 0, 1, &O::final_vote_seams},
     {"vote-coherence",
      "Weighted vote: each patch also weighs by how many patches around it map consistently "
      "(a Gaussian of their discrepancy with this variance; Brushables: 2); coherent pieces of "

@@ -217,7 +217,10 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
         synth::search(setup, nnf);
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
-        if (end_run && it + 1 == iterations) vp.footprint = last_vote_size(options, L.patch_size);
+        if (end_run && it + 1 == iterations) {
+            vp.footprint = last_vote_size(options, L.patch_size);
+            vp.blend_seams = options.final_vote_seams != 0;
+        }
         if (source_histogram) {
             // Against the histogram of the target as it stands before this vote.
             histogram = source_histogram->weights(current, L.target_active.data(),
@@ -509,6 +512,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             }
             result.nnf_patch_size = L.patch_size;
             result.vote_size = last_vote_size(options, L.patch_size);
+            result.vote_seams = options.final_vote_seams != 0;
             result.error = final_errors(L, nnf, threads);
         }
     }

@@ -149,35 +149,43 @@ void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params
     const int C = kChannels > 0 ? kChannels : source.channels();
     const int patch_r = params.patch_size / 2;
     const int vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
+    const bool blend_seams = params.blend_seams && vote_r < patch_r;
     parallel_for(0, h, threads, [&](int y) {
         using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
                                         std::vector<double>>;
         Sums acc{};
         if constexpr (kChannels == 0) acc.resize(static_cast<std::size_t>(C));
-        // Sum of the votes of the patches centred within r of (x, y); returns their weight.
-        auto gather = [&](int x, int r) {
+        // The source pixel that the patch centred at (x - dx, y - dy) maps (x, y) to, or false
+        // if that pixel is no voting patch centre.
+        auto source_of = [&](int x, int dx, int dy, int& sx, int& sy) {
+            const int cx = x - dx, cy = y - dy;
+            if (cx < 0 || cx >= w || cy < 0 || cy >= h) return false;
+            const std::size_t ci = static_cast<std::size_t>(cy) * w + cx;
+            if (params.active != nullptr && !params.active[ci]) return false;
+            const Match& m = nnf[ci];
+            if (m.x < 0) return false;  // not a patch centre
+            const RotatedOffset o =
+                m.angle_rad == 0.0f
+                    ? RotatedOffset{dx, dy}
+                    : rotate_offset(dx, dy, std::cos(m.angle_rad), std::sin(m.angle_rad));
+            sx = m.x + o.dx;
+            sy = m.y + o.dy;
+            return true;
+        };
+        // Sum of the votes of the patches centred within r of (x, y), each weighing its patch
+        // weight unless `plain`; returns their total weight.
+        auto gather = [&](int x, int r, bool plain) {
             std::fill(acc.begin(), acc.end(), 0.0);
             double total = 0.0;
             // The patch centred at (x - dx, y - dy) covers this pixel at its offset (dx, dy).
             for (int dy = -r; dy <= r; ++dy) {
-                const int cy = y - dy;
-                if (cy < 0 || cy >= h) continue;
                 for (int dx = -r; dx <= r; ++dx) {
-                    const int cx = x - dx;
-                    if (cx < 0 || cx >= w) continue;
-                    const std::size_t ci = static_cast<std::size_t>(cy) * w + cx;
-                    if (params.active != nullptr && !params.active[ci]) continue;
-                    const Match& m = nnf[ci];
-                    if (m.x < 0) continue;  // not a patch centre
+                    int sx = 0, sy = 0;
+                    if (!source_of(x, dx, dy, sx, sy)) continue;
+                    const std::size_t ci = static_cast<std::size_t>(y - dy) * w + (x - dx);
                     const float weight =
-                        params.patch_weights.empty() ? 1.0f : params.patch_weights[ci];
+                        params.patch_weights.empty() || plain ? 1.0f : params.patch_weights[ci];
                     if (!(weight > 0.0f)) continue;
-                    const RotatedOffset o =
-                        m.angle_rad == 0.0f
-                            ? RotatedOffset{dx, dy}
-                            : rotate_offset(dx, dy, std::cos(m.angle_rad), std::sin(m.angle_rad));
-                    int sx = m.x + o.dx;
-                    int sy = m.y + o.dy;
                     if (params.clamp_source) {
                         sx = std::clamp(sx, 0, source.width() - 1);
                         sy = std::clamp(sy, 0, source.height() - 1);
@@ -199,11 +207,31 @@ void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params
             }
             return total;
         };
+        // Whether the patches centred within vote_r of (x, y) map it to different source pixels.
+        auto seam_at = [&](int x) {
+            int fx = 0, fy = 0;
+            bool first = true;
+            for (int dy = -vote_r; dy <= vote_r; ++dy) {
+                for (int dx = -vote_r; dx <= vote_r; ++dx) {
+                    int sx = 0, sy = 0;
+                    if (!source_of(x, dx, dy, sx, sy)) continue;
+                    if (first) {
+                        fx = sx;
+                        fy = sy;
+                        first = false;
+                    } else if (sx != fx || sy != fy) {
+                        return true;
+                    }
+                }
+            }
+            return false;
+        };
         for (int x = 0; x < w; ++x) {
             const std::size_t qi = static_cast<std::size_t>(y) * w + x;
             if (params.fixed != nullptr && params.fixed[qi]) continue;
-            double total = gather(x, vote_r);
-            if (total <= 0.0 && vote_r < patch_r) total = gather(x, patch_r);
+            double total = blend_seams && seam_at(x) ? gather(x, patch_r, /*plain=*/true)
+                                                     : gather(x, vote_r, /*plain=*/false);
+            if (total <= 0.0 && vote_r < patch_r) total = gather(x, patch_r, /*plain=*/false);
             if (total <= 0.0) continue;
             float* o = out.pixel(x, y);
             for (int c = 0; c < C; ++c) {

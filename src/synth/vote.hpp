@@ -18,6 +18,11 @@ struct VoteParams {
     /// patch). A pixel that no patch centre within footprint / 2 covers (near the border, where
     /// pixels are not patch centres) takes the whole patches that overlap it.
     int footprint = 0;
+    /// With a footprint narrower than the patch: pixels where the patches centred within the
+    /// footprint disagree on their source pixel (a seam between differently mapped pieces) take
+    /// the plain, unweighted average of the whole patches over them instead, so seams blend as
+    /// in a plain whole-patch vote while the interiors of pieces keep the footprint's grain.
+    bool blend_seams = false;
     const std::uint8_t* active = nullptr;  ///< Patches that vote (nullptr = all).
     const std::uint8_t* fixed = nullptr;   ///< Pixels left untouched (nullptr = none).
     /// Optional weight of each target patch's vote (the weighted-vote hook; empty = 1).

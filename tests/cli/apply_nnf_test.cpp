@@ -49,6 +49,22 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     // Whole 5x5 patches average more: a different image.
     ASSERT_EQ(run(with(apply, {"-q", "--vote-size", "0", "-o", path("whole5.png")})).code, 0);
     EXPECT_GT(max_abs_diff(read("whole5.png"), read("styled5.png")), 2.0f / 255.0f);
+    // A run with seams blended (--final-vote-seams 1, in --quality best) notes --vote-seams and
+    // is reproduced with it.
+    auto seams = with(stylize_args(), {"-o", path("seams5.png"), "--save-nnf", path("seams5.exr"),
+                                       "--final-vote-seams", "1"});
+    seams[seams.size() - 7] = "0";  // --final-pass-iterations 0
+    const CliRun s = run(seams);
+    ASSERT_EQ(s.code, 0) << s.err;
+    ASSERT_NE(s.err.find("seams blended (apply-nnf --patch-size 5 --vote-size 3 --vote-seams)"),
+              std::string::npos)
+        << s.err;
+    std::vector<std::string> apply_seams = apply;
+    apply_seams[2] = path("seams5.exr");
+    ASSERT_EQ(run(with(apply_seams, {"-q", "--vote-seams", "-o", path("again_s.png")})).code, 0);
+    EXPECT_LE(max_abs_diff(read("again_s.png"), read("seams5.png")), 1.0f / 255.0f);
+    ASSERT_EQ(run(with(apply_seams, {"-q", "-o", path("narrow_s.png")})).code, 0);
+    EXPECT_GT(max_abs_diff(read("narrow_s.png"), read("seams5.png")), 1.0f / 255.0f);
     expect_failure(with(apply, {"--vote-size", "2"}), 1,
                    "--vote-size: 2 is invalid (must be 0 or odd, 0..31)");
     expect_failure(with(apply, {"--vote-coherence", "-2"}), 1,

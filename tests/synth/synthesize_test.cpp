@@ -464,6 +464,18 @@ TEST(Synthesize, NnfReappliesToTheStyle) {
             << "final pass " << final_pass;
     }
     opt.final_pass_iterations = 0;
+    // With seams blended (Quality::Best), apply_nnf reproduces it given vote_seams.
+    {
+        SynthesisOptions seams = opt;
+        seams.final_vote_seams = 1;
+        auto blended = synthesize(in, seams, RunContext{2});
+        ASSERT_TRUE(blended.ok());
+        EXPECT_TRUE(blended->vote_seams);
+        auto again = apply_nnf(blended->nnf, in.style, blended->nnf_patch_size, VoteMode::Weighted,
+                               2, blended->vote_size, 0.0f, true);
+        ASSERT_TRUE(again.ok());
+        EXPECT_TRUE(std::ranges::equal(again->data(), blended->image.data()));
+    }
     // With the coherence-weighted vote, apply_nnf reproduces it given the same variance.
     opt.vote_coherence = 2.0f;
     {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -99,6 +100,56 @@ TEST(Vote, SourceWeightsScaleEachCandidate) {
     // and shifted reads); unweighted 2/3, weighted (1 + 1) / (1 + 1 + 0.25).
     EXPECT_NEAR(plain.at(1, 0, 0), 2.0f / 3.0f, 1e-6f);
     EXPECT_NEAR(weighted.at(1, 0, 0), 2.0f / 2.25f, 1e-6f);
+}
+
+// Seam blending: a field of two pieces (columns < 12 read the source shifted by (5, 3), the rest
+// by (30, 3)) with unequal errors. Pixels 11 and 12, where the central 3x3 patches disagree on the
+// source pixel, take the plain average of the whole 5x5 patches over them; every other pixel keeps
+// the narrow weighted vote, including pixels 9, 10, 13 and 14 whose whole patches straddle the
+// seam. Whole-patch votes ignore the flag; thread counts agree.
+TEST(Vote, BlendSeamsAveragesWholePatchesOnlyAcrossSeams) {
+    Image source(64, 24, 1);
+    for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 64; ++x) source.at(x, y, 0) = static_cast<float>((x * 7 + y * 13) % 17);
+    }
+    Nnf nnf(24, 16);
+    for (int y = 0; y < 16; ++y) {
+        for (int x = 0; x < 24; ++x) {
+            nnf.at(x, y) = Match{x + (x < 12 ? 5 : 30), y + 3, 0.0f, 0.1f + 0.05f * ((x + y) % 5)};
+        }
+    }
+    const std::vector<float> weights = vote_weights(nnf, nullptr, 5, 0.0f, 1);
+    VoteParams params;
+    params.patch_size = 5;
+    params.clamp_source = true;
+    Image whole_plain(24, 16, 1, 0.0f), narrow(24, 16, 1, 0.0f), blended(24, 16, 1, 0.0f);
+    vote(nnf, source, params, whole_plain, 1);
+    params.patch_weights = weights;
+    params.footprint = 3;
+    vote(nnf, source, params, narrow, 1);
+    params.blend_seams = true;
+    vote(nnf, source, params, blended, 1);
+    int differing = 0;
+    for (int y = 1; y < 15; ++y) {
+        for (int x = 1; x < 23; ++x) {
+            const bool seam = x == 11 || x == 12;
+            const float expected = seam ? whole_plain.at(x, y, 0) : narrow.at(x, y, 0);
+            EXPECT_EQ(blended.at(x, y, 0), expected) << x << "," << y;
+            differing += blended.at(x, y, 0) != narrow.at(x, y, 0) ? 1 : 0;
+        }
+    }
+    EXPECT_GT(differing, 14);  // the seam columns do change
+    Image again(24, 16, 1, 0.0f);
+    vote(nnf, source, params, again, 2);
+    EXPECT_TRUE(std::ranges::equal(again.data(), blended.data()));
+    // With whole patches voting there is no narrower footprint to fall back from.
+    Image whole(24, 16, 1, 0.0f), whole_flagged(24, 16, 1, 0.0f);
+    params.footprint = 0;
+    params.blend_seams = false;
+    vote(nnf, source, params, whole, 1);
+    params.blend_seams = true;
+    vote(nnf, source, params, whole_flagged, 1);
+    EXPECT_TRUE(std::ranges::equal(whole.data(), whole_flagged.data()));
 }
 
 }  // namespace

@@ -74,10 +74,11 @@ Nnf upsample_nnf(const Nnf& coarse, int coarse_source_width, int coarse_source_h
 /// at its match (rotated, nearest sample), exactly as the synthesis voted (use
 /// SynthesisResult::nnf_patch_size, SynthesisResult::vote_size and the run's vote mode; the
 /// weights come from the stored errors and, with `vote_coherence` > 0, the matches' coherence as
-/// SynthesisOptions::vote_coherence). Source reads beyond its border are clamped; every match
-/// must lie inside `source`.
+/// SynthesisOptions::vote_coherence; `vote_seams` as SynthesisResult::vote_seams). Source reads
+/// beyond its border are clamped; every match must lie inside `source`.
 Result<Image> apply_nnf(const Nnf& nnf, const Image& source, int patch_size,
                         VoteMode vote = VoteMode::Weighted, int threads = 0, int vote_size = 0,
-                        float vote_coherence = SynthesisOptions{}.vote_coherence);
+                        float vote_coherence = SynthesisOptions{}.vote_coherence,
+                        bool vote_seams = false);
 
 }  // namespace exemplar

@@ -137,6 +137,13 @@ struct SynthesisOptions {
     /// exemplar's fine grain is not averaged away. 0 (or the patch size) = the whole patch.
     /// Replaces the slower 3x3 pass as the default (measurements in docs/PERFORMANCE.md).
     int final_vote_size = 3;
+    /// 1: where the patches of the last vote's footprint disagree on a pixel's source (a seam
+    /// between differently mapped pieces), that pixel takes the plain average of the whole
+    /// patches over it instead, so seams blend as in ebsynth's vote while the pieces keep the
+    /// narrow footprint's grain. Closer to the exemplar, a little less grain (facestyle's
+    /// brushwork: 0.745 -> 0.715 of the exemplar's gradient energy); 0 = off (default; 1 in
+    /// Quality::Best). No effect when the last vote takes whole patches.
+    int final_vote_seams = 0;
     /// Error budget: stop reversed retrieval once this fraction of target patches is covered;
     /// the rest use forward nearest neighbours (StyLit: ~95%).
     float budget_coverage = 0.95f;

@@ -74,8 +74,11 @@ struct SynthesisResult {
     /// Patch size the final NNF was computed with (3 after a final 3x3 pass).
     int nnf_patch_size = 0;
     /// Footprint of the vote that made `image` (SynthesisOptions::final_vote_size, at most
-    /// nnf_patch_size): apply_nnf with nnf_patch_size and vote_size reproduces the image.
+    /// nnf_patch_size): apply_nnf with nnf_patch_size, vote_size and vote_seams reproduces the
+    /// image.
     int vote_size = 0;
+    /// Whether that vote blended seams (SynthesisOptions::final_vote_seams).
+    bool vote_seams = false;
     /// Per-pixel patch distance of the final NNF against the final image (1 channel; 0 where
     /// the pixel is not a patch centre).
     Image error;
