@@ -66,6 +66,7 @@ struct CommandLine {
     BrushCommand brush{app};
     FillCommand fill{app};
     NprCommand npr{app};
+    StudioCommand studio{app};
 };
 
 // roff text: a backslash as \e, a hyphen as \- (so flags copy and search as typed), and a
@@ -190,6 +191,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.fill.run(streams);
         } else if (cli.npr.parsed()) {
             status = cli.npr.run(streams);
+        } else if (cli.studio.parsed()) {
+            status = cli.studio.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);
