@@ -2,8 +2,6 @@
 // the workspace, call the library and answer; the per-client tool state lives in sessions.hpp,
 // the jobs in jobs.hpp.
 
-#include <httplib.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -18,6 +16,7 @@
 #include "exemplar/sketch/svg.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "exemplar/version.hpp"
+#include "http_server.hpp"
 #include "jobs.hpp"
 #include "sessions.hpp"
 #include "studio.hpp"
@@ -27,9 +26,9 @@ namespace exemplar::studio {
 
 namespace {
 
-using httplib::Request;
-using httplib::Response;
 using nlohmann::json;
+using plugin::http::Request;
+using plugin::http::Response;
 
 constexpr std::size_t kMaxJsonBytes = std::size_t{4} << 20;
 constexpr std::size_t kMaxPoints = 10000;
@@ -173,7 +172,7 @@ struct StudioServer::Impl {
     StudioOptions options;
     Workspace workspace;
     JobManager jobs;
-    httplib::Server http;
+    std::unique_ptr<plugin::http::Server> http;
     int port = 0;
     std::atomic<bool> stopping{false};
     std::mutex clients_mutex;
@@ -181,7 +180,7 @@ struct StudioServer::Impl {
 
     // The client's id (header X-Studio-Client, default "default"), or "" after answering 400.
     static std::string client_id(const Request& req, Response& res) {
-        std::string id = req.get_header_value("X-Studio-Client");
+        std::string id = req.header("X-Studio-Client");
         if (id.empty()) return "default";
         const bool valid =
             id.size() <= 64 && std::all_of(id.begin(), id.end(), [](char c) {
@@ -220,18 +219,18 @@ struct StudioServer::Impl {
 };
 
 void StudioServer::Impl::add_routes() {
-    http.set_pre_routing_handler([this](const Request&, Response& res) {
-        if (!stopping) return httplib::Server::HandlerResponse::Unhandled;
+    http->set_gate([this](Response& res) {
+        if (!stopping) return false;
         fail(res, 503, "the studio is shutting down");
-        return httplib::Server::HandlerResponse::Handled;
+        return true;
     });
     for (const Asset& asset : assets()) {
-        http.Get(std::string(asset.path), [&asset](const Request&, Response& res) {
+        http->route("GET", std::string(asset.path), [&asset](const Request&, Response& res) {
             res.set_header("Cache-Control", "no-store");
             res.set_content(std::string(asset.bytes), std::string(asset.content_type).c_str());
         });
     }
-    http.Get("/api/info", [this](const Request&, Response& res) {
+    http->route("GET", "/api/info", [this](const Request&, Response& res) {
         answer(res, 200,
                {{"version", std::string(version())},
                 {"max_upload_bytes", options.max_upload_bytes},
@@ -246,14 +245,14 @@ void StudioServer::Impl::add_routes() {
 }
 
 void StudioServer::Impl::add_file_routes() {
-    http.Get("/api/files", [this](const Request&, Response& res) {
+    http->route("GET", "/api/files", [this](const Request&, Response& res) {
         json files = json::array();
         for (const WorkspaceFile& f : workspace.list()) {
             files.push_back({{"path", f.path}, {"bytes", f.bytes}});
         }
         answer(res, 200, {{"files", files}});
     });
-    http.Get(R"(/api/files/(.+))", [this](const Request& req, Response& res) {
+    http->route("GET", R"(/api/files/(.+))", [this](const Request& req, Response& res) {
         const std::string path = req.matches[1];
         auto resolved = workspace.resolve(path);
         if (!resolved.ok()) return fail(res, 403, resolved.status().message());
@@ -267,7 +266,7 @@ void StudioServer::Impl::add_file_routes() {
         res.set_header("Cache-Control", "no-store");
         res.set_content(std::move(*bytes), content_type_of(path).c_str());
     });
-    http.Put(R"(/api/files/(.+))", [this](const Request& req, Response& res) {
+    http->route("PUT", R"(/api/files/(.+))", [this](const Request& req, Response& res) {
         const std::string path = req.matches[1];
         auto resolved = workspace.resolve(path);
         if (!resolved.ok()) return fail(res, 403, resolved.status().message());
@@ -289,10 +288,10 @@ void StudioServer::Impl::add_file_routes() {
 }
 
 void StudioServer::Impl::add_sketch_routes() {
-    http.Get("/api/sketch", [this](const Request& req, Response& res) {
+    http->route("GET", "/api/sketch", [this](const Request& req, Response& res) {
         with_client(req, res, [&](ClientState& c) { answer(res, 200, sketch_state(c.sketch)); });
     });
-    http.Post("/api/sketch/stroke", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/sketch/stroke", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
         auto points = points_field(*body);
@@ -305,7 +304,7 @@ void StudioServer::Impl::add_sketch_routes() {
             answer(res, 200, {{"suggestions", list}});
         });
     });
-    http.Post("/api/sketch/accept", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/sketch/accept", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
         auto index = number_field(*body, "index", 0.0, 0.0, 1000.0);
@@ -317,21 +316,21 @@ void StudioServer::Impl::add_sketch_routes() {
         });
     });
     for (const char* action : {"undo", "redo", "reset"}) {
-        http.Post(std::string("/api/sketch/") + action,
-                  [this, action](const Request& req, Response& res) {
-                      with_client(req, res, [&](ClientState& c) {
-                          const std::string a = action;
-                          if (a == "undo") c.sketch.undo();
-                          if (a == "redo") c.sketch.redo();
-                          if (a == "reset") c.sketch.reset();
-                          answer(res, 200, sketch_state(c.sketch));
-                      });
-                  });
+        http->route("POST", std::string("/api/sketch/") + action,
+                    [this, action](const Request& req, Response& res) {
+                        with_client(req, res, [&](ClientState& c) {
+                            const std::string a = action;
+                            if (a == "undo") c.sketch.undo();
+                            if (a == "redo") c.sketch.redo();
+                            if (a == "reset") c.sketch.reset();
+                            answer(res, 200, sketch_state(c.sketch));
+                        });
+                    });
     }
 }
 
 void StudioServer::Impl::add_paint_routes() {
-    http.Post("/api/paint/start", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/paint/start", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
         auto exemplar_path = text_field(*body, "exemplar");
@@ -364,7 +363,7 @@ void StudioServer::Impl::add_paint_routes() {
             answer(res, 200, {{"width", c.paint->width()}, {"height", c.paint->height()}});
         });
     });
-    http.Post("/api/paint/stroke", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/paint/stroke", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
         auto points = points_field(*body);
@@ -385,8 +384,9 @@ void StudioServer::Impl::add_paint_routes() {
         });
     });
     for (const char* action : {"undo", "redo"}) {
-        http.Post(
-            std::string("/api/paint/") + action, [this, action](const Request& req, Response& res) {
+        http->route(
+            "POST", std::string("/api/paint/") + action,
+            [this, action](const Request& req, Response& res) {
                 with_client(req, res, [&](ClientState& c) {
                     if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
                     if (std::string(action) == "undo") {
@@ -398,7 +398,7 @@ void StudioServer::Impl::add_paint_routes() {
                 });
             });
     }
-    http.Post("/api/paint/save", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/paint/save", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
         auto output = text_field(*body, "output");
@@ -462,7 +462,7 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, std::string& 
 }
 
 void StudioServer::Impl::add_job_routes() {
-    http.Post("/api/jobs", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/jobs", [this](const Request& req, Response& res) {
         const std::string id = client_id(req, res);
         if (id.empty()) return;
         const auto body = json_body(req, res);
@@ -482,41 +482,30 @@ void StudioServer::Impl::add_job_routes() {
         if (!job.ok()) return fail(res, 429, job.status().message());
         answer(res, 202, {{"id", (*job)->id}});
     });
-    http.Get("/api/jobs", [this](const Request&, Response& res) {
+    http->route("GET", "/api/jobs", [this](const Request&, Response& res) {
         json list = json::array();
         for (const auto& job : jobs.list()) list.push_back(json::parse(job->summary()));
         answer(res, 200, {{"jobs", list}});
     });
-    http.Post(R"(/api/jobs/([0-9]+)/cancel)", [this](const Request& req, Response& res) {
+    http->route("POST", R"(/api/jobs/([0-9]+)/cancel)", [this](const Request& req, Response& res) {
         const auto job = jobs.find(req.matches[1]);
         if (!job) return fail(res, 404, "no such job");
         job->cancel.cancel();
         answer(res, 200, json::parse(job->summary()));
     });
-    http.Get(R"(/api/jobs/([0-9]+)/events)", [this](const Request& req, Response& res) {
+    http->route("GET", R"(/api/jobs/([0-9]+)/events)", [this](const Request& req, Response& res) {
         const auto job = jobs.find(req.matches[1]);
         if (!job) return fail(res, 404, "no such job");
         res.set_header("Cache-Control", "no-store");
-        res.set_chunked_content_provider(
-            "text/event-stream",
-            [job, next = std::size_t{0}](std::size_t, httplib::DataSink& sink) mutable {
-                std::vector<std::string> fresh;
-                bool ended = false;
-                {
-                    std::unique_lock lock(job->mutex);
-                    job->changed.wait_for(lock, std::chrono::milliseconds(250),
-                                          [&] { return job->events.size() > next; });
-                    fresh.assign(job->events.begin() + static_cast<std::ptrdiff_t>(next),
-                                 job->events.end());
-                    next = job->events.size();
-                    ended = job->state != JobState::Running;
-                }
-                for (const std::string& event : fresh) {
-                    if (!sink.write(event.data(), event.size())) return false;
-                }
-                if (ended) sink.done();
-                return true;
-            });
+        res.content_type = "text/event-stream";
+        // Each call waits up to 250 ms for new events, so a stream notices the end quickly.
+        res.stream = [job, next = std::size_t{0}](std::string& chunk) mutable {
+            std::unique_lock lock(job->mutex);
+            job->changed.wait_for(lock, std::chrono::milliseconds(250),
+                                  [&] { return job->events.size() > next; });
+            for (; next < job->events.size(); ++next) chunk += job->events[next];
+            return job->state == JobState::Running;
+        };
     });
 }
 
@@ -537,18 +526,14 @@ Result<std::unique_ptr<StudioServer>> StudioServer::create(const StudioOptions& 
     }
     auto workspace = Workspace::open(options.workspace);
     if (!workspace.ok()) return workspace.status();
+    auto http = plugin::load<plugin::http::Entry>(plugin::http::kPlugin);
+    if (!http.ok()) return http.status();
     auto impl = std::make_unique<Impl>(options, std::move(*workspace));
-    // Event streams hold a worker each while they last, and browsers keep several idle
-    // connections open: more workers than httplib's default of 8, short keep-alives so that
-    // shutdown does not wait long for idle ones.
-    impl->http.new_task_queue = [] { return new httplib::ThreadPool(32); };
-    impl->http.set_keep_alive_timeout(1);
-    impl->http.set_payload_max_length(std::max(options.max_upload_bytes, kMaxJsonBytes));
-    impl->http.set_tcp_nodelay(true);
+    plugin::http::ServerOptions http_options;
+    http_options.max_body_bytes = std::max(options.max_upload_bytes, kMaxJsonBytes);
+    impl->http = (*http)->new_server(http_options);
     impl->add_routes();
-    impl->port = options.port == 0
-                     ? impl->http.bind_to_any_port(options.bind)
-                     : (impl->http.bind_to_port(options.bind, options.port) ? options.port : -1);
+    impl->port = impl->http->bind(options.bind, options.port);
     if (impl->port <= 0) {
         return io_error(options.bind + ":" + std::to_string(options.port) +
                         ": cannot listen (address in use or not available)");
@@ -565,13 +550,13 @@ std::string StudioServer::workspace() const {
 }
 
 void StudioServer::run() {
-    if (!impl_->stopping) impl_->http.listen_after_bind();
+    if (!impl_->stopping) impl_->http->listen();
 }
 
 void StudioServer::shutdown() {
     if (impl_->stopping.exchange(true)) return;
     impl_->jobs.shutdown();
-    impl_->http.stop();
+    impl_->http->stop();
 }
 
 }  // namespace exemplar::studio
