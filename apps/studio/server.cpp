@@ -108,6 +108,22 @@ Result<std::vector<sketch::Vec2>> points_field(const json& body) {
     return points;
 }
 
+// A brush stroke: "points", "width" (default 40 px), "comb" (default false).
+Result<paint::Stroke> stroke_field(const json& body) {
+    auto points = points_field(body);
+    if (!points.ok()) return points.status();
+    auto width = number_field(body, "width", 40.0, 1.0, 4096.0);
+    if (!width.ok()) return width.status();
+    paint::Stroke stroke;
+    for (const sketch::Vec2& p : *points) {
+        stroke.points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+    }
+    stroke.width_px = static_cast<float>(*width);
+    const auto comb = body.find("comb");
+    stroke.comb = comb != body.end() && comb->is_boolean() && comb->get<bool>();
+    return stroke;
+}
+
 std::string content_type_of(const std::string& path) {
     static const std::map<std::string, std::string> kTypes = {
         {".png", "image/png"},         {".jpg", "image/jpeg"},
@@ -161,6 +177,7 @@ struct ClientState {
     std::mutex mutex;
     SketchSession sketch;
     std::optional<PaintSession> paint;
+    std::optional<BrushSession> brush;
 };
 
 }  // namespace
@@ -214,6 +231,9 @@ struct StudioServer::Impl {
     void add_file_routes();
     void add_sketch_routes();
     void add_paint_routes();
+    void add_brush_routes();
+    template <class Session>
+    void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
     void add_job_routes();
     Result<JobWork> stylize_work(const json& body, std::string& output);
 };
@@ -241,6 +261,9 @@ void StudioServer::Impl::add_routes() {
     add_file_routes();
     add_sketch_routes();
     add_paint_routes();
+    add_brush_routes();
+    add_canvas_routes("paint", &ClientState::paint);
+    add_canvas_routes("brush", &ClientState::brush);
     add_job_routes();
 }
 
@@ -366,53 +389,110 @@ void StudioServer::Impl::add_paint_routes() {
     http->route("POST", "/api/paint/stroke", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
-        auto points = points_field(*body);
-        if (!points.ok()) return fail(res, points.status());
-        auto width = number_field(*body, "width", 40.0, 1.0, 4096.0);
-        if (!width.ok()) return fail(res, width.status());
-        paint::Stroke stroke;
-        for (const sketch::Vec2& p : *points) {
-            stroke.points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
-        }
-        stroke.width_px = static_cast<float>(*width);
-        stroke.comb = body->value("comb", false);
+        auto stroke = stroke_field(*body);
+        if (!stroke.ok()) return fail(res, stroke.status());
         with_client(req, res, [&](ClientState& c) {
             if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
-            auto changed = c.paint->stroke(stroke, RunContext(options.threads));
+            auto changed = c.paint->stroke(*stroke, RunContext(options.threads));
             if (!changed.ok()) return fail(res, changed.status());
             answer_rgba(res, c.paint->image(), *changed);
         });
     });
-    for (const char* action : {"undo", "redo"}) {
-        http->route(
-            "POST", std::string("/api/paint/") + action,
-            [this, action](const Request& req, Response& res) {
-                with_client(req, res, [&](ClientState& c) {
-                    if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
-                    if (std::string(action) == "undo") {
-                        c.paint->undo();
-                    } else {
-                        c.paint->redo();
-                    }
-                    answer_rgba(res, c.paint->image(), {0, 0, c.paint->width(), c.paint->height()});
-                });
-            });
+}
+
+// Undo, redo and save of a tool whose state is a painting (paint, brush): undo and redo answer
+// the whole canvas as RGBA; save writes it as a PNG into the workspace.
+template <class Session>
+void StudioServer::Impl::add_canvas_routes(const std::string& tool,
+                                           std::optional<Session> ClientState::*session) {
+    const std::string missing = "no painting: POST /api/" + tool + "/start first";
+    for (const std::string action : {"undo", "redo"}) {
+        http->route("POST", "/api/" + tool + "/" + action,
+                    [this, action, session, missing](const Request& req, Response& res) {
+                        with_client(req, res, [&](ClientState& c) {
+                            auto& s = c.*session;
+                            if (!s) return fail(res, 409, missing);
+                            if (action == "undo") {
+                                s->undo();
+                            } else {
+                                s->redo();
+                            }
+                            answer_rgba(res, s->image(), {0, 0, s->width(), s->height()});
+                        });
+                    });
     }
-    http->route("POST", "/api/paint/save", [this](const Request& req, Response& res) {
+    http->route("POST", "/api/" + tool + "/save",
+                [this, session, missing](const Request& req, Response& res) {
+                    const auto body = json_body(req, res);
+                    if (!body) return;
+                    auto output = text_field(*body, "output");
+                    if (!output.ok()) return fail(res, output.status());
+                    if (content_type_of(*output) != "image/png") {
+                        return fail(res, 400, "output: " + *output + " must end in .png");
+                    }
+                    auto path = workspace.resolve(*output);
+                    if (!path.ok()) return fail(res, 403, path.status().message());
+                    with_client(req, res, [&](ClientState& c) {
+                        auto& s = c.*session;
+                        if (!s) return fail(res, 409, missing);
+                        const Status saved = save_image(s->image(), path->string());
+                        if (!saved.is_ok()) return fail(res, 500, saved.message());
+                        answer(res, 200, {{"path", *output}});
+                    });
+                });
+}
+
+void StudioServer::Impl::add_brush_routes() {
+    http->route("POST", "/api/brush/start", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
-        auto output = text_field(*body, "output");
-        if (!output.ok()) return fail(res, output.status());
-        if (content_type_of(*output) != "image/png") {
-            return fail(res, 400, "output: " + *output + " must end in .png");
+        auto palette_path = text_field(*body, "palette");
+        if (!palette_path.ok()) return fail(res, palette_path.status());
+        const auto feature = body->find("feature");
+        if (feature == body->end() || !feature->is_object()) {
+            return fail(res, 400, "feature: missing (an object with points and width)");
         }
-        auto path = workspace.resolve(*output);
+        auto selection = stroke_field(*feature);
+        if (!selection.ok()) return fail(res, selection.status());
+        auto width = number_field(*body, "width", std::nullopt, 1, kMaxCanvas);
+        auto height = number_field(*body, "height", std::nullopt, 1, kMaxCanvas);
+        auto seed = number_field(*body, "seed", 1.0, 0.0, 1e15);
+        for (const Status& s : {width.status(), height.status(), seed.status()}) {
+            if (!s.is_ok()) return fail(res, s);
+        }
+        paint::FeatureBrushOptions brush_options;
+        brush_options.seed = static_cast<std::uint64_t>(*seed);
+        if (body->contains("walk")) {
+            auto walk = paint::parse_walk_mode(body->value("walk", std::string()));
+            if (!walk.ok()) return fail(res, walk.status());
+            brush_options.walk = *walk;
+        }
+        auto path = workspace.resolve(*palette_path);
         if (!path.ok()) return fail(res, 403, path.status().message());
+        auto palette = load_image(path->string());
+        if (!palette.ok()) return fail(res, 404, *palette_path + ": " + palette.status().message());
+        auto session = BrushSession::start(*palette, *selection, static_cast<int>(*width),
+                                           static_cast<int>(*height), brush_options,
+                                           body->value("snap", true), options.threads);
+        if (!session.ok()) return fail(res, session.status());
         with_client(req, res, [&](ClientState& c) {
-            if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
-            const Status saved = save_image(c.paint->image(), path->string());
-            if (!saved.is_ok()) return fail(res, 500, saved.message());
-            answer(res, 200, {{"path", *output}});
+            c.brush.emplace(std::move(*session));
+            json line = json::array();
+            for (const paint::StrokePoint& p : c.brush->feature_line()) line.push_back({p.x, p.y});
+            answer(res, 200,
+                   {{"width", c.brush->width()}, {"height", c.brush->height()}, {"feature", line}});
+        });
+    });
+    http->route("POST", "/api/brush/stroke", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        auto stroke = stroke_field(*body);
+        if (!stroke.ok()) return fail(res, stroke.status());
+        with_client(req, res, [&](ClientState& c) {
+            if (!c.brush) return fail(res, 409, "no painting: POST /api/brush/start first");
+            auto changed = c.brush->stroke(*stroke);
+            if (!changed.ok()) return fail(res, changed.status());
+            answer_rgba(res, c.brush->image(), *changed);
         });
     });
 }

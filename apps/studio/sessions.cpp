@@ -22,38 +22,29 @@ Status SketchSession::accept(int index) {
     }
     sketch::ResolvedDrawing next = drawing();
     sketch::accept(next, pending_[static_cast<std::size_t>(index)]);
-    history_.resize(current_ + 1);
-    history_.push_back(std::move(next));
-    ++current_;
+    history_.push(std::move(next));
     pending_.clear();
     return Status::ok();
 }
 
 bool SketchSession::undo() {
     pending_.clear();
-    if (!can_undo()) return false;
-    --current_;
-    return true;
+    return history_.undo();
 }
 
 bool SketchSession::redo() {
     pending_.clear();
-    if (!can_redo()) return false;
-    ++current_;
-    return true;
+    return history_.redo();
 }
 
 void SketchSession::reset() {
-    history_.assign(1, sketch::ResolvedDrawing{});
-    current_ = 0;
+    history_ = History<sketch::ResolvedDrawing>(sketch::ResolvedDrawing{});
     pending_.clear();
 }
 
 PaintSession::PaintSession(paint::PaintSource source, const paint::PaintOptions& options,
                            State blank)
-    : source_(std::move(source)), options_(options) {
-    history_.push_back(std::move(blank));
-}
+    : source_(std::move(source)), options_(options), history_(std::move(blank), kHistory) {}
 
 Result<PaintSession> PaintSession::start(Image exemplar, int width, int height,
                                          const paint::PaintOptions& options, int threads) {
@@ -72,29 +63,39 @@ Result<PaintSession> PaintSession::start(Image exemplar, int width, int height,
 
 Result<paint::PixelRect> PaintSession::stroke(const paint::Stroke& stroke,
                                               const RunContext& context) {
-    State next = history_[current_];
+    State next = history_.current();
     auto changed = next.canvas.add_stroke(stroke);
     if (!changed.ok()) return changed.status();
     auto painted = paint::repaint(source_, next.canvas, next.image, *changed, options_, context);
     if (!painted.ok()) return painted.status();
     next.image = std::move(painted->image);
-    history_.erase(history_.begin() + static_cast<std::ptrdiff_t>(current_) + 1, history_.end());
-    history_.push_back(std::move(next));
-    if (history_.size() > kHistory + 1) history_.erase(history_.begin());
-    current_ = history_.size() - 1;
+    history_.push(std::move(next));
     return *changed;
 }
 
-bool PaintSession::undo() {
-    if (current_ == 0) return false;
-    --current_;
-    return true;
+Result<BrushSession> BrushSession::start(const Image& palette, const paint::Stroke& selection,
+                                         int width, int height,
+                                         const paint::FeatureBrushOptions& options, bool snap,
+                                         int threads) {
+    auto feature = paint::pick_line_feature(palette, selection, options, snap, threads);
+    if (!feature.ok()) return feature.status();
+    return BrushSession(std::move(*feature), threads, State{Image(width, height, 4), 0});
 }
 
-bool PaintSession::redo() {
-    if (current_ + 1 >= history_.size()) return false;
-    ++current_;
-    return true;
+Result<paint::PixelRect> BrushSession::stroke(const paint::Stroke& path) {
+    EXEMPLAR_RETURN_IF_ERROR(paint::validate(path));
+    const State& now = history_.current();
+    paint::BrushStroke stroke(feature_, width(), height(), path.width_px, now.strokes, threads_);
+    auto changed = stroke.add_points(path.points);
+    if (!changed.ok()) return changed.status();
+    history_.push(State{paint::composite_over(stroke.layer(), now.image), now.strokes + 1});
+    return *changed;
+}
+
+std::vector<paint::StrokePoint> BrushSession::feature_line() const {
+    std::vector<paint::StrokePoint> line;
+    for (const paint::PathSample& s : feature_.samples()) line.push_back({s.x, s.y});
+    return line;
 }
 
 }  // namespace exemplar::studio

@@ -6,6 +6,7 @@
 #include <httplib.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,6 +16,7 @@
 
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/paint.hpp"
 #include "studio.hpp"
 
@@ -313,6 +315,83 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     httplib::Client other("127.0.0.1", server_->port());
     other.set_default_headers({{"X-Studio-Client", "tab2"}});
     EXPECT_EQ(other.Post("/api/paint/stroke", stroke.dump(), "application/json")->status, 409);
+}
+
+// A palette with one line feature: a dark wavy band on a grainy light ground.
+Image band_palette() {
+    Image image(200, 64, 3);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 200; ++x) {
+            const float centre = 32.0f + 3.0f * std::sin(static_cast<float>(x) * 0.11f);
+            const bool band = std::abs(static_cast<float>(y) - centre) < 4.0f + (x % 17) * 0.15f;
+            const float grain = static_cast<float>((x * 37 + y * 91) % 23) / 23.0f;
+            for (int c = 0; c < 3; ++c) {
+                image.at(x, y, c) = band ? 0.1f + 0.1f * grain + 0.05f * c : 0.8f + 0.15f * grain;
+            }
+        }
+    }
+    return image;
+}
+
+TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
+    ASSERT_TRUE(save_image(band_palette(), (base_ / "ws" / "band.png").string()).is_ok());
+    start();
+    const json selection = {{"points", {{8, 32}, {100, 32}, {192, 32}}}, {"width", 14}};
+    auto started = post("/api/brush/start", {{"palette", "band.png"},
+                                             {"feature", selection},
+                                             {"width", 160},
+                                             {"height", 120},
+                                             {"seed", 5}});
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 200) << started->body;
+    EXPECT_GE(body_of(started)["feature"].size(), 10u);
+    const json paths[] = {{{"points", {{10, 20}, {80, 60}, {150, 40}}}, {"width", 18}},
+                          {{"points", {{20, 100}, {140, 90}}}, {"width", 12}}};
+    for (const json& path : paths) {
+        auto painted = post("/api/brush/stroke", path);
+        ASSERT_TRUE(painted);
+        ASSERT_EQ(painted->status, 200) << painted->body;
+        EXPECT_FALSE(painted->get_header_value("X-Rect").empty());
+    }
+    ASSERT_EQ(post("/api/brush/save", {{"output", "brushed.png"}})->status, 200);
+
+    // `exemplar brush`'s library calls with the same feature and paths: the same bytes.
+    auto palette = load_image((base_ / "ws" / "band.png").string());
+    ASSERT_TRUE(palette.ok());
+    paint::FeatureBrushOptions options;
+    options.seed = 5;
+    auto feature = paint::pick_line_feature(*palette, {{{8, 32}, {100, 32}, {192, 32}}, 14.0f},
+                                            options, true, 1);
+    ASSERT_TRUE(feature.ok()) << feature.status().message();
+    const paint::Stroke strokes[] = {{{{10, 20}, {80, 60}, {150, 40}}, 18.0f},
+                                     {{{20, 100}, {140, 90}}, 12.0f}};
+    auto expected = paint::paint_feature(*feature, strokes, 160, 120, 0.0f, 1);
+    ASSERT_TRUE(expected.ok()) << expected.status().message();
+    auto saved = load_image((base_ / "ws" / "brushed.png").string());
+    ASSERT_TRUE(saved.ok());
+    int differing = 0, opaque = 0;
+    for (int y = 0; y < 120; ++y) {
+        for (int x = 0; x < 160; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const float want =
+                    std::round(std::clamp(expected->at(x, y, c), 0.0f, 1.0f) * 255.0f);
+                differing += std::round(saved->at(x, y, c) * 255.0f) != want;
+            }
+            opaque += saved->at(x, y, 3) > 0.99f;
+        }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(opaque, 1500);
+    // Undo the second stroke: the first alone, as paint_feature paints it.
+    auto undone = post("/api/brush/undo", json::object());
+    ASSERT_EQ(undone->status, 200);
+    auto first = paint::paint_feature(*feature, std::span(strokes, 1), 160, 120, 0.0f, 1);
+    ASSERT_TRUE(first.ok());
+    EXPECT_EQ(static_cast<unsigned char>(undone->body[(100 * 160 + 80) * 4 + 3]), 0)
+        << "the second stroke is gone";
+    const long alpha = std::lround(first->at(80, 60, 3) * 255.0f);
+    EXPECT_EQ(static_cast<unsigned char>(undone->body[(60 * 160 + 80) * 4 + 3]), alpha);
+    EXPECT_EQ(post("/api/brush/stroke", {{"points", {{1, 1}}}, {"width", 0}})->status, 400);
 }
 
 // Reads a job's event stream until its `end` event; `on_progress` is called for each progress

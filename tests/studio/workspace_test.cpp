@@ -11,6 +11,8 @@
 #include <optional>
 #include <string>
 
+#include "sessions.hpp"
+
 namespace exemplar::studio {
 namespace {
 
@@ -125,6 +127,33 @@ TEST(UploadType, RecognizesPngAndJpegByTheirFirstBytes) {
     EXPECT_FALSE(sniff_upload_type("<svg></svg>").ok());
     EXPECT_FALSE(sniff_upload_type(std::string("\x89PNG", 4)).ok());
     EXPECT_FALSE(sniff_upload_type("").ok());
+}
+
+}  // namespace
+}  // namespace exemplar::studio
+
+namespace exemplar::studio {
+namespace {
+
+TEST(History, UndoRedoAndTheLimitOfStepsBack) {
+    History<int> history(0, 3);
+    for (int i = 1; i <= 5; ++i) history.push(i);
+    EXPECT_EQ(history.current(), 5);
+    int undone = 0;
+    while (history.undo()) ++undone;
+    EXPECT_EQ(undone, 3) << "at most 3 steps back";
+    EXPECT_EQ(history.current(), 2);
+    EXPECT_TRUE(history.redo());
+    history.push(9);  // drops the redo steps
+    EXPECT_FALSE(history.can_redo());
+    EXPECT_EQ(history.current(), 9);
+    EXPECT_TRUE(history.undo());
+    EXPECT_EQ(history.current(), 3);
+    History<int> unlimited(0);
+    for (int i = 1; i <= 100; ++i) unlimited.push(i);
+    undone = 0;
+    while (unlimited.undo()) ++undone;
+    EXPECT_EQ(undone, 100);
 }
 
 }  // namespace
