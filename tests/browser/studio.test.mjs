@@ -204,6 +204,29 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.waitForFunction(() => document.getElementById('paint-canvas').getContext('2d')
       .getImageData(160, 125, 1, 1).data[3] === 255);
 
+    // Brush: pick the railing in The Scream (examples/feature) with the mouse, paint a wave with it.
+    await page.setInputFiles('#upload', path.join(source, 'examples/feature/scream_railing.png'));
+    await page.waitForSelector('#file-list a:text("scream_railing.png")', { state: 'attached' });
+    await page.click('nav button[data-tab=brush]');
+    await page.selectOption('#brush-palette', 'scream_railing.png');
+    await page.waitForFunction(() => window.studio.brush.shown === 'scream_railing.png');
+    await page.fill('#brush-feature-width', '24');
+    await drag(page, page.locator('#brush-palette-overlay'), [[25, 39], [90, 84], [155, 130]], 6);
+    await page.click('#brush-start');
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('brush painting'),
+      null, { timeout: 60000 });
+    await drag(page, page.locator('#brush-overlay'), [[40, 200], [200, 120], [360, 220], [560, 140]], 10);
+    await page.waitForFunction(() => window.studio.brush.strokes === 1, null, { timeout: 60000 });
+    const brushed = await page.evaluate(() => {
+      const c = document.getElementById('brush-canvas');
+      const data = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let opaque = 0;
+      for (let i = 3; i < data.length; i += 4) opaque += data[i] > 200 ? 1 : 0;
+      return opaque;
+    });
+    assert.ok(brushed > 5000, `the brush stroke covers only ${brushed} pixels`);
+    await page.locator('#tab-brush').screenshot({ path: path.join(artifacts, 'brush.png') });
+
     // Sketch: a wobbly stroke, suggestions on pen-up, Tab cycles, Enter accepts, undo/redo.
     await page.click('nav button[data-tab=sketch]');
     const svg = page.locator('#sketch-svg');

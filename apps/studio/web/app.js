@@ -84,6 +84,7 @@ async function refreshFiles() {
     select.replaceChildren(...images.map((p) => new Option(p, p)));
     if (images.includes(keep)) select.value = keep;
   }
+  if ($('brush-palette').value !== brush.shown) await showPalette();
   return files;
 }
 
@@ -112,10 +113,22 @@ const paintOverlay = $('paint-overlay');
 const paintContext = paintCanvas.getContext('2d');
 const overlayContext = paintOverlay.getContext('2d');
 
-async function putRgba(res) {
+// An answer of RGBA bytes for the rectangle in its X-Rect header, put into `context`.
+async function putRgba(res, context = paintContext) {
   const [x0, y0, x1, y1] = res.headers.get('X-Rect').split(',').map(Number);
   const bytes = new Uint8ClampedArray(await res.arrayBuffer());
-  if (x1 > x0 && y1 > y0) paintContext.putImageData(new ImageData(bytes, x1 - x0, y1 - y0), x0, y0);
+  if (x1 > x0 && y1 > y0) context.putImageData(new ImageData(bytes, x1 - x0, y1 - y0), x0, y0);
+}
+
+// A stroke's preview on an overlay while it is drawn.
+function drawPreview(context, points, width, colour) {
+  context.clearRect(0, 0, context.canvas.width, context.canvas.height);
+  context.strokeStyle = colour;
+  context.lineWidth = width;
+  context.lineCap = context.lineJoin = 'round';
+  context.beginPath();
+  points.forEach(([x, y], i) => (i ? context.lineTo(x, y) : context.moveTo(x, y)));
+  context.stroke();
 }
 
 $('paint-brush').addEventListener('input', (e) => { $('paint-brush-value').value = e.target.value; });
@@ -133,13 +146,8 @@ $('paint-start').addEventListener('click', async () => {
   } catch (e) { fail(e); }
 });
 strokes(paintOverlay, (points) => {
-  overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
-  overlayContext.strokeStyle = $('paint-comb').checked ? 'rgba(40,110,200,0.6)' : 'rgba(200,60,40,0.35)';
-  overlayContext.lineWidth = Number($('paint-brush').value);
-  overlayContext.lineCap = overlayContext.lineJoin = 'round';
-  overlayContext.beginPath();
-  points.forEach(([x, y], i) => (i ? overlayContext.lineTo(x, y) : overlayContext.moveTo(x, y)));
-  overlayContext.stroke();
+  drawPreview(overlayContext, points, Number($('paint-brush').value),
+    $('paint-comb').checked ? 'rgba(40,110,200,0.6)' : 'rgba(200,60,40,0.35)');
 }, async (points) => {
   const started = performance.now();
   try {
@@ -161,6 +169,70 @@ for (const action of ['undo', 'redo']) {
 $('paint-save').addEventListener('click', async () => {
   try {
     const { path } = await api('POST', '/api/paint/save', { output: $('paint-output').value });
+    say(`saved ${path}`);
+    await refreshFiles();
+  } catch (e) { fail(e); }
+});
+
+// Brush: Painting by Feature's line-feature brush. A rough line drawn on the palette picks the
+// feature (snapped to its edge by the server); strokes below are painted with it.
+const brush = { selection: null, strokes: 0, shown: null };
+studio.brush = brush;
+const paletteCanvas = $('brush-palette-canvas');
+const paletteOverlay = $('brush-palette-overlay').getContext('2d');
+const brushContext = $('brush-canvas').getContext('2d');
+const brushOverlay = $('brush-overlay').getContext('2d');
+
+async function showPalette() {
+  const name = $('brush-palette').value;
+  if (!name) return;
+  const blob = await (await fetch(`/api/files/${encodeURI(name)}`)).blob();
+  const bitmap = await createImageBitmap(blob);
+  for (const c of [paletteCanvas, paletteOverlay.canvas]) { c.width = bitmap.width; c.height = bitmap.height; }
+  paletteCanvas.getContext('2d').drawImage(bitmap, 0, 0);
+  brush.selection = null;
+  brush.shown = name;
+}
+$('brush-palette').addEventListener('change', () => showPalette().catch(fail));
+$('brush-size').addEventListener('input', (e) => { $('brush-size-value').value = e.target.value; });
+strokes(paletteOverlay.canvas, (points) => {
+  drawPreview(paletteOverlay, points, Number($('brush-feature-width').value), 'rgba(230,140,20,0.45)');
+}, (points) => { brush.selection = points; });
+$('brush-start').addEventListener('click', async () => {
+  try {
+    if (!brush.selection) throw new Error('draw along a line in the palette first');
+    const answer = await api('POST', '/api/brush/start', {
+      palette: $('brush-palette').value,
+      feature: { points: brush.selection, width: Number($('brush-feature-width').value) },
+      width: Number($('brush-width').value), height: Number($('brush-height').value),
+      seed: Number($('brush-seed').value),
+    });
+    for (const c of [brushContext.canvas, brushOverlay.canvas]) { c.width = answer.width; c.height = answer.height; }
+    drawPreview(paletteOverlay, answer.feature, 2, 'rgba(23,105,194,0.9)');
+    brush.strokes = 0;
+    say(`brush painting ${answer.width}×${answer.height}`);
+  } catch (e) { fail(e); }
+});
+strokes(brushOverlay.canvas, (points) => {
+  drawPreview(brushOverlay, points, Number($('brush-size').value), 'rgba(200,60,40,0.3)');
+}, async (points) => {
+  const started = performance.now();
+  try {
+    await putRgba(await api('POST', '/api/brush/stroke', { points, width: Number($('brush-size').value) }, true),
+      brushContext);
+    brush.strokes += 1;
+    say(`brush stroke ${brush.strokes}: ${(performance.now() - started).toFixed(0)} ms`);
+  } catch (e) { fail(e); }
+  brushOverlay.clearRect(0, 0, brushOverlay.canvas.width, brushOverlay.canvas.height);
+});
+for (const action of ['undo', 'redo']) {
+  $(`brush-${action}`).addEventListener('click', async () => {
+    try { await putRgba(await api('POST', `/api/brush/${action}`, {}, true), brushContext); } catch (e) { fail(e); }
+  });
+}
+$('brush-save').addEventListener('click', async () => {
+  try {
+    const { path } = await api('POST', '/api/brush/save', { output: $('brush-output').value });
     say(`saved ${path}`);
     await refreshFiles();
   } catch (e) { fail(e); }
