@@ -50,6 +50,13 @@ public:
         server_.set_keep_alive_timeout(options.keep_alive_s);
         server_.set_payload_max_length(options.max_body_bytes);
         server_.set_tcp_nodelay(true);
+        // httplib's default sets SO_REUSEPORT, with which a second server binds the same port
+        // and the kernel shares the connections between the two. SO_REUSEADDR alone still lets
+        // a restarted studio bind while the old connections linger in TIME_WAIT.
+        server_.set_socket_options([](socket_t sock) {
+            int yes = 1;
+            setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+        });
     }
 
     void route(const std::string& method, const std::string& pattern, Handler handler) override {
