@@ -192,6 +192,15 @@ struct StudioServer::Impl {
     std::unique_ptr<plugin::http::Server> http;
     int port = 0;
     std::atomic<bool> stopping{false};
+    /// Set by shutdown: interactive calls still running (a repaint) return Cancelled.
+    CancelToken interactive_cancel;
+
+    /// The context of an interactive library call.
+    RunContext interactive_context() const {
+        RunContext context(options.threads);
+        context.cancel = &interactive_cancel;
+        return context;
+    }
     std::mutex clients_mutex;
     std::map<std::string, std::shared_ptr<ClientState>> clients;
 
@@ -235,7 +244,9 @@ struct StudioServer::Impl {
     template <class Session>
     void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
     void add_job_routes();
-    Result<JobWork> stylize_work(const json& body, std::string& output);
+    /// A job's files (style, source, target, output): resolved in the workspace by the route.
+    using JobPaths = std::map<std::string, std::filesystem::path>;
+    Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
 };
 
 void StudioServer::Impl::add_routes() {
@@ -393,7 +404,7 @@ void StudioServer::Impl::add_paint_routes() {
         if (!stroke.ok()) return fail(res, stroke.status());
         with_client(req, res, [&](ClientState& c) {
             if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
-            auto changed = c.paint->stroke(*stroke, RunContext(options.threads));
+            auto changed = c.paint->stroke(*stroke, interactive_context());
             if (!changed.ok()) return fail(res, changed.status());
             answer_rgba(res, c.paint->image(), *changed);
         });
@@ -499,31 +510,22 @@ void StudioServer::Impl::add_brush_routes() {
 
 // A stylize job (guided synthesis, one guide pair): the inputs are loaded and checked here, so a
 // bad job is refused at once; the work is the synthesis and the atomic write of its output.
-Result<JobWork> StudioServer::Impl::stylize_work(const json& body, std::string& output) {
+Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPaths& paths) {
     SynthesisInput input;
-    Image* images[] = {&input.style, nullptr, nullptr};
     input.guides.resize(1);
-    images[1] = &input.guides[0].source;
-    images[2] = &input.guides[0].target;
-    const char* fields[] = {"style", "source", "target"};
-    for (int i = 0; i < 3; ++i) {
-        auto name = text_field(body, fields[i]);
-        if (!name.ok()) return name.status();
-        auto path = workspace.resolve(*name);
-        if (!path.ok()) return path.status();
-        auto image = load_image(path->string());
-        if (!image.ok())
-            return invalid_argument(std::string(fields[i]) + ": " + image.status().message());
-        *images[i] = std::move(*image);
-    }
     input.guides[0].name = "guide";
-    auto output_name = text_field(body, "output");
-    if (!output_name.ok()) return output_name.status();
-    auto output_path = workspace.resolve(*output_name);
-    if (!output_path.ok()) return output_path.status();
-    const std::string type = content_type_of(*output_name);
+    const std::pair<const char*, Image*> inputs[] = {{"style", &input.style},
+                                                     {"source", &input.guides[0].source},
+                                                     {"target", &input.guides[0].target}};
+    for (const auto& [field, image] : inputs) {
+        auto loaded = load_image(paths.at(field).string());
+        if (!loaded.ok())
+            return invalid_argument(std::string(field) + ": " + loaded.status().message());
+        *image = std::move(*loaded);
+    }
+    const std::string type = content_type_of(paths.at("output").string());
     if (type != "image/png" && type != "image/jpeg") {
-        return invalid_argument("output: " + *output_name + " must end in .png or .jpg");
+        return invalid_argument("output: must end in .png or .jpg");
     }
     auto quality = parse_quality(body.value("quality", std::string("default")));
     if (!quality.ok()) return quality.status();
@@ -532,9 +534,8 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, std::string& 
     if (!seed.ok()) return seed.status();
     synthesis.seed = static_cast<std::uint64_t>(*seed);
     EXEMPLAR_RETURN_IF_ERROR(validate_input(input, synthesis));
-    output = *output_name;
-    return JobWork([input = std::move(input), synthesis,
-                    path = output_path->string()](const RunContext& context) mutable -> Status {
+    return JobWork([input = std::move(input), synthesis, path = paths.at("output").string()](
+                       const RunContext& context) mutable -> Status {
         auto result = synthesize(std::move(input), synthesis, context);
         if (!result.ok()) return result.status();
         return save_image(result->image, path);
@@ -550,14 +551,19 @@ void StudioServer::Impl::add_job_routes() {
         const std::string kind = body->value("kind", std::string());
         if (kind != "stylize")
             return fail(res, 400, "kind: \"" + kind + "\" is invalid (must be stylize)");
-        std::string output;
-        auto work = stylize_work(*body, output);
-        if (!work.ok()) {
-            const bool outside =
-                work.status().message().find("outside the workspace") != std::string::npos ||
-                work.status().message().find("refused") != std::string::npos;
-            return fail(res, outside ? 403 : 400, work.status().message());
+        // Every path is checked before anything is read: a refusal is 403.
+        JobPaths paths;
+        for (const char* field : {"style", "source", "target", "output"}) {
+            auto name = text_field(*body, field);
+            if (!name.ok()) return fail(res, name.status());
+            auto path = workspace.resolve(*name);
+            if (!path.ok())
+                return fail(res, 403, std::string(field) + ": " + path.status().message());
+            paths[field] = *path;
         }
+        auto work = stylize_work(*body, paths);
+        if (!work.ok()) return fail(res, 400, work.status().message());
+        const std::string output = body->value("output", std::string());
         auto job = jobs.start(id, kind, output, std::move(*work));
         if (!job.ok()) return fail(res, 429, job.status().message());
         answer(res, 202, {{"id", (*job)->id}});
@@ -635,6 +641,7 @@ void StudioServer::run() {
 
 void StudioServer::shutdown() {
     if (impl_->stopping.exchange(true)) return;
+    impl_->interactive_cancel.cancel();
     impl_->jobs.shutdown();
     impl_->http->stop();
 }
