@@ -239,6 +239,18 @@ struct StudioServer::Impl {
     void add_routes();
     void add_file_routes();
     void add_sketch_routes();
+    /// What every painting tool starts from: an image of the workspace, the canvas size, the seed.
+    struct CanvasStart {
+        Image image;
+        int width = 0;
+        int height = 0;
+        std::uint64_t seed = 1;
+    };
+    /// Reads `image_field` (a workspace path, loaded), "width", "height" and "seed" of a start
+    /// request; nullopt after answering the error (403 for a refused path, 404 for a missing
+    /// or unreadable image).
+    std::optional<CanvasStart> canvas_start(const json& body, const char* image_field,
+                                            Response& res) const;
     void add_paint_routes();
     void add_brush_routes();
     template <class Session>
@@ -363,20 +375,40 @@ void StudioServer::Impl::add_sketch_routes() {
     }
 }
 
+std::optional<StudioServer::Impl::CanvasStart> StudioServer::Impl::canvas_start(
+    const json& body, const char* image_field, Response& res) const {
+    auto name = text_field(body, image_field);
+    auto width = number_field(body, "width", std::nullopt, 1, kMaxCanvas);
+    auto height = number_field(body, "height", std::nullopt, 1, kMaxCanvas);
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    for (const Status& s : {name.status(), width.status(), height.status(), seed.status()}) {
+        if (!s.is_ok()) {
+            fail(res, s);
+            return std::nullopt;
+        }
+    }
+    auto path = workspace.resolve(*name);
+    if (!path.ok()) {
+        fail(res, 403, path.status().message());
+        return std::nullopt;
+    }
+    auto image = load_image(path->string());
+    if (!image.ok()) {
+        fail(res, 404, *name + ": " + image.status().message());
+        return std::nullopt;
+    }
+    return CanvasStart{std::move(*image), static_cast<int>(*width), static_cast<int>(*height),
+                       static_cast<std::uint64_t>(*seed)};
+}
+
 void StudioServer::Impl::add_paint_routes() {
     http->route("POST", "/api/paint/start", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
-        auto exemplar_path = text_field(*body, "exemplar");
-        if (!exemplar_path.ok()) return fail(res, exemplar_path.status());
-        auto width = number_field(*body, "width", std::nullopt, 1, kMaxCanvas);
-        auto height = number_field(*body, "height", std::nullopt, 1, kMaxCanvas);
-        auto seed = number_field(*body, "seed", 1.0, 0.0, 1e15);
-        for (const Status& s : {width.status(), height.status(), seed.status()}) {
-            if (!s.is_ok()) return fail(res, s);
-        }
+        auto start = canvas_start(*body, "exemplar", res);
+        if (!start) return;
         paint::PaintOptions paint_options;
-        paint_options.seed = static_cast<std::uint64_t>(*seed);
+        paint_options.seed = start->seed;
         if (body->contains("usage")) {
             auto usage = text_field(*body, "usage");
             if (!usage.ok()) return fail(res, usage.status());
@@ -384,39 +416,37 @@ void StudioServer::Impl::add_paint_routes() {
             if (!strategy.ok()) return fail(res, strategy.status());
             paint_options.usage = *strategy;
         }
-        auto path = workspace.resolve(*exemplar_path);
-        if (!path.ok()) return fail(res, 403, path.status().message());
-        auto image = load_image(path->string());
-        if (!image.ok()) return fail(res, 404, *exemplar_path + ": " + image.status().message());
-        auto session =
-            PaintSession::start(std::move(*image), static_cast<int>(*width),
-                                static_cast<int>(*height), paint_options, options.threads);
+        auto session = PaintSession::start(std::move(start->image), start->width, start->height,
+                                           paint_options, options.threads);
         if (!session.ok()) return fail(res, session.status());
         with_client(req, res, [&](ClientState& c) {
             c.paint.emplace(std::move(*session));
             answer(res, 200, {{"width", c.paint->width()}, {"height", c.paint->height()}});
         });
     });
-    http->route("POST", "/api/paint/stroke", [this](const Request& req, Response& res) {
-        const auto body = json_body(req, res);
-        if (!body) return;
-        auto stroke = stroke_field(*body);
-        if (!stroke.ok()) return fail(res, stroke.status());
-        with_client(req, res, [&](ClientState& c) {
-            if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
-            auto changed = c.paint->stroke(*stroke, interactive_context());
-            if (!changed.ok()) return fail(res, changed.status());
-            answer_rgba(res, c.paint->image(), *changed);
-        });
-    });
 }
 
-// Undo, redo and save of a tool whose state is a painting (paint, brush): undo and redo answer
-// the whole canvas as RGBA; save writes it as a PNG into the workspace.
+// Stroke, undo, redo and save of a tool whose state is a painting (paint, brush): a stroke
+// answers the rectangle it changed as RGBA, undo and redo the whole canvas; save writes it as a
+// PNG into the workspace.
 template <class Session>
 void StudioServer::Impl::add_canvas_routes(const std::string& tool,
                                            std::optional<Session> ClientState::*session) {
     const std::string missing = "no painting: POST /api/" + tool + "/start first";
+    http->route("POST", "/api/" + tool + "/stroke",
+                [this, session, missing](const Request& req, Response& res) {
+                    const auto body = json_body(req, res);
+                    if (!body) return;
+                    auto stroke = stroke_field(*body);
+                    if (!stroke.ok()) return fail(res, stroke.status());
+                    with_client(req, res, [&](ClientState& c) {
+                        auto& s = c.*session;
+                        if (!s) return fail(res, 409, missing);
+                        auto changed = s->stroke(*stroke, interactive_context());
+                        if (!changed.ok()) return fail(res, changed.status());
+                        answer_rgba(res, s->image(), *changed);
+                    });
+                });
     for (const std::string action : {"undo", "redo"}) {
         http->route("POST", "/api/" + tool + "/" + action,
                     [this, action, session, missing](const Request& req, Response& res) {
@@ -457,34 +487,24 @@ void StudioServer::Impl::add_brush_routes() {
     http->route("POST", "/api/brush/start", [this](const Request& req, Response& res) {
         const auto body = json_body(req, res);
         if (!body) return;
-        auto palette_path = text_field(*body, "palette");
-        if (!palette_path.ok()) return fail(res, palette_path.status());
         const auto feature = body->find("feature");
         if (feature == body->end() || !feature->is_object()) {
             return fail(res, 400, "feature: missing (an object with points and width)");
         }
         auto selection = stroke_field(*feature);
         if (!selection.ok()) return fail(res, selection.status());
-        auto width = number_field(*body, "width", std::nullopt, 1, kMaxCanvas);
-        auto height = number_field(*body, "height", std::nullopt, 1, kMaxCanvas);
-        auto seed = number_field(*body, "seed", 1.0, 0.0, 1e15);
-        for (const Status& s : {width.status(), height.status(), seed.status()}) {
-            if (!s.is_ok()) return fail(res, s);
-        }
+        auto start = canvas_start(*body, "palette", res);
+        if (!start) return;
         paint::FeatureBrushOptions brush_options;
-        brush_options.seed = static_cast<std::uint64_t>(*seed);
+        brush_options.seed = start->seed;
         if (body->contains("walk")) {
             auto walk = paint::parse_walk_mode(body->value("walk", std::string()));
             if (!walk.ok()) return fail(res, walk.status());
             brush_options.walk = *walk;
         }
-        auto path = workspace.resolve(*palette_path);
-        if (!path.ok()) return fail(res, 403, path.status().message());
-        auto palette = load_image(path->string());
-        if (!palette.ok()) return fail(res, 404, *palette_path + ": " + palette.status().message());
-        auto session = BrushSession::start(*palette, *selection, static_cast<int>(*width),
-                                           static_cast<int>(*height), brush_options,
-                                           body->value("snap", true), options.threads);
+        auto session =
+            BrushSession::start(start->image, *selection, start->width, start->height,
+                                brush_options, body->value("snap", true), options.threads);
         if (!session.ok()) return fail(res, session.status());
         with_client(req, res, [&](ClientState& c) {
             c.brush.emplace(std::move(*session));
@@ -492,18 +512,6 @@ void StudioServer::Impl::add_brush_routes() {
             for (const paint::StrokePoint& p : c.brush->feature_line()) line.push_back({p.x, p.y});
             answer(res, 200,
                    {{"width", c.brush->width()}, {"height", c.brush->height()}, {"feature", line}});
-        });
-    });
-    http->route("POST", "/api/brush/stroke", [this](const Request& req, Response& res) {
-        const auto body = json_body(req, res);
-        if (!body) return;
-        auto stroke = stroke_field(*body);
-        if (!stroke.ok()) return fail(res, stroke.status());
-        with_client(req, res, [&](ClientState& c) {
-            if (!c.brush) return fail(res, 409, "no painting: POST /api/brush/start first");
-            auto changed = c.brush->stroke(*stroke);
-            if (!changed.ok()) return fail(res, changed.status());
-            answer_rgba(res, c.brush->image(), *changed);
         });
     });
 }

@@ -79,13 +79,15 @@ Result<BrushSession> BrushSession::start(const Image& palette, const paint::Stro
                                          int threads) {
     auto feature = paint::pick_line_feature(palette, selection, options, snap, threads);
     if (!feature.ok()) return feature.status();
-    return BrushSession(std::move(*feature), threads, State{Image(width, height, 4), 0});
+    return BrushSession(std::move(*feature), State{Image(width, height, 4), 0});
 }
 
-Result<paint::PixelRect> BrushSession::stroke(const paint::Stroke& path) {
+Result<paint::PixelRect> BrushSession::stroke(const paint::Stroke& path,
+                                              const RunContext& context) {
     EXEMPLAR_RETURN_IF_ERROR(paint::validate(path));
     const State& now = history_.current();
-    paint::BrushStroke stroke(feature_, width(), height(), path.width_px, now.strokes, threads_);
+    paint::BrushStroke stroke(feature_, width(), height(), path.width_px, now.strokes,
+                              context.threads);
     auto changed = stroke.add_points(path.points);
     if (!changed.ok()) return changed.status();
     history_.push(State{paint::composite_over(stroke.layer(), now.image), now.strokes + 1});

@@ -114,8 +114,9 @@ public:
                                       int threads);
 
     /// Paints one stroke along `path` (its width_px is the brush width) over the painting;
-    /// returns the rectangle it changed. The painting is unchanged on error.
-    Result<paint::PixelRect> stroke(const paint::Stroke& path);
+    /// returns the rectangle it changed. The painting is unchanged on error. Only the context's
+    /// thread count is used: the library's brush reports no progress and cannot be cancelled.
+    Result<paint::PixelRect> stroke(const paint::Stroke& path, const RunContext& context);
     bool undo() { return history_.undo(); }
     bool redo() { return history_.redo(); }
     const Image& image() const { return history_.current().image; }
@@ -129,11 +130,10 @@ private:
         Image image;
         std::uint64_t strokes = 0;  ///< Paths painted: the next one's key (paint_feature's k).
     };
-    BrushSession(paint::LineFeature feature, int threads, State blank)
-        : feature_(std::move(feature)), threads_(threads), history_(std::move(blank), kHistory) {}
+    BrushSession(paint::LineFeature feature, State blank)
+        : feature_(std::move(feature)), history_(std::move(blank), kHistory) {}
 
     paint::LineFeature feature_;
-    int threads_;
     History<State> history_;
 };
 

@@ -161,18 +161,22 @@ strokes(paintOverlay, (points) => {
   } catch (e) { fail(e); }
   overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
 });
-for (const action of ['undo', 'redo']) {
-  $(`paint-${action}`).addEventListener('click', async () => {
-    try { await putRgba(await api('POST', `/api/paint/${action}`, {}, true)); } catch (e) { fail(e); }
+// The buttons of a painting tool (paint, brush): undo, redo and save.
+function canvasButtons(tool, context) {
+  for (const action of ['undo', 'redo']) {
+    $(`${tool}-${action}`).addEventListener('click', async () => {
+      try { await putRgba(await api('POST', `/api/${tool}/${action}`, {}, true), context); } catch (e) { fail(e); }
+    });
+  }
+  $(`${tool}-save`).addEventListener('click', async () => {
+    try {
+      const { path } = await api('POST', `/api/${tool}/save`, { output: $(`${tool}-output`).value });
+      say(`saved ${path}`);
+      await refreshFiles();
+    } catch (e) { fail(e); }
   });
 }
-$('paint-save').addEventListener('click', async () => {
-  try {
-    const { path } = await api('POST', '/api/paint/save', { output: $('paint-output').value });
-    say(`saved ${path}`);
-    await refreshFiles();
-  } catch (e) { fail(e); }
-});
+canvasButtons('paint', paintContext);
 
 // Brush: Painting by Feature's line-feature brush. A rough line drawn on the palette picks the
 // feature (snapped to its edge by the server); strokes below are painted with it.
@@ -225,18 +229,7 @@ strokes(brushOverlay.canvas, (points) => {
   } catch (e) { fail(e); }
   brushOverlay.clearRect(0, 0, brushOverlay.canvas.width, brushOverlay.canvas.height);
 });
-for (const action of ['undo', 'redo']) {
-  $(`brush-${action}`).addEventListener('click', async () => {
-    try { await putRgba(await api('POST', `/api/brush/${action}`, {}, true), brushContext); } catch (e) { fail(e); }
-  });
-}
-$('brush-save').addEventListener('click', async () => {
-  try {
-    const { path } = await api('POST', '/api/brush/save', { output: $('brush-output').value });
-    say(`saved ${path}`);
-    await refreshFiles();
-  } catch (e) { fail(e); }
-});
+canvasButtons('brush', brushContext);
 
 // Sketch: ShipShape suggestions after every pen-up; Tab cycles, Enter (or the next stroke)
 // accepts the one shown.
