@@ -1,7 +1,8 @@
 // `exemplar studio` end to end in Debian's Chromium, driven by playwright-core (docs/studio.md,
-// "Tests"): upload an exemplar, paint two strokes with the mouse and compare the server's
-// painting with a stored reference, sketch a stroke and cycle/accept/undo its suggestions, start
-// a job and cancel it, then stop the server with SIGINT while a job runs.
+// "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
+// with the mouse and compare the server's painting with a stored reference, pick a line feature
+// and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
+// cancel it, then stop the server with SIGINT while a job runs.
 //
 // Run by ctest (Browser.Studio) with EXEMPLAR_CLI set to the built command; by hand:
 //   EXEMPLAR_CLI=build/release/exemplar node --test tests/browser/studio.test.mjs
@@ -147,6 +148,24 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.setInputFiles('#upload', path.join(source, 'tests/data/flow/synthetic-img0.png'));
     await page.waitForSelector('#file-list a:text("synthetic-img0.png")');
     assert.ok(fs.existsSync(path.join(workspace, 'synthetic-img0.png')));
+    // ... and by drag and drop: a PNG is taken, a text file named .png is refused with a message.
+    await page.evaluate(async () => {
+      const png = await (await fetch('/api/files/synthetic-img0.png')).arrayBuffer();
+      const data = new DataTransfer();
+      data.items.add(new File([png], 'dropped.png', { type: 'image/png' }));
+      document.getElementById('drop').dispatchEvent(
+        new DragEvent('drop', { dataTransfer: data, bubbles: true, cancelable: true }));
+    });
+    await page.waitForSelector('#file-list a:text("dropped.png")', { state: 'attached' });
+    await page.evaluate(() => {
+      const data = new DataTransfer();
+      data.items.add(new File(['<script>alert(1)</script>'], 'evil.png', { type: 'image/png' }));
+      document.getElementById('drop').dispatchEvent(
+        new DragEvent('drop', { dataTransfer: data, bubbles: true, cancelable: true }));
+    });
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('415'));
+    assert.ok(fs.existsSync(path.join(workspace, 'dropped.png')));
+    assert.ok(!fs.existsSync(path.join(workspace, 'evil.png')));
 
     // Paint: a fixed canvas, two strokes drawn with the mouse, each repainted on pen-up.
     await page.click('nav button[data-tab=paint]');
