@@ -138,6 +138,7 @@ $('paint-start').addEventListener('click', async () => {
     const height = Number($('paint-height').value);
     const answer = await api('POST', '/api/paint/start', {
       exemplar: $('paint-exemplar').value, width, height, seed: Number($('paint-seed').value),
+      usage: $('paint-usage').value,
     });
     for (const c of [paintCanvas, paintOverlay]) { c.width = answer.width; c.height = answer.height; }
     paintContext.clearRect(0, 0, answer.width, answer.height);
