@@ -56,7 +56,9 @@ Result<PaintSession> PaintSession::start(Image exemplar, int width, int height,
     // The default direction field of paint(), made once for the session's strokes.
     auto field = paint::analyze_directions(exemplar, {}, threads);
     if (!field.ok()) return field.status();
-    paint::PaintSource source{std::move(exemplar), Image(), paint::direction_angles(*field)};
+    paint::PaintSource source;
+    source.image = std::move(exemplar);
+    source.directions = paint::direction_angles(*field);
     return PaintSession(std::move(source), options,
                         State{paint::PaintCanvas(width, height), Image(width, height, 4)});
 }

@@ -39,6 +39,14 @@ Image texture(int width, int height) {
     return image;
 }
 
+// A painting stroke through `points`, `width` px wide (the other fields at their defaults).
+paint::Stroke stroke_of(std::vector<paint::StrokePoint> points, float width) {
+    paint::Stroke stroke;
+    stroke.points = std::move(points);
+    stroke.width_px = width;
+    return stroke;
+}
+
 std::string file_bytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -256,9 +264,11 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     ASSERT_TRUE(exemplar.ok());
     auto field = paint::analyze_directions(*exemplar, {}, 1);
     ASSERT_TRUE(field.ok());
-    const paint::PaintSource source{*exemplar, Image(), paint::direction_angles(*field)};
+    paint::PaintSource source;
+    source.image = *exemplar;
+    source.directions = paint::direction_angles(*field);
     paint::PaintCanvas canvas(96, 64);
-    auto changed = canvas.add_stroke({{{10, 30}, {50, 34}, {80, 20}}, 16.0f, false});
+    auto changed = canvas.add_stroke(stroke_of({{10, 30}, {50, 34}, {80, 20}}, 16.0f));
     ASSERT_TRUE(changed.ok());
     EXPECT_EQ(changed->x0, x0);
     EXPECT_EQ(changed->y1, y1);
@@ -360,11 +370,11 @@ TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
     ASSERT_TRUE(palette.ok());
     paint::FeatureBrushOptions options;
     options.seed = 5;
-    auto feature = paint::pick_line_feature(*palette, {{{8, 32}, {100, 32}, {192, 32}}, 14.0f},
-                                            options, true, 1);
+    auto feature = paint::pick_line_feature(
+        *palette, stroke_of({{8, 32}, {100, 32}, {192, 32}}, 14.0f), options, true, 1);
     ASSERT_TRUE(feature.ok()) << feature.status().message();
-    const paint::Stroke strokes[] = {{{{10, 20}, {80, 60}, {150, 40}}, 18.0f},
-                                     {{{20, 100}, {140, 90}}, 12.0f}};
+    const paint::Stroke strokes[] = {stroke_of({{10, 20}, {80, 60}, {150, 40}}, 18.0f),
+                                     stroke_of({{20, 100}, {140, 90}}, 12.0f)};
     auto expected = paint::paint_feature(*feature, strokes, 160, 120, 0.0f, 1);
     ASSERT_TRUE(expected.ok()) << expected.status().message();
     auto saved = load_image((base_ / "ws" / "brushed.png").string());
