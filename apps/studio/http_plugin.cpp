@@ -75,11 +75,13 @@ public:
         }
     }
 
-    void set_gate(std::function<bool(Response&)> gate) override {
+    void set_gate(std::function<bool(const Request&, Response&)> gate) override {
         server_.set_pre_routing_handler(
-            [gate = std::move(gate)](const httplib::Request&, httplib::Response& out) {
+            [gate = std::move(gate)](const httplib::Request& in, httplib::Response& out) {
                 Response answer;
-                if (!gate(answer)) return httplib::Server::HandlerResponse::Unhandled;
+                if (!gate(request_of(in, in.method), answer)) {
+                    return httplib::Server::HandlerResponse::Unhandled;
+                }
                 apply(answer, out);
                 return httplib::Server::HandlerResponse::Handled;
             });

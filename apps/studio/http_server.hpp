@@ -17,7 +17,7 @@
 namespace exemplar::plugin::http {
 
 /// Raise abi_version whenever the types below change.
-inline constexpr PluginSpec kPlugin{"libexemplar_http.so", "exemplar_http_entry", 1,
+inline constexpr PluginSpec kPlugin{"libexemplar_http.so", "exemplar_http_entry", 2,
                                     "the studio's HTTP server"};
 
 /// A request as a handler sees it: the path decoded, the route's regex groups in `matches`.
@@ -76,8 +76,9 @@ public:
     /// Adds a route: `method` "GET", "POST" or "PUT", `pattern` an ECMAScript regex matched
     /// against the whole path.
     virtual void route(const std::string& method, const std::string& pattern, Handler handler) = 0;
-    /// Called before routing; answers itself and returns true to skip the route.
-    virtual void set_gate(std::function<bool(Response&)> gate) = 0;
+    /// Called before routing with the request's headers (no body, no matches yet); answers
+    /// itself and returns true to skip the route.
+    virtual void set_gate(std::function<bool(const Request&, Response&)> gate) = 0;
     /// Binds `host`:`port` (0: any free port); the port bound, or -1.
     virtual int bind(const std::string& host, int port) = 0;
     /// Serves until `stop` (from another thread).

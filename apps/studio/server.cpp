@@ -236,6 +236,28 @@ struct StudioServer::Impl {
         handler(*state);
     }
 
+    /// Why a request comes from elsewhere than the studio's own page ("" if it does not). The
+    /// app has no login, so (1) on a loopback address the Host header must name that address
+    /// or localhost, which defeats DNS rebinding (a page whose name resolves to 127.0.0.1
+    /// reading the workspace), and (2) an Origin header, which browsers send with cross-site
+    /// requests, must be the studio's own, so another site's page cannot post strokes, jobs or
+    /// saves through the user's browser.
+    std::string foreign(const Request& req) const {
+        const std::string host = req.header("Host");
+        const std::string port_suffix = ":" + std::to_string(port);
+        const bool loopback =
+            options.bind == "127.0.0.1" || options.bind == "localhost" || options.bind == "::1";
+        if (loopback && host != "127.0.0.1" + port_suffix && host != "localhost" + port_suffix &&
+            host != "[::1]" + port_suffix) {
+            return "Host \"" + host.substr(0, 80) + "\" is not this studio's address";
+        }
+        const std::string origin = req.header("Origin");
+        if (!origin.empty() && origin != "http://" + host) {
+            return "requests from other sites (Origin \"" + origin.substr(0, 80) +
+                   "\") are refused";
+        }
+        return "";
+    }
     void add_routes();
     void add_file_routes();
     void add_sketch_routes();
@@ -262,9 +284,14 @@ struct StudioServer::Impl {
 };
 
 void StudioServer::Impl::add_routes() {
-    http->set_gate([this](Response& res) {
-        if (!stopping) return false;
-        fail(res, 503, "the studio is shutting down");
+    http->set_gate([this](const Request& req, Response& res) {
+        if (stopping) {
+            fail(res, 503, "the studio is shutting down");
+            return true;
+        }
+        const std::string refusal = foreign(req);
+        if (refusal.empty()) return false;
+        fail(res, 403, refusal);
         return true;
     });
     for (const Asset& asset : assets()) {

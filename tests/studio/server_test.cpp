@@ -170,6 +170,30 @@ TEST_F(StudioTest, TraversalAttemptsReadAndWriteNothingOutside) {
     EXPECT_EQ(file_bytes(base_ / "outside" / "secret.txt"), "secret");
 }
 
+TEST_F(StudioTest, RequestsFromOtherSitesAndNamesAreRefused) {
+    start();
+    const std::string own = "127.0.0.1:" + std::to_string(server_->port());
+    // Another site's page posting through the user's browser.
+    auto cross = client_->Post("/api/paint/save", {{"Origin", "http://evil.example"}},
+                               R"({"output": "x.png"})", "text/plain");
+    ASSERT_TRUE(cross);
+    EXPECT_EQ(cross->status, 403);
+    EXPECT_NE(cross->body.find("other sites"), std::string::npos) << cross->body;
+    // DNS rebinding: a foreign name that resolves here.
+    httplib::Client rebound("127.0.0.1", server_->port());
+    auto foreign = rebound.Get("/api/files", {{"Host", "evil.example"}});
+    ASSERT_TRUE(foreign);
+    EXPECT_EQ(foreign->status, 403);
+    // The studio's own page: same origin, its own host name.
+    auto own_page = client_->Get("/api/files", {{"Origin", "http://" + own}});
+    ASSERT_TRUE(own_page);
+    EXPECT_EQ(own_page->status, 200);
+    auto by_name =
+        rebound.Get("/api/info", {{"Host", "localhost:" + std::to_string(server_->port())}});
+    ASSERT_TRUE(by_name);
+    EXPECT_EQ(by_name->status, 200);
+}
+
 TEST_F(StudioTest, UploadsAreTypeCheckedAndSizeLimited) {
     StudioOptions options;
     options.max_upload_bytes = 64 * 1024;
