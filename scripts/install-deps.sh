@@ -19,7 +19,12 @@ packages=(
   python3-dev pybind11-dev python3-numpy  # the Python module (python/)
   python3-pytest python3-pip python3-venv   # its tests; pip install . without an index
   python3-distributed                    # exemplar.distributed: frames on a Dask cluster
+  libcpp-httplib-dev                     # exemplar studio: the HTTP server
+  chromium                               # exemplar studio: its browser test (tests/browser)
 )
+# The browser test's driver (playwright-core) comes from npm; Debian's nodejs and npm only where
+# the machine has no Node.js of its own.
+if ! command -v npm > /dev/null; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -30,12 +35,16 @@ done
 
 if ((${#missing[@]} == 0)); then
   echo "exemplar: all build dependencies are installed"
-  exit 0
+else
+  echo "exemplar: installing ${missing[*]}"
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "exemplar: installing ${missing[*]}"
-SUDO=""
-if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# tests/browser: playwright-core at the version package-lock.json pins (it drives the system's
+# chromium and downloads no browser); from npm's cache when it has it.
+(cd "$(dirname "$0")/../tests/browser" &&
+  npm ci --prefer-offline --no-audit --no-fund --loglevel=error)

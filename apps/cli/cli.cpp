@@ -67,6 +67,7 @@ struct CommandLine {
     FillCommand fill{app};
     VectorizeStyleCommand vectorize_style{app};
     NprCommand npr{app};
+    StudioCommand studio{app};
 };
 
 // roff text: a backslash as \e, a hyphen as \- (so flags copy and search as typed), and a
@@ -193,6 +194,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
             status = cli.vectorize_style.run(streams);
         } else if (cli.npr.parsed()) {
             status = cli.npr.run(streams);
+        } else if (cli.studio.parsed()) {
+            status = cli.studio.run(streams);
         }
     } catch (const CLI::CallForHelp&) {
         const CLI::App* sub = innermost(app);

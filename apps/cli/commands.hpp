@@ -23,6 +23,7 @@
 #include "exemplar/paint/paint.hpp"
 #include "exemplar/render/render.hpp"
 #include "exemplar/synth/options.hpp"
+#include "studio.hpp"
 #include "stylize_job.hpp"
 
 namespace exemplar::cli {
@@ -430,6 +431,24 @@ private:
     bool tone_correction_ = true;
     bool resume_ = true;
     bool quiet_ = false;
+};
+
+/// `exemplar studio`: the local web app (docs/studio.md) until SIGINT or SIGTERM.
+class StudioCommand {
+public:
+    /// Adds the `studio` subcommand and its flags to `app`.
+    explicit StudioCommand(CLI::App& app);
+    StudioCommand(const StudioCommand&) = delete;
+    StudioCommand& operator=(const StudioCommand&) = delete;
+
+    bool parsed() const { return app_->parsed(); }
+    /// Serves until a signal arrives, then shuts down cleanly.
+    Status run(const Streams& streams) const;
+
+private:
+    CLI::App* app_ = nullptr;
+    studio::StudioOptions options_;
+    double max_upload_mib_ = 32.0;
 };
 
 }  // namespace exemplar::cli

@@ -7,9 +7,11 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 #include "exemplar/core/rng.hpp"
+#include "exemplar/io/atomic_write.hpp"
 #include "exemplar/io/folders.hpp"
 
 namespace exemplar::io_detail {
@@ -79,3 +81,19 @@ Status TempFile::commit() {
 }
 
 }  // namespace exemplar::io_detail
+
+namespace exemplar {
+
+Status write_file_atomically(std::string_view bytes, const std::string& path) {
+    io_detail::TempFile temp(path);
+    EXEMPLAR_RETURN_IF_ERROR(temp.status());
+    {
+        std::ofstream out(temp.path(), std::ios::binary | std::ios::trunc);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        out.close();
+        if (!out) return io_error(path + ": cannot write (disk full or not writable)");
+    }
+    return temp.commit();
+}
+
+}  // namespace exemplar

@@ -15,7 +15,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "atomic_file.hpp"
+#include "exemplar/io/atomic_write.hpp"
 
 namespace exemplar::sketch {
 
@@ -693,15 +693,7 @@ std::string to_svg(const Drawing& canvas, const std::vector<SvgLayer>& layers) {
 }
 
 Status save_text(const std::string& text, const std::string& path) {
-    io_detail::TempFile temp(path);
-    EXEMPLAR_RETURN_IF_ERROR(temp.status());
-    {
-        std::ofstream out(temp.path(), std::ios::binary | std::ios::trunc);
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.close();
-        if (!out) return io_error(path + ": cannot write (disk full or not writable)");
-    }
-    return temp.commit();
+    return write_file_atomically(text, path);
 }
 
 Status save_svg(const Drawing& canvas, const std::vector<SvgLayer>& layers,

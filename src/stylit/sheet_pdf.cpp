@@ -6,14 +6,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <numbers>
 #include <sstream>
 #include <vector>
 
-#include "atomic_file.hpp"
 #include "cairo_canvas.hpp"
+#include "exemplar/io/atomic_write.hpp"
 #include "exemplar/stylit/sheet.hpp"
 #include "marks.hpp"
 
@@ -31,20 +30,6 @@ struct Paper {
 };
 constexpr Paper kPapers[] = {
     {"a4", 595.276, 841.890}, {"a3", 841.890, 1190.551}, {"letter", 612.0, 792.0}};
-
-// Writes `bytes` to `path` through a temporary file in the same folder (created if missing) and
-// a rename.
-Status write_atomically(const std::string& bytes, const std::string& path) {
-    io_detail::TempFile temp(path);
-    EXEMPLAR_RETURN_IF_ERROR(temp.status());
-    {
-        std::ofstream out(temp.path(), std::ios::binary | std::ios::trunc);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) return io_error(path + ": cannot write (disk full or not writable)");
-    }
-    return temp.commit();
-}
 
 // The marks as filled paths, in sheet pixel coordinates: each black band is a disc with the
 // inner disc cut out (even-odd rule).
@@ -152,7 +137,7 @@ Status save_sheet_pdf(const Image& content, const SheetLayout& layout, const std
         if (!error.empty())
             return io_error(path + ": Cairo could not draw the PDF (" + error + ")");
     }
-    return write_atomically(pdf, path);
+    return write_file_atomically(pdf, path);
 }
 
 }  // namespace exemplar

@@ -31,6 +31,7 @@ for file in ./usr/bin/exemplar ./usr/lib/libexemplar.so ./usr/include/exemplar/s
   ./usr/lib/exemplar/libexemplar_video_mp4.so ./usr/lib/exemplar/libexemplar_opencv.so \
   ./usr/lib/exemplar/libexemplar_render_embree.so ./usr/lib/exemplar/libexemplar_cairo.so \
   ./usr/lib/exemplar/libexemplar_openexr.so ./usr/lib/exemplar/libexemplar_tiff.so \
+  ./usr/lib/exemplar/libexemplar_http.so \
   ./usr/share/man/man1/exemplar-stylize.1; do
   if ! grep -qF " $file" <<< "$contents"; then
     echo "check_deb: $deb has no $file" >&2

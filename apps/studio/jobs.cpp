@@ -1,0 +1,125 @@
+#include "jobs.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace exemplar::studio {
+
+namespace {
+
+using nlohmann::json;
+
+std::string sse(const char* event, const json& data) {
+    return std::string("event: ") + event + "\ndata: " + data.dump() + "\n\n";
+}
+
+// The progress sink's share of the log: a new event for each whole percent or new stage.
+void record_progress(Job& job, const ProgressEvent& event) {
+    std::lock_guard lock(job.mutex);
+    const double fraction = std::clamp(event.fraction, 0.0, 1.0);
+    if (std::floor(fraction * 100.0) == std::floor(job.fraction * 100.0) && !job.events.empty()) {
+        return;
+    }
+    job.fraction = fraction;
+    job.events.push_back(sse("progress", {{"fraction", fraction},
+                                          {"stage", std::string(event.stage)},
+                                          {"level", event.level},
+                                          {"levels", event.levels}}));
+    job.changed.notify_all();
+}
+
+}  // namespace
+
+const char* to_string(JobState state) {
+    switch (state) {
+        case JobState::Running: return "running";
+        case JobState::Done: return "done";
+        case JobState::Failed: return "failed";
+        case JobState::Cancelled: return "cancelled";
+    }
+    return "unknown";
+}
+
+std::string Job::summary() const {
+    std::lock_guard lock(mutex);
+    return json{
+        {"id", id},         {"kind", kind},  {"state", to_string(state)}, {"fraction", fraction},
+        {"output", output}, {"error", error}}
+        .dump();
+}
+
+int JobManager::running(const std::string& client) const {
+    int count = 0;
+    for (const auto& [id, job] : jobs_) {
+        std::lock_guard lock(job->mutex);
+        if (job->client == client && job->state == JobState::Running) ++count;
+    }
+    return count;
+}
+
+Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const std::string& kind,
+                                               const std::string& output, JobWork work) {
+    std::lock_guard lock(mutex_);
+    if (shut_down_) return unsupported("the studio is shutting down");
+    if (running(client) >= max_per_client_) {
+        return unsupported("too many jobs: " + std::to_string(max_per_client_) +
+                           " are running for this client (cancel one or wait)");
+    }
+    auto job = std::make_shared<Job>();
+    job->id = std::to_string(next_id_++);
+    job->kind = kind;
+    job->client = client;
+    job->output = output;
+    job->events.push_back(sse("progress", {{"fraction", 0.0}, {"stage", "start"}}));
+    jobs_[job->id] = job;
+    // The thread holds its own reference; shutdown joins it.
+    job->thread = std::thread([job, work = std::move(work), threads = threads_] {
+        RunContext context(threads);
+        context.cancel = &job->cancel;
+        context.progress = [&job](const ProgressEvent& event) { record_progress(*job, event); };
+        const Status status = work(context);
+        std::lock_guard job_lock(job->mutex);
+        json end;
+        if (status.is_ok()) {
+            job->state = JobState::Done;
+            job->fraction = 1.0;
+            end = {{"state", "done"}, {"output", job->output}};
+        } else {
+            job->state =
+                status.code() == ErrorCode::Cancelled ? JobState::Cancelled : JobState::Failed;
+            job->error = status.message();
+            end = {{"state", to_string(job->state)}, {"error", job->error}};
+        }
+        job->events.push_back(sse("end", end));
+        job->changed.notify_all();
+    });
+    return job;
+}
+
+std::shared_ptr<Job> JobManager::find(const std::string& id) const {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    return it == jobs_.end() ? nullptr : it->second;
+}
+
+std::vector<std::shared_ptr<Job>> JobManager::list() const {
+    std::lock_guard lock(mutex_);
+    std::vector<std::shared_ptr<Job>> out;
+    for (const auto& [id, job] : jobs_) out.push_back(job);
+    return out;
+}
+
+void JobManager::shutdown() {
+    std::map<std::string, std::shared_ptr<Job>> jobs;
+    {
+        std::lock_guard lock(mutex_);
+        shut_down_ = true;
+        jobs = jobs_;
+    }
+    for (auto& [id, job] : jobs) job->cancel.cancel();
+    for (auto& [id, job] : jobs) {
+        if (job->thread.joinable()) job->thread.join();
+    }
+}
+
+}  // namespace exemplar::studio

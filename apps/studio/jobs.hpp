@@ -1,0 +1,73 @@
+#pragma once
+// Long library calls of the studio (docs/studio.md, "Jobs"): each runs on its own thread with a
+// RunContext whose progress goes to the job's event log and whose CancelToken the client (or
+// shutdown) sets. Event streams replay the log and then wait for more.
+
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "exemplar/core/run_context.hpp"
+#include "exemplar/core/status.hpp"
+
+namespace exemplar::studio {
+
+enum class JobState { Running, Done, Failed, Cancelled };
+const char* to_string(JobState state);
+
+/// One job. Its fields are read under `mutex`.
+struct Job {
+    std::string id, kind, client, output;
+    CancelToken cancel;
+    mutable std::mutex mutex;
+    std::condition_variable changed;
+    JobState state = JobState::Running;
+    double fraction = 0.0;
+    std::string error;
+    /// Server-sent events ("event: ...\ndata: ...\n\n"), in order; the last is `end`.
+    std::vector<std::string> events;
+    std::thread thread;
+
+    /// The job as JSON text for listings.
+    std::string summary() const;
+};
+
+/// The work of a job: one library call and its atomic writes. It returns the call's status.
+using JobWork = std::function<Status(const RunContext&)>;
+
+class JobManager {
+public:
+    /// `max_per_client` running jobs per client at most; `threads` for each call's RunContext.
+    JobManager(int max_per_client, int threads)
+        : max_per_client_(max_per_client), threads_(threads) {}
+    ~JobManager() { shutdown(); }
+    JobManager(const JobManager&) = delete;
+    JobManager& operator=(const JobManager&) = delete;
+
+    /// Starts `work` on a new thread. Fails (Unsupported, "too many jobs") when the client
+    /// already runs `max_per_client` jobs, or after shutdown.
+    Result<std::shared_ptr<Job>> start(const std::string& client, const std::string& kind,
+                                       const std::string& output, JobWork work);
+    std::shared_ptr<Job> find(const std::string& id) const;
+    std::vector<std::shared_ptr<Job>> list() const;
+    /// Cancels every job, joins their threads and refuses new ones.
+    void shutdown();
+
+private:
+    int running(const std::string& client) const;
+
+    const int max_per_client_;
+    const int threads_;
+    mutable std::mutex mutex_;
+    std::map<std::string, std::shared_ptr<Job>> jobs_;
+    std::size_t next_id_ = 1;
+    bool shut_down_ = false;
+};
+
+}  // namespace exemplar::studio

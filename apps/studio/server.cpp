@@ -1,0 +1,684 @@
+// The studio's routes (docs/studio.md, "API"). Handlers parse JSON, resolve every path through
+// the workspace, call the library and answer; the per-client tool state lives in sessions.hpp,
+// the jobs in jobs.hpp.
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "assets.hpp"
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/sketch/svg.hpp"
+#include "exemplar/synth/synthesize.hpp"
+#include "exemplar/version.hpp"
+#include "http_server.hpp"
+#include "jobs.hpp"
+#include "sessions.hpp"
+#include "studio.hpp"
+#include "workspace.hpp"
+
+namespace exemplar::studio {
+
+namespace {
+
+using nlohmann::json;
+using plugin::http::Request;
+using plugin::http::Response;
+
+constexpr std::size_t kMaxJsonBytes = std::size_t{4} << 20;
+constexpr std::size_t kMaxPoints = 10000;
+constexpr int kMaxCanvas = 2048;
+constexpr std::size_t kMaxDownloadBytes = std::size_t{1} << 30;
+
+void answer(Response& res, int http_status, const json& body) {
+    res.status = http_status;
+    res.set_content(body.dump(), "application/json");
+}
+
+void fail(Response& res, int http_status, const std::string& message) {
+    answer(res, http_status, {{"error", message}});
+}
+
+// A library Status as an HTTP answer: bad input 400, missing or unreadable file 404, refused
+// (too many jobs, shutting down) 429, anything else 500.
+void fail(Response& res, const Status& status) {
+    switch (status.code()) {
+        case ErrorCode::InvalidArgument: return fail(res, 400, status.message());
+        case ErrorCode::IoError: return fail(res, 404, status.message());
+        case ErrorCode::Unsupported: return fail(res, 429, status.message());
+        default: return fail(res, 500, status.message());
+    }
+}
+
+// A request's JSON body (an object), or nullopt after answering 400/413.
+std::optional<json> json_body(const Request& req, Response& res) {
+    if (req.body.size() > kMaxJsonBytes) {
+        fail(res, 413, "request body over 4 MiB");
+        return std::nullopt;
+    }
+    json body = json::parse(req.body, nullptr, false);
+    if (body.is_discarded() || !body.is_object()) {
+        fail(res, 400, "the body is not a JSON object");
+        return std::nullopt;
+    }
+    return body;
+}
+
+// Field readers: the value, or an InvalidArgument naming the field.
+Result<std::string> text_field(const json& body, const char* name) {
+    const auto it = body.find(name);
+    if (it == body.end() || !it->is_string())
+        return invalid_argument(std::string(name) + ": missing (a string)");
+    return it->get<std::string>();
+}
+
+Result<double> number_field(const json& body, const char* name, std::optional<double> fallback,
+                            double lo, double hi) {
+    const auto it = body.find(name);
+    if (it == body.end()) {
+        if (fallback) return *fallback;
+        return invalid_argument(std::string(name) + ": missing (a number)");
+    }
+    if (!it->is_number() || !std::isfinite(it->get<double>()) || it->get<double>() < lo ||
+        it->get<double>() > hi) {
+        return invalid_argument(std::string(name) + ": " + it->dump() + " is invalid (must be " +
+                                json(lo).dump() + ".." + json(hi).dump() + ")");
+    }
+    return it->get<double>();
+}
+
+Result<std::vector<sketch::Vec2>> points_field(const json& body) {
+    const auto it = body.find("points");
+    if (it == body.end() || !it->is_array() || it->empty() || it->size() > kMaxPoints) {
+        return invalid_argument("points: must be an array of 1..10000 [x, y] pairs");
+    }
+    std::vector<sketch::Vec2> points;
+    for (const json& p : *it) {
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
+            !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>())) {
+            return invalid_argument("points: every point must be [x, y] with finite numbers");
+        }
+        points.push_back({p[0].get<double>(), p[1].get<double>()});
+    }
+    return points;
+}
+
+// A brush stroke: "points", "width" (default 40 px), "comb" (default false).
+Result<paint::Stroke> stroke_field(const json& body) {
+    auto points = points_field(body);
+    if (!points.ok()) return points.status();
+    auto width = number_field(body, "width", 40.0, 1.0, 4096.0);
+    if (!width.ok()) return width.status();
+    paint::Stroke stroke;
+    for (const sketch::Vec2& p : *points) {
+        stroke.points.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+    }
+    stroke.width_px = static_cast<float>(*width);
+    const auto comb = body.find("comb");
+    stroke.comb = comb != body.end() && comb->is_boolean() && comb->get<bool>();
+    return stroke;
+}
+
+std::string content_type_of(const std::string& path) {
+    static const std::map<std::string, std::string> kTypes = {
+        {".png", "image/png"},         {".jpg", "image/jpeg"},
+        {".jpeg", "image/jpeg"},       {".svg", "image/svg+xml"},
+        {".json", "application/json"}, {".txt", "text/plain; charset=utf-8"}};
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    const auto it = kTypes.find(ext);
+    return it == kTypes.end() ? "application/octet-stream" : it->second;
+}
+
+// RGBA8 bytes of `rect` of a straight-alpha RGBA image (what the browser's ImageData holds).
+std::string rgba_bytes(const Image& image, const paint::PixelRect& rect) {
+    std::string out;
+    out.reserve(static_cast<std::size_t>(rect.x1 - rect.x0) *
+                static_cast<std::size_t>(rect.y1 - rect.y0) * 4);
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            const float* p = image.pixel(x, y);
+            for (int c = 0; c < 4; ++c) {
+                out.push_back(static_cast<char>(static_cast<unsigned char>(
+                    std::lround(std::clamp(p[c], 0.0f, 1.0f) * 255.0f))));
+            }
+        }
+    }
+    return out;
+}
+
+void answer_rgba(Response& res, const Image& image, const paint::PixelRect& rect) {
+    res.set_header("X-Rect", std::to_string(rect.x0) + "," + std::to_string(rect.y0) + "," +
+                                 std::to_string(rect.x1) + "," + std::to_string(rect.y1));
+    res.set_content(rgba_bytes(image, rect), "application/octet-stream");
+}
+
+json suggestion_json(const sketch::Suggestion& s) {
+    return {
+        {"d", sketch::path_data(s.path)}, {"likelihood", s.likelihood}, {"original", s.original}};
+}
+
+json sketch_state(const SketchSession& sketch) {
+    json paths = json::array();
+    for (const sketch::ResolvedPath& p : sketch.drawing().paths) {
+        paths.push_back(sketch::path_data(p.path));
+    }
+    return {{"paths", paths}, {"can_undo", sketch.can_undo()}, {"can_redo", sketch.can_redo()}};
+}
+
+// The tool state of one client (one browser tab).
+struct ClientState {
+    std::mutex mutex;
+    SketchSession sketch;
+    std::optional<PaintSession> paint;
+    std::optional<BrushSession> brush;
+};
+
+}  // namespace
+
+struct StudioServer::Impl {
+    Impl(const StudioOptions& o, Workspace w)
+        : options(o), workspace(std::move(w)), jobs(o.max_jobs_per_client, o.threads) {}
+
+    StudioOptions options;
+    Workspace workspace;
+    JobManager jobs;
+    std::unique_ptr<plugin::http::Server> http;
+    int port = 0;
+    std::atomic<bool> stopping{false};
+    /// Set by shutdown: interactive calls still running (a repaint) return Cancelled.
+    CancelToken interactive_cancel;
+
+    /// The context of an interactive library call.
+    RunContext interactive_context() const {
+        RunContext context(options.threads);
+        context.cancel = &interactive_cancel;
+        return context;
+    }
+    std::mutex clients_mutex;
+    std::map<std::string, std::shared_ptr<ClientState>> clients;
+
+    // The client's id (header X-Studio-Client, default "default"), or "" after answering 400.
+    static std::string client_id(const Request& req, Response& res) {
+        std::string id = req.header("X-Studio-Client");
+        if (id.empty()) return "default";
+        const bool valid =
+            id.size() <= 64 && std::all_of(id.begin(), id.end(), [](char c) {
+                return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_';
+            });
+        if (!valid) {
+            fail(res, 400, "X-Studio-Client: must be 1..64 letters, digits, '-' or '_'");
+            return "";
+        }
+        return id;
+    }
+
+    std::shared_ptr<ClientState> client(const std::string& id) {
+        std::lock_guard lock(clients_mutex);
+        auto& state = clients[id];
+        if (!state) state = std::make_shared<ClientState>();
+        return state;
+    }
+
+    // Runs `handler(state)` under the client's lock.
+    template <typename Handler>
+    void with_client(const Request& req, Response& res, Handler handler) {
+        const std::string id = client_id(req, res);
+        if (id.empty()) return;
+        const auto state = client(id);
+        std::lock_guard lock(state->mutex);
+        handler(*state);
+    }
+
+    /// Why a request comes from elsewhere than the studio's own page ("" if it does not). The
+    /// app has no login, so (1) on a loopback address the Host header must name that address
+    /// or localhost, which defeats DNS rebinding (a page whose name resolves to 127.0.0.1
+    /// reading the workspace), and (2) an Origin header, which browsers send with cross-site
+    /// requests, must be the studio's own, so another site's page cannot post strokes, jobs or
+    /// saves through the user's browser.
+    std::string foreign(const Request& req) const {
+        const std::string host = req.header("Host");
+        const std::string port_suffix = ":" + std::to_string(port);
+        const bool loopback =
+            options.bind == "127.0.0.1" || options.bind == "localhost" || options.bind == "::1";
+        if (loopback && host != "127.0.0.1" + port_suffix && host != "localhost" + port_suffix &&
+            host != "[::1]" + port_suffix) {
+            return "Host \"" + host.substr(0, 80) + "\" is not this studio's address";
+        }
+        const std::string origin = req.header("Origin");
+        if (!origin.empty() && origin != "http://" + host) {
+            return "requests from other sites (Origin \"" + origin.substr(0, 80) +
+                   "\") are refused";
+        }
+        return "";
+    }
+    void add_routes();
+    void add_file_routes();
+    void add_sketch_routes();
+    /// What every painting tool starts from: an image of the workspace, the canvas size, the seed.
+    struct CanvasStart {
+        Image image;
+        int width = 0;
+        int height = 0;
+        std::uint64_t seed = 1;
+    };
+    /// Reads `image_field` (a workspace path, loaded), "width", "height" and "seed" of a start
+    /// request; nullopt after answering the error (403 for a refused path, 404 for a missing
+    /// or unreadable image).
+    std::optional<CanvasStart> canvas_start(const json& body, const char* image_field,
+                                            Response& res) const;
+    void add_paint_routes();
+    void add_brush_routes();
+    template <class Session>
+    void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
+    void add_job_routes();
+    /// A job's files (style, source, target, output): resolved in the workspace by the route.
+    using JobPaths = std::map<std::string, std::filesystem::path>;
+    Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
+};
+
+void StudioServer::Impl::add_routes() {
+    http->set_gate([this](const Request& req, Response& res) {
+        if (stopping) {
+            fail(res, 503, "the studio is shutting down");
+            return true;
+        }
+        const std::string refusal = foreign(req);
+        if (refusal.empty()) return false;
+        fail(res, 403, refusal);
+        return true;
+    });
+    for (const Asset& asset : assets()) {
+        http->route("GET", std::string(asset.path), [&asset](const Request&, Response& res) {
+            res.set_header("Cache-Control", "no-store");
+            res.set_content(std::string(asset.bytes), std::string(asset.content_type).c_str());
+        });
+    }
+    http->route("GET", "/api/info", [this](const Request&, Response& res) {
+        answer(res, 200,
+               {{"version", std::string(version())},
+                {"max_upload_bytes", options.max_upload_bytes},
+                {"max_jobs_per_client", options.max_jobs_per_client},
+                {"max_canvas", kMaxCanvas},
+                {"paint_history", PaintSession::kHistory}});
+    });
+    add_file_routes();
+    add_sketch_routes();
+    add_paint_routes();
+    add_brush_routes();
+    add_canvas_routes("paint", &ClientState::paint);
+    add_canvas_routes("brush", &ClientState::brush);
+    add_job_routes();
+}
+
+void StudioServer::Impl::add_file_routes() {
+    http->route("GET", "/api/files", [this](const Request&, Response& res) {
+        json files = json::array();
+        for (const WorkspaceFile& f : workspace.list()) {
+            files.push_back({{"path", f.path}, {"bytes", f.bytes}});
+        }
+        answer(res, 200, {{"files", files}});
+    });
+    http->route("GET", R"(/api/files/(.+))", [this](const Request& req, Response& res) {
+        const std::string path = req.matches[1];
+        auto resolved = workspace.resolve(path);
+        if (!resolved.ok()) return fail(res, 403, resolved.status().message());
+        auto bytes = workspace.read(path, kMaxDownloadBytes);
+        if (!bytes.ok()) return fail(res, 404, bytes.status().message());
+        if (req.has_param("download")) {
+            res.set_header(
+                "Content-Disposition",
+                "attachment; filename=\"" + std::filesystem::path(path).filename().string() + "\"");
+        }
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(std::move(*bytes), content_type_of(path).c_str());
+    });
+    http->route("PUT", R"(/api/files/(.+))", [this](const Request& req, Response& res) {
+        const std::string path = req.matches[1];
+        auto resolved = workspace.resolve(path);
+        if (!resolved.ok()) return fail(res, 403, resolved.status().message());
+        if (req.body.size() > options.max_upload_bytes) {
+            return fail(res, 413, path + ": upload over the limit");
+        }
+        auto type = sniff_upload_type(req.body);
+        if (!type.ok()) return fail(res, 415, path + ": " + type.status().message());
+        const std::string ext = content_type_of(path);
+        const bool matches = (*type == UploadType::Png && ext == "image/png") ||
+                             (*type == UploadType::Jpeg && ext == "image/jpeg");
+        if (!matches) {
+            return fail(res, 415, path + ": the extension does not match the file's type");
+        }
+        const Status written = workspace.write(path, req.body);
+        if (!written.is_ok()) return fail(res, 500, written.message());
+        answer(res, 201, {{"path", path}});
+    });
+}
+
+void StudioServer::Impl::add_sketch_routes() {
+    http->route("GET", "/api/sketch", [this](const Request& req, Response& res) {
+        with_client(req, res, [&](ClientState& c) { answer(res, 200, sketch_state(c.sketch)); });
+    });
+    http->route("POST", "/api/sketch/stroke", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        auto points = points_field(*body);
+        if (!points.ok()) return fail(res, points.status());
+        with_client(req, res, [&](ClientState& c) {
+            auto suggestions = c.sketch.stroke(*points);
+            if (!suggestions.ok()) return fail(res, suggestions.status());
+            json list = json::array();
+            for (const sketch::Suggestion& s : *suggestions) list.push_back(suggestion_json(s));
+            answer(res, 200, {{"suggestions", list}});
+        });
+    });
+    http->route("POST", "/api/sketch/accept", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        auto index = number_field(*body, "index", 0.0, 0.0, 1000.0);
+        if (!index.ok()) return fail(res, index.status());
+        with_client(req, res, [&](ClientState& c) {
+            const Status accepted = c.sketch.accept(static_cast<int>(*index));
+            if (!accepted.is_ok()) return fail(res, 409, accepted.message());
+            answer(res, 200, sketch_state(c.sketch));
+        });
+    });
+    for (const char* action : {"undo", "redo", "reset"}) {
+        http->route("POST", std::string("/api/sketch/") + action,
+                    [this, action](const Request& req, Response& res) {
+                        with_client(req, res, [&](ClientState& c) {
+                            const std::string a = action;
+                            if (a == "undo") c.sketch.undo();
+                            if (a == "redo") c.sketch.redo();
+                            if (a == "reset") c.sketch.reset();
+                            answer(res, 200, sketch_state(c.sketch));
+                        });
+                    });
+    }
+}
+
+std::optional<StudioServer::Impl::CanvasStart> StudioServer::Impl::canvas_start(
+    const json& body, const char* image_field, Response& res) const {
+    auto name = text_field(body, image_field);
+    auto width = number_field(body, "width", std::nullopt, 1, kMaxCanvas);
+    auto height = number_field(body, "height", std::nullopt, 1, kMaxCanvas);
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    for (const Status& s : {name.status(), width.status(), height.status(), seed.status()}) {
+        if (!s.is_ok()) {
+            fail(res, s);
+            return std::nullopt;
+        }
+    }
+    auto path = workspace.resolve(*name);
+    if (!path.ok()) {
+        fail(res, 403, path.status().message());
+        return std::nullopt;
+    }
+    auto image = load_image(path->string());
+    if (!image.ok()) {
+        fail(res, 404, *name + ": " + image.status().message());
+        return std::nullopt;
+    }
+    return CanvasStart{std::move(*image), static_cast<int>(*width), static_cast<int>(*height),
+                       static_cast<std::uint64_t>(*seed)};
+}
+
+void StudioServer::Impl::add_paint_routes() {
+    http->route("POST", "/api/paint/start", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        auto start = canvas_start(*body, "exemplar", res);
+        if (!start) return;
+        paint::PaintOptions paint_options;
+        paint_options.seed = start->seed;
+        if (body->contains("usage")) {
+            auto usage = text_field(*body, "usage");
+            if (!usage.ok()) return fail(res, usage.status());
+            auto strategy = parse_usage_strategy(*usage);
+            if (!strategy.ok()) return fail(res, strategy.status());
+            paint_options.usage = *strategy;
+        }
+        auto session = PaintSession::start(std::move(start->image), start->width, start->height,
+                                           paint_options, options.threads);
+        if (!session.ok()) return fail(res, session.status());
+        with_client(req, res, [&](ClientState& c) {
+            c.paint.emplace(std::move(*session));
+            answer(res, 200, {{"width", c.paint->width()}, {"height", c.paint->height()}});
+        });
+    });
+}
+
+// Stroke, undo, redo and save of a tool whose state is a painting (paint, brush): a stroke
+// answers the rectangle it changed as RGBA, undo and redo the whole canvas; save writes it as a
+// PNG into the workspace.
+template <class Session>
+void StudioServer::Impl::add_canvas_routes(const std::string& tool,
+                                           std::optional<Session> ClientState::*session) {
+    const std::string missing = "no painting: POST /api/" + tool + "/start first";
+    http->route("POST", "/api/" + tool + "/stroke",
+                [this, session, missing](const Request& req, Response& res) {
+                    const auto body = json_body(req, res);
+                    if (!body) return;
+                    auto stroke = stroke_field(*body);
+                    if (!stroke.ok()) return fail(res, stroke.status());
+                    with_client(req, res, [&](ClientState& c) {
+                        auto& s = c.*session;
+                        if (!s) return fail(res, 409, missing);
+                        auto changed = s->stroke(*stroke, interactive_context());
+                        if (!changed.ok()) return fail(res, changed.status());
+                        answer_rgba(res, s->image(), *changed);
+                    });
+                });
+    for (const std::string action : {"undo", "redo"}) {
+        http->route("POST", "/api/" + tool + "/" + action,
+                    [this, action, session, missing](const Request& req, Response& res) {
+                        with_client(req, res, [&](ClientState& c) {
+                            auto& s = c.*session;
+                            if (!s) return fail(res, 409, missing);
+                            if (action == "undo") {
+                                s->undo();
+                            } else {
+                                s->redo();
+                            }
+                            answer_rgba(res, s->image(), {0, 0, s->width(), s->height()});
+                        });
+                    });
+    }
+    http->route("POST", "/api/" + tool + "/save",
+                [this, session, missing](const Request& req, Response& res) {
+                    const auto body = json_body(req, res);
+                    if (!body) return;
+                    auto output = text_field(*body, "output");
+                    if (!output.ok()) return fail(res, output.status());
+                    if (content_type_of(*output) != "image/png") {
+                        return fail(res, 400, "output: " + *output + " must end in .png");
+                    }
+                    auto path = workspace.resolve(*output);
+                    if (!path.ok()) return fail(res, 403, path.status().message());
+                    with_client(req, res, [&](ClientState& c) {
+                        auto& s = c.*session;
+                        if (!s) return fail(res, 409, missing);
+                        const Status saved = save_image(s->image(), path->string());
+                        if (!saved.is_ok()) return fail(res, 500, saved.message());
+                        answer(res, 200, {{"path", *output}});
+                    });
+                });
+}
+
+void StudioServer::Impl::add_brush_routes() {
+    http->route("POST", "/api/brush/start", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        const auto feature = body->find("feature");
+        if (feature == body->end() || !feature->is_object()) {
+            return fail(res, 400, "feature: missing (an object with points and width)");
+        }
+        auto selection = stroke_field(*feature);
+        if (!selection.ok()) return fail(res, selection.status());
+        auto start = canvas_start(*body, "palette", res);
+        if (!start) return;
+        paint::FeatureBrushOptions brush_options;
+        brush_options.seed = start->seed;
+        if (body->contains("walk")) {
+            auto walk = paint::parse_walk_mode(body->value("walk", std::string()));
+            if (!walk.ok()) return fail(res, walk.status());
+            brush_options.walk = *walk;
+        }
+        auto session =
+            BrushSession::start(start->image, *selection, start->width, start->height,
+                                brush_options, body->value("snap", true), options.threads);
+        if (!session.ok()) return fail(res, session.status());
+        with_client(req, res, [&](ClientState& c) {
+            c.brush.emplace(std::move(*session));
+            json line = json::array();
+            for (const paint::StrokePoint& p : c.brush->feature_line()) line.push_back({p.x, p.y});
+            answer(res, 200,
+                   {{"width", c.brush->width()}, {"height", c.brush->height()}, {"feature", line}});
+        });
+    });
+}
+
+// A stylize job (guided synthesis, one guide pair): the inputs are loaded and checked here, so a
+// bad job is refused at once; the work is the synthesis and the atomic write of its output.
+Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPaths& paths) {
+    SynthesisInput input;
+    input.guides.resize(1);
+    input.guides[0].name = "guide";
+    const std::pair<const char*, Image*> inputs[] = {{"style", &input.style},
+                                                     {"source", &input.guides[0].source},
+                                                     {"target", &input.guides[0].target}};
+    for (const auto& [field, image] : inputs) {
+        auto loaded = load_image(paths.at(field).string());
+        if (!loaded.ok())
+            return invalid_argument(std::string(field) + ": " + loaded.status().message());
+        *image = std::move(*loaded);
+    }
+    const std::string type = content_type_of(paths.at("output").string());
+    if (type != "image/png" && type != "image/jpeg") {
+        return invalid_argument("output: must end in .png or .jpg");
+    }
+    auto quality = parse_quality(body.value("quality", std::string("default")));
+    if (!quality.ok()) return quality.status();
+    SynthesisOptions synthesis = SynthesisOptions::preset(*quality);
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!seed.ok()) return seed.status();
+    synthesis.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(validate_input(input, synthesis));
+    return JobWork([input = std::move(input), synthesis, path = paths.at("output").string()](
+                       const RunContext& context) mutable -> Status {
+        auto result = synthesize(std::move(input), synthesis, context);
+        if (!result.ok()) return result.status();
+        return save_image(result->image, path);
+    });
+}
+
+void StudioServer::Impl::add_job_routes() {
+    http->route("POST", "/api/jobs", [this](const Request& req, Response& res) {
+        const std::string id = client_id(req, res);
+        if (id.empty()) return;
+        const auto body = json_body(req, res);
+        if (!body) return;
+        const std::string kind = body->value("kind", std::string());
+        if (kind != "stylize")
+            return fail(res, 400, "kind: \"" + kind + "\" is invalid (must be stylize)");
+        // Every path is checked before anything is read: a refusal is 403.
+        JobPaths paths;
+        for (const char* field : {"style", "source", "target", "output"}) {
+            auto name = text_field(*body, field);
+            if (!name.ok()) return fail(res, name.status());
+            auto path = workspace.resolve(*name);
+            if (!path.ok())
+                return fail(res, 403, std::string(field) + ": " + path.status().message());
+            paths[field] = *path;
+        }
+        auto work = stylize_work(*body, paths);
+        if (!work.ok()) return fail(res, 400, work.status().message());
+        const std::string output = body->value("output", std::string());
+        auto job = jobs.start(id, kind, output, std::move(*work));
+        if (!job.ok()) return fail(res, 429, job.status().message());
+        answer(res, 202, {{"id", (*job)->id}});
+    });
+    http->route("GET", "/api/jobs", [this](const Request&, Response& res) {
+        json list = json::array();
+        for (const auto& job : jobs.list()) list.push_back(json::parse(job->summary()));
+        answer(res, 200, {{"jobs", list}});
+    });
+    http->route("POST", R"(/api/jobs/([0-9]+)/cancel)", [this](const Request& req, Response& res) {
+        const auto job = jobs.find(req.matches[1]);
+        if (!job) return fail(res, 404, "no such job");
+        job->cancel.cancel();
+        answer(res, 200, json::parse(job->summary()));
+    });
+    http->route("GET", R"(/api/jobs/([0-9]+)/events)", [this](const Request& req, Response& res) {
+        const auto job = jobs.find(req.matches[1]);
+        if (!job) return fail(res, 404, "no such job");
+        res.set_header("Cache-Control", "no-store");
+        res.content_type = "text/event-stream";
+        // Each call waits up to 250 ms for new events, so a stream notices the end quickly.
+        res.stream = [job, next = std::size_t{0}](std::string& chunk) mutable {
+            std::unique_lock lock(job->mutex);
+            job->changed.wait_for(lock, std::chrono::milliseconds(250),
+                                  [&] { return job->events.size() > next; });
+            for (; next < job->events.size(); ++next) chunk += job->events[next];
+            return job->state == JobState::Running;
+        };
+    });
+}
+
+StudioServer::StudioServer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+StudioServer::~StudioServer() {
+    shutdown();
+}
+
+Result<std::unique_ptr<StudioServer>> StudioServer::create(const StudioOptions& options) {
+    if (options.max_jobs_per_client < 1 || options.max_jobs_per_client > 16) {
+        return invalid_argument("max-jobs: " + std::to_string(options.max_jobs_per_client) +
+                                " is invalid (must be 1..16)");
+    }
+    if (options.port < 0 || options.port > 65535) {
+        return invalid_argument("port: " + std::to_string(options.port) +
+                                " is invalid (must be 0..65535)");
+    }
+    auto workspace = Workspace::open(options.workspace);
+    if (!workspace.ok()) return workspace.status();
+    auto http = plugin::load<plugin::http::Entry>(plugin::http::kPlugin);
+    if (!http.ok()) return http.status();
+    auto impl = std::make_unique<Impl>(options, std::move(*workspace));
+    plugin::http::ServerOptions http_options;
+    http_options.max_body_bytes = std::max(options.max_upload_bytes, kMaxJsonBytes);
+    impl->http = (*http)->new_server(http_options);
+    impl->add_routes();
+    impl->port = impl->http->bind(options.bind, options.port);
+    if (impl->port <= 0) {
+        return io_error(options.bind + ":" + std::to_string(options.port) +
+                        ": cannot listen (address in use or not available)");
+    }
+    return std::unique_ptr<StudioServer>(new StudioServer(std::move(impl)));
+}
+
+int StudioServer::port() const {
+    return impl_->port;
+}
+
+std::string StudioServer::workspace() const {
+    return impl_->workspace.root().string();
+}
+
+void StudioServer::run() {
+    if (!impl_->stopping) impl_->http->listen();
+}
+
+void StudioServer::shutdown() {
+    if (impl_->stopping.exchange(true)) return;
+    impl_->interactive_cancel.cancel();
+    impl_->jobs.shutdown();
+    impl_->http->stop();
+}
+
+}  // namespace exemplar::studio

@@ -1,0 +1,363 @@
+// exemplar studio: plain browser JavaScript, no build step. The server does the work
+// (docs/studio.md); this file collects pointer strokes, calls the JSON API and draws answers.
+'use strict';
+
+const client = sessionStorage.getItem('studio-client') ||
+  Math.random().toString(36).slice(2, 12);
+sessionStorage.setItem('studio-client', client);
+
+// What the browser test reads: timings and counts of the last answers.
+const studio = { client, lastPaintMs: null, lastSketchMs: null, paintStrokes: 0, sketch: null };
+window.studio = studio;
+
+const $ = (id) => document.getElementById(id);
+function say(text) { $('status').textContent = text; }
+
+async function api(method, path, body, raw = false) {
+  const headers = { 'X-Studio-Client': client };
+  let payload = body;
+  if (body !== undefined && !(body instanceof Blob) && !(body instanceof ArrayBuffer)) {
+    headers['Content-Type'] = 'application/json';
+    payload = JSON.stringify(body);
+  }
+  const res = await fetch(path, { method, headers, body: payload });
+  if (!res.ok) {
+    let message = res.statusText;
+    try { message = (await res.json()).error; } catch (e) { /* not JSON */ }
+    throw new Error(`${res.status}: ${message}`);
+  }
+  return raw ? res : res.json();
+}
+
+function fail(error) { say(error.message); console.error(error); }
+
+// Tabs.
+for (const button of document.querySelectorAll('nav button')) {
+  button.addEventListener('click', () => {
+    document.querySelectorAll('nav button').forEach((b) => b.classList.toggle('active', b === button));
+    document.querySelectorAll('.tab').forEach((t) => t.classList.toggle('active', t.id === `tab-${button.dataset.tab}`));
+  });
+}
+
+// Pointer strokes on an element, in its own pixel coordinates.
+function strokes(element, onMove, onUp) {
+  let points = null;
+  const at = (e) => {
+    const r = element.getBoundingClientRect();
+    return [e.clientX - r.left, e.clientY - r.top];
+  };
+  element.addEventListener('pointerdown', (e) => {
+    element.setPointerCapture(e.pointerId);
+    points = [at(e)];
+    onMove(points);
+  });
+  element.addEventListener('pointermove', (e) => {
+    if (!points) return;
+    points.push(at(e));
+    onMove(points);
+  });
+  const end = () => {
+    if (!points) return;
+    const done = points;
+    points = null;
+    onUp(done);
+  };
+  element.addEventListener('pointerup', end);
+  element.addEventListener('pointercancel', end);
+}
+
+// Files: upload by drop or picker, list with download links.
+async function refreshFiles() {
+  const { files } = await api('GET', '/api/files');
+  const list = $('file-list');
+  list.replaceChildren(...files.map((f) => {
+    const li = document.createElement('li');
+    const a = document.createElement('a');
+    a.href = `/api/files/${encodeURI(f.path)}?download=1`;
+    a.textContent = f.path;
+    li.append(a, ` (${f.bytes} bytes)`);
+    return li;
+  }));
+  const images = files.map((f) => f.path).filter((p) => /\.(png|jpe?g)$/i.test(p));
+  for (const select of document.querySelectorAll('.file-select')) {
+    const keep = select.value;
+    select.replaceChildren(...images.map((p) => new Option(p, p)));
+    if (images.includes(keep)) select.value = keep;
+  }
+  if ($('brush-palette').value !== brush.shown) await showPalette();
+  return files;
+}
+
+async function upload(fileList) {
+  for (const file of fileList) {
+    try {
+      await api('PUT', `/api/files/${encodeURIComponent(file.name)}`, file);
+      say(`uploaded ${file.name}`);
+    } catch (e) { fail(e); }
+  }
+  await refreshFiles();
+}
+$('upload').addEventListener('change', (e) => upload(e.target.files));
+const drop = $('drop');
+drop.addEventListener('dragover', (e) => { e.preventDefault(); drop.classList.add('over'); });
+drop.addEventListener('dragleave', () => drop.classList.remove('over'));
+drop.addEventListener('drop', (e) => {
+  e.preventDefault();
+  drop.classList.remove('over');
+  upload(e.dataTransfer.files);
+});
+
+// Paint: Brushables strokes; each pen-up repaints only the touched rectangle on the server.
+const paintCanvas = $('paint-canvas');
+const paintOverlay = $('paint-overlay');
+const paintContext = paintCanvas.getContext('2d');
+const overlayContext = paintOverlay.getContext('2d');
+
+// An answer of RGBA bytes for the rectangle in its X-Rect header, put into `context`.
+async function putRgba(res, context = paintContext) {
+  const [x0, y0, x1, y1] = res.headers.get('X-Rect').split(',').map(Number);
+  const bytes = new Uint8ClampedArray(await res.arrayBuffer());
+  if (x1 > x0 && y1 > y0) context.putImageData(new ImageData(bytes, x1 - x0, y1 - y0), x0, y0);
+}
+
+// A stroke's preview on an overlay while it is drawn.
+function drawPreview(context, points, width, colour) {
+  context.clearRect(0, 0, context.canvas.width, context.canvas.height);
+  context.strokeStyle = colour;
+  context.lineWidth = width;
+  context.lineCap = context.lineJoin = 'round';
+  context.beginPath();
+  points.forEach(([x, y], i) => (i ? context.lineTo(x, y) : context.moveTo(x, y)));
+  context.stroke();
+}
+
+$('paint-brush').addEventListener('input', (e) => { $('paint-brush-value').value = e.target.value; });
+$('paint-start').addEventListener('click', async () => {
+  try {
+    const width = Number($('paint-width').value);
+    const height = Number($('paint-height').value);
+    const answer = await api('POST', '/api/paint/start', {
+      exemplar: $('paint-exemplar').value, width, height, seed: Number($('paint-seed').value),
+      usage: $('paint-usage').value,
+    });
+    for (const c of [paintCanvas, paintOverlay]) { c.width = answer.width; c.height = answer.height; }
+    paintContext.clearRect(0, 0, answer.width, answer.height);
+    studio.paintStrokes = 0;
+    say(`painting ${answer.width}×${answer.height}`);
+  } catch (e) { fail(e); }
+});
+strokes(paintOverlay, (points) => {
+  drawPreview(overlayContext, points, Number($('paint-brush').value),
+    $('paint-comb').checked ? 'rgba(40,110,200,0.6)' : 'rgba(200,60,40,0.35)');
+}, async (points) => {
+  const started = performance.now();
+  try {
+    const res = await api('POST', '/api/paint/stroke', {
+      points, width: Number($('paint-brush').value), comb: $('paint-comb').checked,
+    }, true);
+    await putRgba(res);
+    studio.lastPaintMs = performance.now() - started;
+    studio.paintStrokes += 1;
+    say(`stroke ${studio.paintStrokes}: ${studio.lastPaintMs.toFixed(0)} ms`);
+  } catch (e) { fail(e); }
+  overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
+});
+// The buttons of a painting tool (paint, brush): undo, redo and save.
+function canvasButtons(tool, context) {
+  for (const action of ['undo', 'redo']) {
+    $(`${tool}-${action}`).addEventListener('click', async () => {
+      try { await putRgba(await api('POST', `/api/${tool}/${action}`, {}, true), context); } catch (e) { fail(e); }
+    });
+  }
+  $(`${tool}-save`).addEventListener('click', async () => {
+    try {
+      const { path } = await api('POST', `/api/${tool}/save`, { output: $(`${tool}-output`).value });
+      say(`saved ${path}`);
+      await refreshFiles();
+    } catch (e) { fail(e); }
+  });
+}
+canvasButtons('paint', paintContext);
+
+// Brush: Painting by Feature's line-feature brush. A rough line drawn on the palette picks the
+// feature (snapped to its edge by the server); strokes below are painted with it.
+const brush = { selection: null, strokes: 0, shown: null };
+studio.brush = brush;
+const paletteCanvas = $('brush-palette-canvas');
+const paletteOverlay = $('brush-palette-overlay').getContext('2d');
+const brushContext = $('brush-canvas').getContext('2d');
+const brushOverlay = $('brush-overlay').getContext('2d');
+
+async function showPalette() {
+  const name = $('brush-palette').value;
+  if (!name) return;
+  const blob = await (await fetch(`/api/files/${encodeURI(name)}`)).blob();
+  const bitmap = await createImageBitmap(blob);
+  for (const c of [paletteCanvas, paletteOverlay.canvas]) { c.width = bitmap.width; c.height = bitmap.height; }
+  paletteCanvas.getContext('2d').drawImage(bitmap, 0, 0);
+  brush.selection = null;
+  brush.shown = name;
+}
+$('brush-palette').addEventListener('change', () => showPalette().catch(fail));
+$('brush-size').addEventListener('input', (e) => { $('brush-size-value').value = e.target.value; });
+strokes(paletteOverlay.canvas, (points) => {
+  drawPreview(paletteOverlay, points, Number($('brush-feature-width').value), 'rgba(230,140,20,0.45)');
+}, (points) => { brush.selection = points; });
+$('brush-start').addEventListener('click', async () => {
+  try {
+    if (!brush.selection) throw new Error('draw along a line in the palette first');
+    const answer = await api('POST', '/api/brush/start', {
+      palette: $('brush-palette').value,
+      feature: { points: brush.selection, width: Number($('brush-feature-width').value) },
+      width: Number($('brush-width').value), height: Number($('brush-height').value),
+      seed: Number($('brush-seed').value),
+    });
+    for (const c of [brushContext.canvas, brushOverlay.canvas]) { c.width = answer.width; c.height = answer.height; }
+    drawPreview(paletteOverlay, answer.feature, 2, 'rgba(23,105,194,0.9)');
+    brush.strokes = 0;
+    say(`brush painting ${answer.width}×${answer.height}`);
+  } catch (e) { fail(e); }
+});
+strokes(brushOverlay.canvas, (points) => {
+  drawPreview(brushOverlay, points, Number($('brush-size').value), 'rgba(200,60,40,0.3)');
+}, async (points) => {
+  const started = performance.now();
+  try {
+    await putRgba(await api('POST', '/api/brush/stroke', { points, width: Number($('brush-size').value) }, true),
+      brushContext);
+    brush.strokes += 1;
+    say(`brush stroke ${brush.strokes}: ${(performance.now() - started).toFixed(0)} ms`);
+  } catch (e) { fail(e); }
+  brushOverlay.clearRect(0, 0, brushOverlay.canvas.width, brushOverlay.canvas.height);
+});
+canvasButtons('brush', brushContext);
+
+// Sketch: ShipShape suggestions after every pen-up; Tab cycles, Enter (or the next stroke)
+// accepts the one shown.
+const svgNS = 'http://www.w3.org/2000/svg';
+const sketch = { suggestions: [], current: 0 };
+studio.sketch = sketch;
+
+function pathElements(ds, classOf) {
+  return ds.map((d, i) => {
+    const p = document.createElementNS(svgNS, 'path');
+    p.setAttribute('d', d);
+    const c = classOf ? classOf(i) : '';
+    if (c) p.setAttribute('class', c);
+    return p;
+  });
+}
+function showSketch(state) {
+  if (state) {
+    $('sketch-accepted').replaceChildren(...pathElements(state.paths));
+    $('sketch-info').textContent = `${state.paths.length} paths`;
+  }
+  const ds = sketch.suggestions.map((s) => s.d);
+  // The current suggestion last, so it is drawn on top.
+  const order = ds.map((_, i) => i).filter((i) => i !== sketch.current);
+  if (ds.length) order.push(sketch.current);
+  $('sketch-suggestions').replaceChildren(...pathElements(order.map((i) => ds[i]),
+    (k) => (order[k] === sketch.current ? 'current' : '')));
+  if (ds.length) {
+    const s = sketch.suggestions[sketch.current];
+    $('sketch-info').textContent = `suggestion ${sketch.current + 1} of ${ds.length}` +
+      (s.original ? ' (as drawn)' : ` (likelihood ${s.likelihood.toFixed(2)})`);
+  }
+}
+async function acceptSketch() {
+  if (!sketch.suggestions.length) return;
+  const state = await api('POST', '/api/sketch/accept', { index: sketch.current });
+  sketch.suggestions = [];
+  sketch.current = 0;
+  showSketch(state);
+}
+const sketchSvg = $('sketch-svg');
+strokes(sketchSvg, (points) => {
+  $('sketch-ink').setAttribute('points', points.map((p) => p.join(',')).join(' '));
+}, async (points) => {
+  try {
+    await acceptSketch();
+    const started = performance.now();
+    const answer = await api('POST', '/api/sketch/stroke', { points });
+    studio.lastSketchMs = performance.now() - started;
+    sketch.suggestions = answer.suggestions;
+    sketch.current = 0;
+    showSketch();
+    say(`${answer.suggestions.length} suggestions in ${studio.lastSketchMs.toFixed(0)} ms`);
+  } catch (e) { fail(e); }
+  $('sketch-ink').setAttribute('points', '');
+});
+function cycleSketch() {
+  if (!sketch.suggestions.length) return;
+  sketch.current = (sketch.current + 1) % sketch.suggestions.length;
+  showSketch();
+}
+$('sketch-cycle').addEventListener('click', cycleSketch);
+$('sketch-accept').addEventListener('click', () => acceptSketch().catch(fail));
+document.addEventListener('keydown', (e) => {
+  if (!$('tab-sketch').classList.contains('active')) return;
+  if (e.key === 'Tab') { e.preventDefault(); cycleSketch(); }
+  if (e.key === 'Enter') { e.preventDefault(); acceptSketch().catch(fail); }
+});
+for (const action of ['undo', 'redo', 'reset']) {
+  $(`sketch-${action}`).addEventListener('click', async () => {
+    try {
+      sketch.suggestions = [];
+      showSketch(await api('POST', `/api/sketch/${action}`, {}));
+    } catch (e) { fail(e); }
+  });
+}
+
+// Jobs: start, follow the server-sent progress, cancel, show and download the output.
+function followJob(id, output) {
+  const li = document.createElement('li');
+  li.dataset.job = id;
+  const bar = document.createElement('progress');
+  bar.max = 1;
+  bar.value = 0;
+  const label = document.createElement('span');
+  label.className = 'job-state';
+  label.textContent = 'running';
+  const cancel = document.createElement('button');
+  cancel.textContent = 'Cancel';
+  cancel.className = 'job-cancel';
+  cancel.addEventListener('click', () => api('POST', `/api/jobs/${id}/cancel`, {}).catch(fail));
+  li.append(`job ${id} → ${output} `, bar, ' ', label, ' ', cancel);
+  $('job-list').prepend(li);
+  const events = new EventSource(`/api/jobs/${id}/events`);
+  events.addEventListener('progress', (e) => {
+    const p = JSON.parse(e.data);
+    bar.value = p.fraction;
+    label.textContent = `${p.stage} ${(100 * p.fraction).toFixed(0)}%`;
+  });
+  events.addEventListener('end', (e) => {
+    events.close();
+    const end = JSON.parse(e.data);
+    li.dataset.state = end.state;
+    label.textContent = end.state + (end.error ? `: ${end.error}` : '');
+    cancel.remove();
+    if (end.state === 'done') {
+      bar.value = 1;
+      const url = `/api/files/${encodeURI(end.output)}`;
+      const a = document.createElement('a');
+      a.href = `${url}?download=1`;
+      a.textContent = ' download';
+      const img = document.createElement('img');
+      img.src = `${url}?t=${Date.now()}`;
+      li.append(a, img);
+      refreshFiles().catch(fail);
+    }
+  });
+}
+$('job-form').addEventListener('submit', async (e) => {
+  e.preventDefault();
+  const form = new FormData(e.target);
+  const body = { kind: 'stylize' };
+  for (const [k, v] of form) body[k] = v;
+  try {
+    const { id } = await api('POST', '/api/jobs', body);
+    followJob(id, body.output);
+  } catch (err) { fail(err); }
+});
+
+refreshFiles().catch(fail);

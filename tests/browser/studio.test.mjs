@@ -1,0 +1,315 @@
+// `exemplar studio` end to end in Debian's Chromium, driven by playwright-core (docs/studio.md,
+// "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
+// with the mouse and compare the server's painting with a stored reference, pick a line feature
+// and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
+// cancel it, then stop the server with SIGINT while a job runs.
+//
+// Run by ctest (Browser.Studio) with EXEMPLAR_CLI set to the built command; by hand:
+//   EXEMPLAR_CLI=build/release/exemplar node --test tests/browser/studio.test.mjs
+// STUDIO_UPDATE_REFERENCE=1 writes the reference instead of comparing (look at it first).
+// Timings of the last stroke and suggestion are printed (docs/PERFORMANCE.md), never asserted.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const source = path.resolve(here, '../..');
+const chromiumPath = process.env.CHROMIUM || '/usr/bin/chromium';
+const exemplarCli = process.env.EXEMPLAR_CLI || path.join(source, 'build/release/exemplar');
+const referencePath = path.join(here, 'reference', 'painting.png');
+const artifacts = process.env.STUDIO_ARTIFACTS || fs.mkdtempSync(path.join(os.tmpdir(), 'studio-artifacts-'));
+
+// Paint canvas and strokes (canvas pixels): fixed, so the server's result is fixed.
+const CANVAS = { width: 320, height: 240 };
+const PAINT_STROKES = [
+  { from: [40, 60], to: [280, 90], width: 40 },
+  { from: [90, 210], to: [230, 40], width: 28 },
+];
+
+async function loadPlaywright() {
+  try {
+    return (await import('playwright-core')).chromium;
+  } catch (e) {
+    throw new Error('playwright-core is not installed: run `npm ci` in tests/browser ' +
+      `(scripts/install-deps.sh does) (${e.message})`);
+  }
+}
+
+function startStudio(workspace) {
+  if (!fs.existsSync(exemplarCli)) throw new Error(`${exemplarCli}: no exemplar command (build it or set EXEMPLAR_CLI)`);
+  const child = spawn(exemplarCli, ['studio', '--port', '0', '--workspace', workspace, '--threads', '2'],
+    { stdio: ['ignore', 'pipe', 'pipe'] });
+  let stderr = '';
+  child.stderr.on('data', (d) => { stderr += d; });
+  const exited = new Promise((resolve) => child.on('exit', (code, signal) => resolve({ code, signal, stderr })));
+  const url = new Promise((resolve, reject) => {
+    let out = '';
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/(http:\/\/[^\s]+\/)/);
+      if (m) resolve(m[1]);
+    });
+    exited.then((e) => reject(new Error(`exemplar studio exited (${e.code}): ${e.stderr}`)));
+  });
+  return { child, url, exited };
+}
+
+// Hidden files (the atomic writers' temporaries) anywhere in the workspace.
+function hiddenFiles(folder) {
+  const found = [];
+  for (const entry of fs.readdirSync(folder, { withFileTypes: true })) {
+    if (entry.name.startsWith('.')) found.push(path.join(folder, entry.name));
+    else if (entry.isDirectory()) found.push(...hiddenFiles(path.join(folder, entry.name)));
+  }
+  return found;
+}
+
+// Draws a straight stroke with the mouse on `locator`, in its pixel coordinates.
+async function drag(page, locator, points, steps = 12) {
+  const box = await locator.boundingBox();
+  const at = ([x, y]) => [box.x + x, box.y + y];
+  await page.mouse.move(...at(points[0]));
+  await page.mouse.down();
+  for (const p of points.slice(1)) await page.mouse.move(...at(p), { steps });
+  await page.mouse.up();
+}
+
+// RGBA pixels of workspace images, decoded by the browser without colour conversion.
+async function pixelsOf(page, urls) {
+  return page.evaluate(async (list) => {
+    const out = [];
+    for (const url of list) {
+      const blob = await (await fetch(url)).blob();
+      const bitmap = await createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+      const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+      const context = canvas.getContext('2d');
+      context.drawImage(bitmap, 0, 0);
+      out.push({ width: bitmap.width, height: bitmap.height,
+        data: Array.from(context.getImageData(0, 0, bitmap.width, bitmap.height).data) });
+    }
+    return out;
+  }, urls);
+}
+
+// Mean absolute difference (0..255) over all channels, and the share of pixels differing by more
+// than 24 in any channel.
+function difference(a, b) {
+  assert.equal(a.width, b.width);
+  assert.equal(a.height, b.height);
+  let sum = 0;
+  let far = 0;
+  for (let i = 0; i < a.data.length; i += 4) {
+    let worst = 0;
+    for (let c = 0; c < 4; c++) {
+      const d = Math.abs(a.data[i + c] - b.data[i + c]);
+      sum += d;
+      worst = Math.max(worst, d);
+    }
+    if (worst > 24) far++;
+  }
+  return { mean: sum / a.data.length, far: far / (a.width * a.height) };
+}
+
+test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { timeout: 240000 }, async () => {
+  if (!fs.existsSync(chromiumPath)) {
+    throw new Error(`${chromiumPath} not found: install Debian's chromium ` +
+      '(apt-get install chromium; scripts/install-deps.sh does)');
+  }
+  const chromium = await loadPlaywright();
+
+  const workspace = fs.mkdtempSync(path.join(os.tmpdir(), 'studio-ws-'));
+  fs.mkdirSync(path.join(workspace, 'texbynum'));
+  for (const name of ['source_photo.png', 'source_segment.png', 'target_segment.png']) {
+    fs.copyFileSync(path.join(source, 'tests/data/ebsynth/texbynum', name), path.join(workspace, 'texbynum', name));
+  }
+  const studio = startStudio(workspace);
+  const url = await studio.url;
+  const browser = await chromium.launch({
+    executablePath: chromiumPath,
+    headless: true,
+    args: [
+      ...(process.getuid && process.getuid() === 0 ? ['--no-sandbox'] : []),
+      '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync', '--font-render-hinting=none',
+    ],
+  });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, deviceScaleFactor: 1 });
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    await page.goto(url);
+    await page.screenshot({ path: path.join(artifacts, 'files.png') });
+
+    // Load: upload the exemplar through the file picker (the drop zone's input).
+    await page.setInputFiles('#upload', path.join(source, 'tests/data/flow/synthetic-img0.png'));
+    await page.waitForSelector('#file-list a:text("synthetic-img0.png")');
+    assert.ok(fs.existsSync(path.join(workspace, 'synthetic-img0.png')));
+    // ... and by drag and drop: a PNG is taken, a text file named .png is refused with a message.
+    await page.evaluate(async () => {
+      const png = await (await fetch('/api/files/synthetic-img0.png')).arrayBuffer();
+      const data = new DataTransfer();
+      data.items.add(new File([png], 'dropped.png', { type: 'image/png' }));
+      document.getElementById('drop').dispatchEvent(
+        new DragEvent('drop', { dataTransfer: data, bubbles: true, cancelable: true }));
+    });
+    await page.waitForSelector('#file-list a:text("dropped.png")', { state: 'attached' });
+    await page.evaluate(() => {
+      const data = new DataTransfer();
+      data.items.add(new File(['<script>alert(1)</script>'], 'evil.png', { type: 'image/png' }));
+      document.getElementById('drop').dispatchEvent(
+        new DragEvent('drop', { dataTransfer: data, bubbles: true, cancelable: true }));
+    });
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('415'));
+    assert.ok(fs.existsSync(path.join(workspace, 'dropped.png')));
+    assert.ok(!fs.existsSync(path.join(workspace, 'evil.png')));
+
+    // Paint: a fixed canvas, two strokes drawn with the mouse, each repainted on pen-up.
+    await page.click('nav button[data-tab=paint]');
+    await page.selectOption('#paint-exemplar', 'synthetic-img0.png');
+    await page.fill('#paint-width', String(CANVAS.width));
+    await page.fill('#paint-height', String(CANVAS.height));
+    await page.fill('#paint-seed', '7');
+    await page.click('#paint-start');
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('painting'));
+    const overlay = page.locator('#paint-overlay');
+    const paintMs = [];
+    for (const [i, stroke] of PAINT_STROKES.entries()) {
+      await page.evaluate((w) => {
+        const brush = document.getElementById('paint-brush');
+        brush.value = String(w);
+        brush.dispatchEvent(new Event('input'));
+      }, stroke.width);
+      await drag(page, overlay, [stroke.from, stroke.to]);
+      await page.waitForFunction((n) => window.studio.paintStrokes === n, i + 1, { timeout: 60000 });
+      paintMs.push(await page.evaluate(() => window.studio.lastPaintMs));
+    }
+    await page.locator('#paint-canvas').screenshot({ path: path.join(artifacts, 'painting-canvas.png') });
+    await page.fill('#paint-output', 'outputs/painting.png');
+    await page.click('#paint-save');
+    await page.waitForFunction(() => document.getElementById('status').textContent === 'saved outputs/painting.png');
+
+    const saved = path.join(workspace, 'outputs', 'painting.png');
+    if (process.env.STUDIO_UPDATE_REFERENCE === '1') {
+      fs.mkdirSync(path.dirname(referencePath), { recursive: true });
+      fs.copyFileSync(saved, referencePath);
+    }
+    assert.ok(fs.existsSync(referencePath), `${referencePath} missing (STUDIO_UPDATE_REFERENCE=1 makes it)`);
+    fs.copyFileSync(referencePath, path.join(workspace, 'reference.png'));
+    const [server, reference] = await pixelsOf(page, ['/api/files/outputs/painting.png', '/api/files/reference.png']);
+    const canvas = await page.evaluate(() => {
+      const c = document.getElementById('paint-canvas');
+      return { width: c.width, height: c.height,
+        data: Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data) };
+    });
+    let painted = 0;
+    for (let i = 3; i < server.data.length; i += 4) painted += server.data[i] === 255 ? 1 : 0;
+    assert.ok(painted > 0.15 * CANVAS.width * CANVAS.height, `only ${painted} pixels painted`);
+    const vsReference = difference(server, reference);
+    assert.ok(vsReference.mean < 2 && vsReference.far < 0.01,
+      `the painting differs from the reference: ${JSON.stringify(vsReference)} (see ${artifacts})`);
+    const vsCanvas = difference(server, canvas);
+    assert.ok(vsCanvas.mean < 1 && vsCanvas.far < 0.002,
+      `the canvas shows other pixels than the server painted: ${JSON.stringify(vsCanvas)}`);
+
+    // Undo and redo a stroke: the canvas changes and comes back.
+    await page.click('#paint-undo');
+    await page.waitForFunction(() => document.getElementById('paint-canvas').getContext('2d')
+      .getImageData(200, 120, 1, 1).data[3] === 0);
+    await page.click('#paint-redo');
+    await page.waitForFunction(() => document.getElementById('paint-canvas').getContext('2d')
+      .getImageData(160, 125, 1, 1).data[3] === 255);
+
+    // Brush: pick the railing in The Scream (examples/feature) with the mouse, paint a wave with it.
+    await page.setInputFiles('#upload', path.join(source, 'examples/feature/scream_railing.png'));
+    await page.waitForSelector('#file-list a:text("scream_railing.png")', { state: 'attached' });
+    await page.click('nav button[data-tab=brush]');
+    await page.selectOption('#brush-palette', 'scream_railing.png');
+    await page.waitForFunction(() => window.studio.brush.shown === 'scream_railing.png');
+    await page.fill('#brush-feature-width', '24');
+    await drag(page, page.locator('#brush-palette-overlay'), [[25, 39], [90, 84], [155, 130]], 6);
+    await page.click('#brush-start');
+    await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('brush painting'),
+      null, { timeout: 60000 });
+    await drag(page, page.locator('#brush-overlay'), [[40, 200], [200, 120], [360, 220], [560, 140]], 10);
+    await page.waitForFunction(() => window.studio.brush.strokes === 1, null, { timeout: 60000 });
+    const brushed = await page.evaluate(() => {
+      const c = document.getElementById('brush-canvas');
+      const data = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let opaque = 0;
+      for (let i = 3; i < data.length; i += 4) opaque += data[i] > 200 ? 1 : 0;
+      return opaque;
+    });
+    assert.ok(brushed > 5000, `the brush stroke covers only ${brushed} pixels`);
+    await page.locator('#tab-brush').screenshot({ path: path.join(artifacts, 'brush.png') });
+
+    // Sketch: a wobbly stroke, suggestions on pen-up, Tab cycles, Enter accepts, undo/redo.
+    await page.click('nav button[data-tab=sketch]');
+    const svg = page.locator('#sketch-svg');
+    const box = await svg.boundingBox();
+    await page.mouse.move(box.x + 100, box.y + 200);
+    await page.mouse.down();
+    for (const [x, y] of [[180, 203], [260, 198], [340, 202], [420, 199], [500, 201]]) {
+      await page.mouse.move(box.x + x, box.y + y, { steps: 4 });
+    }
+    await page.mouse.up();
+    await page.waitForFunction(() => window.studio.sketch.suggestions.length >= 2);
+    const sketchMs = await page.evaluate(() => window.studio.lastSketchMs);
+    const first = await page.getAttribute('#sketch-suggestions path.current', 'd');
+    await page.keyboard.press('Tab');
+    assert.notEqual(await page.getAttribute('#sketch-suggestions path.current', 'd'), first);
+    await page.keyboard.press('Tab');
+    const count = await page.evaluate(() => window.studio.sketch.suggestions.length);
+    for (let i = 2; i < count; i++) await page.keyboard.press('Tab');
+    assert.equal(await page.getAttribute('#sketch-suggestions path.current', 'd'), first, 'cycling comes back');
+    await page.keyboard.press('Enter');
+    await page.waitForFunction(() => document.querySelectorAll('#sketch-accepted path').length === 1);
+    assert.equal(await page.getAttribute('#sketch-accepted path', 'd'), first);
+    await page.locator('#sketch-svg').screenshot({ path: path.join(artifacts, 'sketch.png') });
+    await page.click('#sketch-undo');
+    await page.waitForFunction(() => document.querySelectorAll('#sketch-accepted path').length === 0);
+    await page.click('#sketch-redo');
+    await page.waitForFunction(() => document.querySelectorAll('#sketch-accepted path').length === 1);
+
+    // Jobs: a long stylize job, cancelled once it reports progress; nothing is written.
+    await page.click('nav button[data-tab=jobs]');
+    await page.selectOption('select[name=style]', 'texbynum/source_photo.png');
+    await page.selectOption('select[name=source]', 'texbynum/source_segment.png');
+    await page.selectOption('select[name=target]', 'texbynum/target_segment.png');
+    await page.selectOption('select[name=quality]', 'best');
+    await page.fill('input[name=output]', 'outputs/cancelled.png');
+    await page.click('#job-form button[type=submit]');
+    await page.waitForFunction(() => {
+      const bar = document.querySelector('#job-list li progress');
+      return bar && bar.value > 0;
+    }, null, { timeout: 60000 });
+    await page.click('#job-list li .job-cancel');
+    await page.waitForSelector('#job-list li[data-state=cancelled]', { timeout: 60000 });
+    await page.screenshot({ path: path.join(artifacts, 'jobs.png') });
+    assert.ok(!fs.existsSync(path.join(workspace, 'outputs', 'cancelled.png')));
+
+    // Shutdown: another job running, then SIGINT: exit 0, nothing half-written.
+    await page.fill('input[name=output]', 'outputs/interrupted.png');
+    await page.click('#job-form button[type=submit]');
+    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 2 &&
+      document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
+    studio.child.kill('SIGINT');
+    const exit = await studio.exited;
+    assert.equal(exit.code, 0, `exit ${exit.code} ${exit.signal}: ${exit.stderr}`);
+    assert.ok(!fs.existsSync(path.join(workspace, 'outputs', 'interrupted.png')));
+    assert.deepEqual(hiddenFiles(workspace), []);
+    assert.deepEqual(errors, []);
+
+    console.log(`studio timings: paint stroke pen-up to canvas ${paintMs.map((t) => t.toFixed(0)).join(', ')} ms ` +
+      `(strokes of ${PAINT_STROKES.map((s) => s.width).join(', ')} px on ${CANVAS.width}x${CANVAS.height}); ` +
+      `sketch suggestions ${sketchMs.toFixed(0)} ms; painting vs reference ${JSON.stringify(vsReference)}; ` +
+      `screenshots in ${artifacts}`);
+  } finally {
+    await browser.close();
+    if (studio.child.exitCode === null) studio.child.kill('SIGKILL');
+    fs.rmSync(workspace, { recursive: true, force: true });
+  }
+});

@@ -1,0 +1,552 @@
+// The studio's HTTP API against an in-process server on an ephemeral port, with httplib's client:
+// the app, traversal attempts, uploads, sketch and paint sessions (the bytes of the library's own
+// calls), jobs with progress events, cancel, the per-client bound and shutdown.
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+#include "exemplar/io/image_io.hpp"
+#include "exemplar/paint/directions.hpp"
+#include "exemplar/paint/feature_brush.hpp"
+#include "exemplar/paint/paint.hpp"
+#include "studio.hpp"
+
+namespace exemplar::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A deterministic RGB texture with edges in several directions.
+Image texture(int width, int height) {
+    Image image(width, height, 3);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            image.at(x, y, 0) = ((x / 6 + y / 9) % 2) ? 0.9f : 0.2f;
+            image.at(x, y, 1) = 0.5f + 0.4f * static_cast<float>(((x + 2 * y) / 5) % 2);
+            image.at(x, y, 2) = static_cast<float>((x * 7 + y * 3) % 32) / 31.0f;
+        }
+    }
+    return image;
+}
+
+// A painting stroke through `points`, `width` px wide (the other fields at their defaults).
+paint::Stroke stroke_of(std::vector<paint::StrokePoint> points, float width) {
+    paint::Stroke stroke;
+    stroke.points = std::move(points);
+    stroke.width_px = width;
+    return stroke;
+}
+
+std::string file_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Hidden files left anywhere under `folder` (the atomic writers' temporary files).
+int hidden_files(const fs::path& folder) {
+    int count = 0;
+    for (const auto& e : fs::recursive_directory_iterator(folder)) {
+        if (e.path().filename().string().front() == '.') ++count;
+    }
+    return count;
+}
+
+class StudioTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        base_ = fs::temp_directory_path() /
+                ("exemplar_studio_" + std::to_string(::getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(base_);
+        fs::create_directories(base_ / "ws");
+        fs::create_directories(base_ / "outside");
+        std::ofstream(base_ / "outside" / "secret.txt") << "secret";
+        ASSERT_TRUE(save_image(texture(64, 48), (base_ / "ws" / "tex.png").string()).is_ok());
+    }
+    void TearDown() override {
+        stop();
+        fs::remove_all(base_);
+    }
+
+    void start(StudioOptions options = {}) {
+        options.port = 0;
+        options.workspace = (base_ / "ws").string();
+        options.threads = 2;
+        auto server = StudioServer::create(options);
+        ASSERT_TRUE(server.ok()) << server.status().message();
+        server_ = std::move(*server);
+        serving_ = std::thread([this] { server_->run(); });
+        client_ = std::make_unique<httplib::Client>("127.0.0.1", server_->port());
+        client_->set_default_headers({{"X-Studio-Client", "tab1"}});
+        client_->set_read_timeout(60, 0);
+    }
+    void stop() {
+        if (!server_) return;
+        server_->shutdown();
+        serving_.join();
+        server_.reset();
+    }
+    httplib::Result post(const std::string& path, const json& body) {
+        return client_->Post(path.c_str(), body.dump(), "application/json");
+    }
+    static json body_of(const httplib::Result& r) { return json::parse(r->body); }
+
+    fs::path base_;
+    std::unique_ptr<StudioServer> server_;
+    std::thread serving_;
+    std::unique_ptr<httplib::Client> client_;
+};
+
+TEST_F(StudioTest, ServesTheEmbeddedAppAndItsInfo) {
+    start();
+    auto page = client_->Get("/");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 200);
+    EXPECT_NE(page->body.find("exemplar studio"), std::string::npos);
+    EXPECT_NE(page->get_header_value("Content-Type").find("text/html"), std::string::npos);
+    auto script = client_->Get("/app.js");
+    ASSERT_TRUE(script);
+    EXPECT_EQ(script->status, 200);
+    EXPECT_NE(script->body.find("/api/paint/stroke"), std::string::npos);
+    auto info = client_->Get("/api/info");
+    ASSERT_TRUE(info);
+    EXPECT_EQ(body_of(info)["max_jobs_per_client"], 2);
+    auto files = client_->Get("/api/files");
+    ASSERT_TRUE(files);
+    EXPECT_EQ(body_of(files)["files"][0]["path"], "tex.png");
+}
+
+TEST_F(StudioTest, TraversalAttemptsReadAndWriteNothingOutside) {
+    start();
+    fs::create_directory_symlink(base_ / "outside", base_ / "ws" / "door");
+    const std::string png = file_bytes(base_ / "ws" / "tex.png");
+    for (const char* path :
+         {"/api/files/../outside/secret.txt", "/api/files/%2e%2e/outside/secret.txt",
+          "/api/files/..%2foutside%2fsecret.txt", "/api/files/door/secret.txt",
+          "/api/files//etc/passwd", "/api/files/%2Fetc%2Fpasswd", "/api/files/.hidden.png",
+          "/api/files/a/%00/b.png", "/api/files/..%5c..%5coutside%5csecret.txt"}) {
+        auto got = client_->Get(path);
+        ASSERT_TRUE(got) << path;
+        EXPECT_TRUE(got->status == 403 || got->status == 404) << path << ": " << got->status;
+        EXPECT_EQ(got->body.find("secret\""), std::string::npos);
+        EXPECT_NE(got->body, "secret") << path;
+        auto put = client_->Put(path, png, "image/png");
+        ASSERT_TRUE(put) << path;
+        EXPECT_TRUE(put->status == 403 || put->status == 404) << path << ": " << put->status;
+    }
+    // Paths in JSON bodies go through the same check.
+    auto paint = post("/api/paint/start",
+                      {{"exemplar", "../outside/secret.txt"}, {"width", 8}, {"height", 8}});
+    ASSERT_TRUE(paint);
+    EXPECT_EQ(paint->status, 403);
+    ASSERT_TRUE(post("/api/paint/start", {{"exemplar", "tex.png"}, {"width", 8}, {"height", 8}}));
+    auto save = post("/api/paint/save", {{"output", "door/stolen.png"}});
+    ASSERT_TRUE(save);
+    EXPECT_EQ(save->status, 403);
+    auto job = post("/api/jobs", {{"kind", "stylize"},
+                                  {"style", "tex.png"},
+                                  {"source", "tex.png"},
+                                  {"target", "tex.png"},
+                                  {"output", "../outside/out.png"}});
+    ASSERT_TRUE(job);
+    EXPECT_EQ(job->status, 403);
+    // Only the two files that were there before.
+    int outside = 0;
+    for (const auto& e : fs::directory_iterator(base_ / "outside")) {
+        EXPECT_EQ(e.path().filename(), "secret.txt");
+        ++outside;
+    }
+    EXPECT_EQ(outside, 1);
+    EXPECT_EQ(file_bytes(base_ / "outside" / "secret.txt"), "secret");
+}
+
+TEST_F(StudioTest, RequestsFromOtherSitesAndNamesAreRefused) {
+    start();
+    const std::string own = "127.0.0.1:" + std::to_string(server_->port());
+    // Another site's page posting through the user's browser.
+    auto cross = client_->Post("/api/paint/save", {{"Origin", "http://evil.example"}},
+                               R"({"output": "x.png"})", "text/plain");
+    ASSERT_TRUE(cross);
+    EXPECT_EQ(cross->status, 403);
+    EXPECT_NE(cross->body.find("other sites"), std::string::npos) << cross->body;
+    // DNS rebinding: a foreign name that resolves here.
+    httplib::Client rebound("127.0.0.1", server_->port());
+    auto foreign = rebound.Get("/api/files", {{"Host", "evil.example"}});
+    ASSERT_TRUE(foreign);
+    EXPECT_EQ(foreign->status, 403);
+    // The studio's own page: same origin, its own host name.
+    auto own_page = client_->Get("/api/files", {{"Origin", "http://" + own}});
+    ASSERT_TRUE(own_page);
+    EXPECT_EQ(own_page->status, 200);
+    auto by_name =
+        rebound.Get("/api/info", {{"Host", "localhost:" + std::to_string(server_->port())}});
+    ASSERT_TRUE(by_name);
+    EXPECT_EQ(by_name->status, 200);
+}
+
+TEST_F(StudioTest, UploadsAreTypeCheckedAndSizeLimited) {
+    StudioOptions options;
+    options.max_upload_bytes = 64 * 1024;
+    start(options);
+    const std::string png = file_bytes(base_ / "ws" / "tex.png");
+    auto ok = client_->Put("/api/files/uploads/copy.png", png, "image/png");
+    ASSERT_TRUE(ok);
+    EXPECT_EQ(ok->status, 201) << ok->body;
+    EXPECT_EQ(file_bytes(base_ / "ws" / "uploads" / "copy.png"), png);
+
+    auto text = client_->Put("/api/files/fake.png", "<svg onload=alert(1)>", "image/png");
+    ASSERT_TRUE(text);
+    EXPECT_EQ(text->status, 415);
+    auto wrong = client_->Put("/api/files/fake.jpg", png, "image/jpeg");
+    ASSERT_TRUE(wrong);
+    EXPECT_EQ(wrong->status, 415);
+    auto script = client_->Put("/api/files/x.html", png, "text/html");
+    ASSERT_TRUE(script);
+    EXPECT_EQ(script->status, 415);
+    std::string big = png;
+    big.resize(200 * 1024, 'x');
+    auto large = client_->Put("/api/files/big.png", big, "image/png");
+    ASSERT_TRUE(large);
+    EXPECT_EQ(large->status, 413);
+    for (const char* name : {"fake.png", "fake.jpg", "x.html", "big.png"}) {
+        EXPECT_FALSE(fs::exists(base_ / "ws" / name)) << name;
+    }
+    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+}
+
+TEST_F(StudioTest, SketchSuggestsAfterEachStrokeAndUndoesAcceptedOnes) {
+    start();
+    // A wobbly horizontal line: the first suggestion straightens it.
+    auto first = post("/api/sketch/stroke",
+                      {{"points", {{100, 100}, {150, 102}, {200, 99}, {250, 101}, {300, 100}}}});
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->status, 200) << first->body;
+    const json suggestions = body_of(first)["suggestions"];
+    ASSERT_GE(suggestions.size(), 2u);
+    EXPECT_FALSE(suggestions[0]["original"].get<bool>());
+    EXPECT_TRUE(suggestions.back()["original"].get<bool>());
+    const std::string straight = suggestions[0]["d"];
+    EXPECT_EQ(std::count(straight.begin(), straight.end(), 'C'), 1)
+        << "one straight segment: " << straight;
+    // Cycle to the input itself and accept it.
+    auto accepted = post("/api/sketch/accept", {{"index", suggestions.size() - 1}});
+    ASSERT_TRUE(accepted);
+    ASSERT_EQ(accepted->status, 200) << accepted->body;
+    EXPECT_EQ(body_of(accepted)["paths"].size(), 1u);
+    EXPECT_EQ(body_of(accepted)["paths"][0], suggestions.back()["d"]);
+    // A second stroke ending near the first line's end, accepted as suggested.
+    auto second = post("/api/sketch/stroke", {{"points", {{301, 103}, {302, 150}, {299, 200}}}});
+    ASSERT_TRUE(second);
+    ASSERT_EQ(second->status, 200);
+    ASSERT_TRUE(post("/api/sketch/accept", {{"index", 0}}));
+    EXPECT_EQ(body_of(client_->Get("/api/sketch"))["paths"].size(), 2u);
+    auto undone = post("/api/sketch/undo", json::object());
+    EXPECT_EQ(body_of(undone)["paths"].size(), 1u);
+    EXPECT_TRUE(body_of(undone)["can_redo"].get<bool>());
+    auto redone = post("/api/sketch/redo", json::object());
+    EXPECT_EQ(body_of(redone)["paths"].size(), 2u);
+    // Nothing pending any more; a bad stroke is one line.
+    auto again = post("/api/sketch/accept", {{"index", 0}});
+    EXPECT_EQ(again->status, 409);
+    auto degenerate = post("/api/sketch/stroke", {{"points", {{5, 5}, {5, 5}}}});
+    EXPECT_EQ(degenerate->status, 400);
+    auto malformed = post("/api/sketch/stroke", {{"points", "M 0 0"}});
+    EXPECT_EQ(malformed->status, 400);
+    // Another tab has its own drawing.
+    httplib::Client other("127.0.0.1", server_->port());
+    other.set_default_headers({{"X-Studio-Client", "tab2"}});
+    EXPECT_EQ(json::parse(other.Get("/api/sketch")->body)["paths"].size(), 0u);
+}
+
+TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
+    start();
+    auto started = post("/api/paint/start",
+                        {{"exemplar", "tex.png"}, {"width", 96}, {"height", 64}, {"seed", 3}});
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 200) << started->body;
+    const json stroke = {{"points", {{10, 30}, {50, 34}, {80, 20}}}, {"width", 16}};
+    auto painted = post("/api/paint/stroke", stroke);
+    ASSERT_TRUE(painted);
+    ASSERT_EQ(painted->status, 200) << painted->body;
+    const std::string rect_text = painted->get_header_value("X-Rect");
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    ASSERT_EQ(std::sscanf(rect_text.c_str(), "%d,%d,%d,%d", &x0, &y0, &x1, &y1), 4) << rect_text;
+    ASSERT_EQ(painted->body.size(), static_cast<std::size_t>((x1 - x0) * (y1 - y0) * 4));
+
+    // The same library calls, made here: identical bytes.
+    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(exemplar.ok());
+    auto field = paint::analyze_directions(*exemplar, {}, 1);
+    ASSERT_TRUE(field.ok());
+    paint::PaintSource source;
+    source.image = *exemplar;
+    source.directions = paint::direction_angles(*field);
+    paint::PaintCanvas canvas(96, 64);
+    auto changed = canvas.add_stroke(stroke_of({{10, 30}, {50, 34}, {80, 20}}, 16.0f));
+    ASSERT_TRUE(changed.ok());
+    EXPECT_EQ(changed->x0, x0);
+    EXPECT_EQ(changed->y1, y1);
+    paint::PaintOptions options;
+    options.seed = 3;
+    auto expected =
+        paint::repaint(source, canvas, Image(96, 64, 4), *changed, options, RunContext(1));
+    ASSERT_TRUE(expected.ok());
+    int painted_pixels = 0, differing = 0;
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const auto got = static_cast<unsigned char>(
+                    painted
+                        ->body[static_cast<std::size_t>(((y - y0) * (x1 - x0) + x - x0) * 4 + c)]);
+                const long want =
+                    std::lround(std::clamp(expected->image.at(x, y, c), 0.0f, 1.0f) * 255.0f);
+                differing += got != want;
+                painted_pixels += c == 3 && got == 255;
+            }
+        }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(painted_pixels, 40 * 12);
+
+    // Undo clears it, redo brings the same bytes back.
+    auto undone = post("/api/paint/undo", json::object());
+    ASSERT_EQ(undone->get_header_value("X-Rect"), "0,0,96,64");
+    EXPECT_EQ(undone->body, std::string(96 * 64 * 4, '\0'));
+    auto redone = post("/api/paint/redo", json::object());
+    const std::string all = redone->body;
+    for (int y = y0; y < y1; ++y) {
+        EXPECT_EQ(all.substr(static_cast<std::size_t>((y * 96 + x0) * 4),
+                             static_cast<std::size_t>((x1 - x0) * 4)),
+                  painted->body.substr(static_cast<std::size_t>((y - y0) * (x1 - x0) * 4),
+                                       static_cast<std::size_t>((x1 - x0) * 4)));
+    }
+    // Saved as a PNG in the workspace.
+    auto saved = post("/api/paint/save", {{"output", "outputs/painting.png"}});
+    ASSERT_EQ(saved->status, 200) << saved->body;
+    auto back = load_image((base_ / "ws" / "outputs" / "painting.png").string());
+    ASSERT_TRUE(back.ok());
+    EXPECT_EQ(back->channels(), 4);
+    EXPECT_EQ(back->width(), 96);
+
+    // Bad strokes and sizes are one line each.
+    EXPECT_EQ(post("/api/paint/stroke", {{"points", {{1, 1}}}, {"width", -3}})->status, 400);
+    EXPECT_EQ(
+        post("/api/paint/start", {{"exemplar", "tex.png"}, {"width", 5000}, {"height", 8}})->status,
+        400);
+    EXPECT_EQ(
+        post("/api/paint/start", {{"exemplar", "none.png"}, {"width", 8}, {"height", 8}})->status,
+        404);
+    httplib::Client other("127.0.0.1", server_->port());
+    other.set_default_headers({{"X-Studio-Client", "tab2"}});
+    EXPECT_EQ(other.Post("/api/paint/stroke", stroke.dump(), "application/json")->status, 409);
+}
+
+// A palette with one line feature: a dark wavy band on a grainy light ground.
+Image band_palette() {
+    Image image(200, 64, 3);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 200; ++x) {
+            const float centre = 32.0f + 3.0f * std::sin(static_cast<float>(x) * 0.11f);
+            const bool band = std::abs(static_cast<float>(y) - centre) < 4.0f + (x % 17) * 0.15f;
+            const float grain = static_cast<float>((x * 37 + y * 91) % 23) / 23.0f;
+            for (int c = 0; c < 3; ++c) {
+                image.at(x, y, c) = band ? 0.1f + 0.1f * grain + 0.05f * c : 0.8f + 0.15f * grain;
+            }
+        }
+    }
+    return image;
+}
+
+TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
+    ASSERT_TRUE(save_image(band_palette(), (base_ / "ws" / "band.png").string()).is_ok());
+    start();
+    const json selection = {{"points", {{8, 32}, {100, 32}, {192, 32}}}, {"width", 14}};
+    auto started = post("/api/brush/start", {{"palette", "band.png"},
+                                             {"feature", selection},
+                                             {"width", 160},
+                                             {"height", 120},
+                                             {"seed", 5}});
+    ASSERT_TRUE(started);
+    ASSERT_EQ(started->status, 200) << started->body;
+    EXPECT_GE(body_of(started)["feature"].size(), 10u);
+    const json paths[] = {{{"points", {{10, 20}, {80, 60}, {150, 40}}}, {"width", 18}},
+                          {{"points", {{20, 100}, {140, 90}}}, {"width", 12}}};
+    for (const json& path : paths) {
+        auto painted = post("/api/brush/stroke", path);
+        ASSERT_TRUE(painted);
+        ASSERT_EQ(painted->status, 200) << painted->body;
+        EXPECT_FALSE(painted->get_header_value("X-Rect").empty());
+    }
+    ASSERT_EQ(post("/api/brush/save", {{"output", "brushed.png"}})->status, 200);
+
+    // `exemplar brush`'s library calls with the same feature and paths: the same bytes.
+    auto palette = load_image((base_ / "ws" / "band.png").string());
+    ASSERT_TRUE(palette.ok());
+    paint::FeatureBrushOptions options;
+    options.seed = 5;
+    auto feature = paint::pick_line_feature(
+        *palette, stroke_of({{8, 32}, {100, 32}, {192, 32}}, 14.0f), options, true, 1);
+    ASSERT_TRUE(feature.ok()) << feature.status().message();
+    const paint::Stroke strokes[] = {stroke_of({{10, 20}, {80, 60}, {150, 40}}, 18.0f),
+                                     stroke_of({{20, 100}, {140, 90}}, 12.0f)};
+    auto expected = paint::paint_feature(*feature, strokes, 160, 120, 0.0f, 1);
+    ASSERT_TRUE(expected.ok()) << expected.status().message();
+    auto saved = load_image((base_ / "ws" / "brushed.png").string());
+    ASSERT_TRUE(saved.ok());
+    int differing = 0, opaque = 0;
+    for (int y = 0; y < 120; ++y) {
+        for (int x = 0; x < 160; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const float want =
+                    std::round(std::clamp(expected->at(x, y, c), 0.0f, 1.0f) * 255.0f);
+                differing += std::round(saved->at(x, y, c) * 255.0f) != want;
+            }
+            opaque += saved->at(x, y, 3) > 0.99f;
+        }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(opaque, 1500);
+    // Undo the second stroke: the first alone, as paint_feature paints it.
+    auto undone = post("/api/brush/undo", json::object());
+    ASSERT_EQ(undone->status, 200);
+    auto first = paint::paint_feature(*feature, std::span(strokes, 1), 160, 120, 0.0f, 1);
+    ASSERT_TRUE(first.ok());
+    EXPECT_EQ(static_cast<unsigned char>(undone->body[(100 * 160 + 80) * 4 + 3]), 0)
+        << "the second stroke is gone";
+    const long alpha = std::lround(first->at(80, 60, 3) * 255.0f);
+    EXPECT_EQ(static_cast<unsigned char>(undone->body[(60 * 160 + 80) * 4 + 3]), alpha);
+    EXPECT_EQ(post("/api/brush/stroke", {{"points", {{1, 1}}}, {"width", 0}})->status, 400);
+}
+
+// Reads a job's event stream until its `end` event; `on_progress` is called for each progress
+// event (with the count so far).
+json follow(int port, const std::string& id, const std::function<void(int)>& on_progress = {}) {
+    httplib::Client events("127.0.0.1", port);
+    events.set_read_timeout(120, 0);
+    std::string buffer;
+    json end;
+    int progress = 0;
+    auto got = events.Get(
+        ("/api/jobs/" + id + "/events").c_str(), [&](const char* data, std::size_t length) {
+            buffer.append(data, length);
+            for (std::size_t cut; (cut = buffer.find("\n\n")) != std::string::npos;) {
+                const std::string event = buffer.substr(0, cut);
+                buffer.erase(0, cut + 2);
+                const std::size_t data_at = event.find("data: ");
+                if (event.starts_with("event: progress")) {
+                    ++progress;
+                    if (on_progress) on_progress(progress);
+                } else if (event.starts_with("event: end")) {
+                    end = json::parse(event.substr(data_at + 6));
+                    end["progress_events"] = progress;
+                }
+            }
+            return true;
+        });
+    EXPECT_TRUE(got);
+    return end;
+}
+
+TEST_F(StudioTest, JobsReportProgressAndWriteTheirOutput) {
+    start();
+    auto job = post("/api/jobs", {{"kind", "stylize"},
+                                  {"style", "tex.png"},
+                                  {"source", "tex.png"},
+                                  {"target", "tex.png"},
+                                  {"output", "outputs/stylized.png"},
+                                  {"quality", "fast"}});
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    EXPECT_EQ(end["state"], "done") << end.dump();
+    EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the engine's";
+    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "stylized.png"));
+    // A late listener still sees the whole log.
+    EXPECT_EQ(follow(server_->port(), body_of(job)["id"])["state"], "done");
+    auto list = client_->Get("/api/jobs");
+    EXPECT_EQ(body_of(list)["jobs"][0]["state"], "done");
+    // Bad jobs are refused at once.
+    EXPECT_EQ(post("/api/jobs", {{"kind", "bake"}})->status, 400);
+    EXPECT_EQ(post("/api/jobs", {{"kind", "stylize"},
+                                 {"style", "tex.png"},
+                                 {"source", "tex.png"},
+                                 {"target", "tex.png"},
+                                 {"output", "o.png"},
+                                 {"quality", "superb"}})
+                  ->status,
+              400);
+}
+
+// A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
+json long_job(const std::string& output) {
+    return {{"kind", "stylize"},
+            {"style", "texbynum/source_photo.png"},
+            {"source", "texbynum/source_segment.png"},
+            {"target", "texbynum/target_segment.png"},
+            {"output", output},
+            {"quality", "best"}};
+}
+
+class StudioJobTest : public StudioTest {
+protected:
+    void SetUp() override {
+        StudioTest::SetUp();
+        fs::create_directories(base_ / "ws" / "texbynum");
+        for (const char* name : {"source_photo.png", "source_segment.png", "target_segment.png"}) {
+            fs::copy_file(fs::path(EXEMPLAR_TEST_DATA_DIR) / "ebsynth" / "texbynum" / name,
+                          base_ / "ws" / "texbynum" / name);
+        }
+    }
+};
+
+TEST_F(StudioJobTest, CancelStopsARunningJobAndWritesNothing) {
+    start();
+    auto job = post("/api/jobs", long_job("outputs/cancelled.png"));
+    ASSERT_EQ(job->status, 202) << job->body;
+    const std::string id = body_of(job)["id"];
+    httplib::Client canceller("127.0.0.1", server_->port());
+    const json end = follow(server_->port(), id, [&](int progress) {
+        if (progress == 2) {
+            auto c =
+                canceller.Post(("/api/jobs/" + id + "/cancel").c_str(), "{}", "application/json");
+            EXPECT_EQ(c->status, 200);
+        }
+    });
+    EXPECT_EQ(end["state"], "cancelled") << end.dump();
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "cancelled.png"));
+    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+    EXPECT_EQ(client_->Post("/api/jobs/999/cancel")->status, 404);
+}
+
+TEST_F(StudioJobTest, JobsPerClientAreBoundedAndShutdownCancelsThem) {
+    StudioOptions options;
+    options.max_jobs_per_client = 1;
+    start(options);
+    auto first = post("/api/jobs", long_job("outputs/a.png"));
+    ASSERT_EQ(first->status, 202) << first->body;
+    auto second = post("/api/jobs", long_job("outputs/b.png"));
+    EXPECT_EQ(second->status, 429);
+    EXPECT_NE(body_of(second)["error"].get<std::string>().find("too many jobs"), std::string::npos);
+    httplib::Client other("127.0.0.1", server_->port());
+    other.set_default_headers({{"X-Studio-Client", "tab2"}});
+    auto third = other.Post("/api/jobs", long_job("outputs/c.png").dump(), "application/json");
+    EXPECT_EQ(third->status, 202) << third->body;
+    // Shutdown cancels both, waits for them, and nothing is left half-written.
+    stop();
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "a.png"));
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "c.png"));
+    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+}
+
+}  // namespace
+}  // namespace exemplar::studio
