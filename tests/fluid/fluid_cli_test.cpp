@@ -243,5 +243,22 @@ TEST_F(FluidCli, BadOptionIsOneLine) {
     EXPECT_FALSE(fs::exists(path("out")));
 }
 
+// The vote's weights are flags of the option table: out of range is one line, and 0 for both
+// (the paper's plain vote) gives other frames than the default.
+TEST_F(FluidCli, VoteWeightsAreFlags) {
+    std::vector<std::string> a = args();
+    a.insert(a.end(), {"--vote-coherence", "-1"});
+    const CliRun r = run(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: vote-coherence: -1 is invalid (must be 0..100)\n");
+    EXPECT_FALSE(fs::exists(path("out")));
+
+    std::vector<std::string> paper = args("paper/%04d.png");
+    paper.insert(paper.end(), {"--vote-coherence", "0", "--vote-histogram", "0"});
+    ASSERT_EQ(run(paper).code, 0);
+    ASSERT_EQ(run(args()).code, 0);
+    EXPECT_NE(frames("paper"), frames("out"));
+}
+
 }  // namespace
 }  // namespace exemplar::fluid
