@@ -773,6 +773,7 @@ def fluid_frame(
     boundary_high: float = 0.9,
     motion_blur: float = 0.0,
     vote_histogram: float = 2.0,
+    vote_coherence: float = 2.0,
     usage: str = 'uniform',
     rotations: bool = False,
     seed: int = 1,
@@ -828,6 +829,11 @@ def fluid_frame(
           Colour-histogram weight of the vote: values the frame already holds more of than
           the exemplar weigh less, so the texture is not averaged flat (0 = the paper's
           vote). Ours: 2. Range 0.0..100.0.
+      vote_coherence (float, default 2.0)
+          Coherence weight of the vote (variance of the mapping discrepancy): patches whose
+          neighbours map where they do outweigh the scattered matches between them, so the
+          exemplar's fine grain is not averaged away (0 = the paper's vote). Ours: 2. Range
+          0.0..100.0 px^2.
       usage (str, default 'uniform')
           'uniform' (LazyFluids) or 'none' (plain nearest neighbours, for comparisons).
       rotations (bool, default False)

@@ -142,6 +142,11 @@ std::span<const FluidOptionSpec> fluid_option_specs() {
          "Colour-histogram weight of the vote: values the frame already holds more of than the "
          "exemplar weigh less, so the texture is not averaged flat (0 = the paper's vote). Ours: 2",
          "", 0, 100, &O::vote_histogram},
+        {"vote-coherence",
+         "Coherence weight of the vote (variance of the mapping discrepancy): patches whose "
+         "neighbours map where they do outweigh the scattered matches between them, so the "
+         "exemplar's fine grain is not averaged away (0 = the paper's vote). Ours: 2",
+         "px^2", 0, 100, &O::vote_coherence},
     };
     return specs;
 }
@@ -399,6 +404,7 @@ Result<FluidFrameResult> synthesize_fluid_frame(const FluidFrameInput& in,
     synthesis.patch_size = options.patch_size;
     synthesis.usage = options.uniform_usage ? UsageStrategy::Uniform : UsageStrategy::None;
     synthesis.vote_histogram = options.vote_histogram;
+    synthesis.vote_coherence = options.vote_coherence;
 
     auto run = synthesize(std::move(input), synthesis, context);
     if (!run.ok()) return run.status();

@@ -61,6 +61,16 @@ protected:
                 "2",
                 "-q"};
     }
+    // The run with `flag value` added fails with `message` (one line, exit 1) and writes no
+    // frame.
+    void expect_bad_option(const char* flag, const char* value, const std::string& message) const {
+        std::vector<std::string> a = args();
+        a.insert(a.end(), {flag, value});
+        const CliRun r = run(a);
+        EXPECT_EQ(r.code, 1);
+        EXPECT_EQ(r.err, "exemplar: " + message + "\n");
+        EXPECT_FALSE(fs::exists(path("out")));
+    }
     std::vector<std::string> frames(const std::string& folder) const {
         std::vector<std::string> out;
         for (int n = 0; n <= 5; ++n) {
@@ -235,12 +245,20 @@ TEST_F(FluidCli, ExemplarWithoutAlphaNeedsExemplarAlpha) {
 }
 
 TEST_F(FluidCli, BadOptionIsOneLine) {
-    std::vector<std::string> a = args();
-    a.insert(a.end(), {"--boundary-high", "0.05"});
-    const CliRun r = run(a);
-    EXPECT_EQ(r.code, 1);
-    EXPECT_EQ(r.err, "exemplar: boundary-high: 0.05 is invalid (must be above boundary-low 0.1)\n");
-    EXPECT_FALSE(fs::exists(path("out")));
+    expect_bad_option("--boundary-high", "0.05",
+                      "boundary-high: 0.05 is invalid (must be above boundary-low 0.1)");
+}
+
+// The vote's weights are flags of the option table: out of range is one line, and 0 for both
+// (the paper's plain vote) gives other frames than the default.
+TEST_F(FluidCli, VoteWeightsAreFlags) {
+    expect_bad_option("--vote-coherence", "-1", "vote-coherence: -1 is invalid (must be 0..100)");
+
+    std::vector<std::string> paper = args("paper/%04d.png");
+    paper.insert(paper.end(), {"--vote-coherence", "0", "--vote-histogram", "0"});
+    ASSERT_EQ(run(paper).code, 0);
+    ASSERT_EQ(run(args()).code, 0);
+    EXPECT_NE(frames("paper"), frames("out"));
 }
 
 }  // namespace

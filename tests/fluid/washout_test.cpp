@@ -1,10 +1,10 @@
 // The wash-out of §5.3 and its cure: over a 60-frame simulated plume, plain nearest-neighbour
 // search (Kwatra et al. 2005, with the temporal term) settles on the exemplar's smoothest
-// patches, while uniform usage keeps several times more of the exemplar's texture, with no
-// downward trend over the frames. (Measured: nearest neighbours are washed out already in the
-// first frame's EM iterations, so there is no frame-by-frame decline to see here; uniform usage
-// keeps 0.3-0.55 of the exemplar's gradient energy, not the 0.9-1.1: the final vote
-// averages the scattered matches of the uniform assignment. docs/fluid.md.)
+// patches, while uniform usage with the default vote keeps the exemplar's texture: the fluid's
+// gradient energy within 10% of the exemplar's, with no trend over the frames. (Measured:
+// nearest neighbours are washed out already in the first frame's EM iterations, so there is no
+// frame-by-frame decline to see; uniform usage with the paper's plain vote keeps about half:
+// its matches are scattered and the final vote averages them. docs/fluid.md, "Wash-out".)
 
 #include <gtest/gtest.h>
 
@@ -18,23 +18,26 @@
 namespace exemplar::fluid {
 namespace {
 
-// Mean squared forward difference of the luminance over pixel pairs that are both opaque
-// (alpha ≥ 0.9): the texture of the fluid's interior, independent of its outline.
-double interior_gradient_energy(const Image& rgba) {
+// Mean squared forward difference of the luminance (straight colour) over pixel pairs that are
+// both at least half opaque: the texture of the fluid's body, without its outline and without
+// the faint fringe, whose straight colour is divided by a small alpha. Over a plume of a few
+// thousand such pixels the per-frame value scatters by about ±8% (the alpha ≥ 0.9 core of a
+// 48×64 plume, this test's measure before, held 30–70 pixels and scattered by ±25%).
+double fluid_gradient_energy(const Image& rgba) {
     auto luma = [&](int x, int y) {
         return 0.299 * rgba.at(x, y, 0) + 0.587 * rgba.at(x, y, 1) + 0.114 * rgba.at(x, y, 2);
     };
-    auto opaque = [&](int x, int y) { return rgba.at(x, y, 3) >= 0.9f; };
+    auto body = [&](int x, int y) { return rgba.at(x, y, 3) >= 0.5f; };
     double sum = 0.0;
     int n = 0;
     for (int y = 0; y + 1 < rgba.height(); ++y) {
         for (int x = 0; x + 1 < rgba.width(); ++x) {
-            if (!opaque(x, y)) continue;
-            if (opaque(x + 1, y)) {
+            if (!body(x, y)) continue;
+            if (body(x + 1, y)) {
                 sum += std::pow(luma(x + 1, y) - luma(x, y), 2);
                 ++n;
             }
-            if (opaque(x, y + 1)) {
+            if (body(x, y + 1)) {
                 sum += std::pow(luma(x, y + 1) - luma(x, y), 2);
                 ++n;
             }
@@ -47,14 +50,12 @@ struct PlumeRun {
     std::vector<double> energy;  // per frame, relative to the exemplar's
 };
 
-PlumeRun run_plume(bool uniform, float vote_histogram, const std::vector<Image>& alphas,
+// `options` with the test's blur radius (the paper's 3 px is for 1 MPix frames).
+PlumeRun run_plume(FluidOptions options, const std::vector<Image>& alphas,
                    const std::vector<Image>& motions) {
-    const Image exemplar = test::fire_exemplar(32);
-    const double reference = interior_gradient_energy(exemplar);
-    FluidOptions options;
+    const Image exemplar = test::fire_exemplar(48);
+    const double reference = fluid_gradient_energy(exemplar);
     options.blur_radius_px = 1.5f;
-    options.uniform_usage = uniform;
-    options.vote_histogram = vote_histogram;
     PlumeRun run;
     Image previous;
     for (std::size_t t = 0; t < alphas.size(); ++t) {
@@ -69,7 +70,7 @@ PlumeRun run_plume(bool uniform, float vote_histogram, const std::vector<Image>&
         EXPECT_TRUE(result.ok()) << result.status().message();
         if (!result.ok()) return run;
         previous = std::move(result->rgba);
-        run.energy.push_back(interior_gradient_energy(previous) / reference);
+        run.energy.push_back(fluid_gradient_energy(previous) / reference);
     }
     return run;
 }
@@ -82,7 +83,7 @@ double mean(const std::vector<double>& v, std::size_t from, std::size_t to) {
 
 TEST(LazyFluidsWashOut, UniformUsageKeepsTheTextureOverASixtyFramePlume) {
     constexpr int kFrames = 60;
-    FluidScene scene = plume_scene(48, 64);
+    FluidScene scene = plume_scene(96, 128);
     scene.warmup_frames = 20;  // start with a plume, not a puff
     std::vector<Image> alphas, motions;
     ASSERT_TRUE(simulate(
@@ -95,10 +96,16 @@ TEST(LazyFluidsWashOut, UniformUsageKeepsTheTextureOverASixtyFramePlume) {
                     RunContext(2))
                     .is_ok());
     // The paper's comparison (Kwatra et al.'s nearest neighbours against uniform usage, both
-    // with the plain vote), then our default: uniform usage with the colour-histogram vote.
-    const PlumeRun nearest = run_plume(false, 0.0f, alphas, motions);
-    const PlumeRun uniform = run_plume(true, 0.0f, alphas, motions);
-    const PlumeRun ours = run_plume(true, FluidOptions{}.vote_histogram, alphas, motions);
+    // with the plain vote), then our default: uniform usage with the coherence and colour-histogram
+    // weights in the vote.
+    FluidOptions paper;
+    paper.vote_histogram = 0.0f;
+    paper.vote_coherence = 0.0f;
+    FluidOptions paper_nearest = paper;
+    paper_nearest.uniform_usage = false;
+    const PlumeRun nearest = run_plume(paper_nearest, alphas, motions);
+    const PlumeRun uniform = run_plume(paper, alphas, motions);
+    const PlumeRun ours = run_plume(FluidOptions{}, alphas, motions);
     ASSERT_EQ(nearest.energy.size(), static_cast<std::size_t>(kFrames));
     ASSERT_EQ(uniform.energy.size(), static_cast<std::size_t>(kFrames));
     ASSERT_EQ(ours.energy.size(), static_cast<std::size_t>(kFrames));
@@ -111,18 +118,24 @@ TEST(LazyFluidsWashOut, UniformUsageKeepsTheTextureOverASixtyFramePlume) {
     }
     const double mean_nearest = mean(nearest.energy, 0, kFrames);
     const double mean_uniform = mean(uniform.energy, 0, kFrames);
-    const double mean_ours = mean(ours.energy, 0, kFrames);
     std::printf("  mean: nearest %.2f, uniform %.2f, default %.2f\n", mean_nearest, mean_uniform,
-                mean_ours);
-    // Nearest neighbours keep little of the exemplar's texture; uniform usage at least twice as
-    // much, and it does not fade over the shot. The histogram vote keeps much more again
-    // (measured 0.75 against 0.41), but not the "within 10%" of the exemplar.
-    EXPECT_LT(mean_nearest, 0.3);
-    EXPECT_GT(mean_uniform, 2.0 * mean_nearest);
-    EXPECT_GT(mean(uniform.energy, 40, 60), 0.85 * mean(uniform.energy, 0, 20));
-    EXPECT_GT(mean_ours, 1.5 * mean_uniform);
-    EXPECT_GT(mean(ours.energy, 40, 60), 0.85 * mean(ours.energy, 0, 20));
-    EXPECT_LT(mean_ours, 1.2);  // more texture than the exemplar would be noise, not texture
+                mean(ours.energy, 0, kFrames));
+    // Nearest neighbours keep little of the exemplar's texture (measured 0.30); uniform usage
+    // with the plain vote more (0.53).
+    EXPECT_LT(mean_nearest, 0.4);
+    EXPECT_GT(mean_uniform, 1.5 * mean_nearest);
+    // The default keeps the exemplar's: every 10 frames of the shot within 10% of it (measured
+    // 0.94-1.01), the last 20 frames within 10% of the first 20 (no trend).
+    std::printf("  default, 10-frame means:");
+    for (int t = 0; t < kFrames; t += 10) std::printf(" %.2f", mean(ours.energy, t, t + 10));
+    std::printf("\n");
+    for (int t = 0; t < kFrames; t += 10) {
+        const double window = mean(ours.energy, t, t + 10);
+        EXPECT_GT(window, 0.9) << "frames " << t << ".." << t + 9;
+        EXPECT_LT(window, 1.1) << "frames " << t << ".." << t + 9;
+    }
+    const double first = mean(ours.energy, 0, 20), last = mean(ours.energy, 40, 60);
+    EXPECT_NEAR(last / first, 1.0, 0.1);
 }
 
 }  // namespace

@@ -74,6 +74,13 @@ struct FluidOptions {
     /// vote, which otherwise averages the scattered uniform matches into flat, faint smoke.
     /// Ours, not the paper's; default 2 (docs/fluid.md, "Wash-out"); 0 = the paper's vote.
     float vote_histogram = 2.0f;
+    /// Coherence weight of the vote (SynthesisOptions::vote_coherence; Lukáč et al. 2015,
+    /// Brushables' w_c), the variance of the mapping discrepancy in px², 0..100: a patch whose
+    /// neighbours map where it does outweighs the scattered matches of the uniform assignment
+    /// between them, so coherent runs of the exemplar's fine grain survive the final vote.
+    /// Ours, not the paper's; default 2 (Brushables' value; docs/fluid.md, "Wash-out");
+    /// 0 = the paper's vote.
+    float vote_coherence = 2.0f;
     /// Engine options (levels, EM and PatchMatch iterations, seed). patch_size and usage are
     /// set from the fields above.
     SynthesisOptions synthesis;
@@ -91,7 +98,7 @@ struct FluidOptionSpec {
 };
 
 /// The numeric options (patch-size, temporal-weight, boundary-weight, alpha-weight,
-/// blur-radius, boundary-low, boundary-high, motion-blur, vote-histogram).
+/// blur-radius, boundary-low, boundary-high, motion-blur, vote-histogram, vote-coherence).
 std::span<const FluidOptionSpec> fluid_option_specs();
 
 /// Sets an option, rejecting values outside its range or non-integral values of integer options
