@@ -270,20 +270,17 @@ Status NoisyCommand::run(const Streams& streams) {
         if (!checked.is_ok()) return Status(checked.code(), path + ": " + checked.message());
         return map;
     };
+    // A map given as one file is read once; a pattern's files per frame (read_frame).
+    auto range_map = [](const std::string& value, auto&& load) -> Result<Image> {
+        if (value.empty() || value.find('%') != std::string::npos) return Image();
+        return load(value);
+    };
     const bool map_is_pattern = noise_map_.find('%') != std::string::npos;
-    Image fixed_map;
-    if (!noise_map_.empty() && !map_is_pattern) {
-        auto map = load_map(noise_map_);
-        if (!map.ok()) return map.status();
-        fixed_map = std::move(*map);
-    }
+    auto fixed_map = range_map(noise_map_, load_map);
+    if (!fixed_map.ok()) return fixed_map.status();
     const bool source_map_is_pattern = source_map_.find('%') != std::string::npos;
-    Image fixed_source_map;
-    if (!source_map_.empty() && !source_map_is_pattern) {
-        auto map = load_source_map(source_map_);
-        if (!map.ok()) return map.status();
-        fixed_source_map = std::move(*map);
-    }
+    auto fixed_source_map = range_map(source_map_, load_source_map);
+    if (!fixed_source_map.ok()) return fixed_source_map.status();
     auto output_path = [&](int number) { return video::format_frame_path(output_, number); };
     {
         auto probe = output_path(lo);
@@ -319,7 +316,8 @@ Status NoisyCommand::run(const Streams& streams) {
                                     std::to_string(image->height()) + " but " + first_name +
                                     " is " + std::to_string(width) + "x" + std::to_string(height));
         }
-        noisy::NoisyFrame frame{std::move(*image), fixed_map, fixed_orientation, fixed_source_map};
+        noisy::NoisyFrame frame{std::move(*image), *fixed_map, fixed_orientation,
+                                *fixed_source_map};
         if (orientation_is_pattern) {
             auto path = video::format_frame_path(frame_orientation_, number);
             if (!path.ok()) return path.status();
