@@ -13,6 +13,10 @@
 //   warm-search-iterations (1 x 2) from that field instead of the chapter's 4 x 8 from a random
 //   one, about 10x less work per frame for the same evidence (docs/noisy.md, "Speed");
 //   warm-search-iterations 0 restores the chapter's schedule;
+// - local choice of source (§4.3.3; the chapter leaves its details to the supplementary
+//   material): media side by side as one engine source with a label each, the source map as
+//   the target's labels; the reference is low-passed within each region of the map, so a
+//   region's start and coarse guide carry no other region's colours;
 // - patches are rotated only by orientation fields (§4.3.3), never reflected, and there is no
 //   free rotation search (the chapter allows rotations and reflections in eq. 4.1).
 
@@ -141,6 +145,50 @@ std::vector<Image> resized_like(const std::vector<Image>& images, const std::vec
         out.push_back(resize(images[k], sizes[k].width(), sizes[k].height(), filter, threads));
     }
     return out;
+}
+
+// The reference low-passed within each region of the source map (normalized convolution): per
+// region k, the low-pass of R·1_k over that of 1_k, so no region's low frequencies carry another
+// region's colours across the map's boundaries. `region_parts` returns them at strength f,
+// `within_regions` combines them on a level where the map's label is k.
+struct RegionParts {
+    std::vector<Image> weighted;  // h_f * (R·1_k)
+    std::vector<Image> weights;   // h_f * 1_k
+};
+
+RegionParts region_parts(const Image& reference, const Image& map, std::size_t regions,
+                         double strength, LowPassFilter filter, int threads) {
+    RegionParts parts;
+    for (std::size_t k = 0; k < regions; ++k) {
+        Image inside(map.width(), map.height(), 1, 0.0f);
+        Image weighted(reference.width(), reference.height(), reference.channels(), 0.0f);
+        for (int y = 0; y < map.height(); ++y) {
+            for (int x = 0; x < map.width(); ++x) {
+                if (std::lround(map.at(x, y, 0)) != static_cast<long>(k)) continue;
+                inside.at(x, y, 0) = 1.0f;
+                std::copy_n(reference.pixel(x, y), reference.channels(), weighted.pixel(x, y));
+            }
+        }
+        parts.weighted.push_back(low_pass(weighted, strength, filter, threads));
+        parts.weights.push_back(low_pass(inside, strength, filter, threads));
+    }
+    return parts;
+}
+
+// `fallback` (the plain low-pass, the level's size) where a region's weight is too small to
+// divide by (a region thinner than the filter's support on this level).
+Image within_regions(const RegionParts& parts, const Image& labels, Image fallback) {
+    for (int y = 0; y < fallback.height(); ++y) {
+        for (int x = 0; x < fallback.width(); ++x) {
+            const auto k = static_cast<std::size_t>(std::lround(labels.at(x, y, 0)));
+            const float weight = parts.weights[k].at(x, y, 0);
+            if (!(weight > 1e-3f)) continue;
+            for (int c = 0; c < fallback.channels(); ++c) {
+                fallback.at(x, y, c) = parts.weighted[k].at(x, y, c) / weight;
+            }
+        }
+    }
+    return fallback;
 }
 
 }  // namespace
@@ -413,11 +461,16 @@ Result<Image> synthesize_frame(std::span<const NoisySource> sources, const Noisy
     // The coarse-consistency guide pair: both low-passed at the full strength f.
     std::vector<Image> source_low;
     Image reference_low;
+    RegionParts reference_regions;  // with several sources
     if (options.coarse_weight > 0.0f) {
         for (const Image& medium : deformed) {
             source_low.push_back(low_pass(medium, options.noise, options.filter, threads));
         }
         reference_low = low_pass(reference, options.noise, options.filter, threads);
+        if (several) {
+            reference_regions = region_parts(reference, frame.source_map, sources.size(),
+                                             options.noise, options.filter, threads);
+        }
     }
 
     // Coarse to fine; the coarsest target level is the low-passed reference (eq. 4.2).
@@ -432,6 +485,14 @@ Result<Image> synthesize_frame(std::span<const NoisySource> sources, const Noisy
         const double strength = strengths[static_cast<std::size_t>(k)];
         const int tw = scaled_size(width, strength), th = scaled_size(height, strength);
         Image start = low_pass(reference, strength, options.filter, threads);
+        // With several sources each region starts from its own colours (see region_parts).
+        const Image labels =
+            several ? resize(frame.source_map, tw, th, ResampleFilter::Nearest, 1) : Image();
+        if (several) {
+            start = within_regions(region_parts(reference, frame.source_map, sources.size(),
+                                                strength, options.filter, threads),
+                                   labels, std::move(start));
+        }
 
         // Pixels whose own strength f_p reaches this level's are synthesized (§4.3.3); the
         // others hold the low-passed reference until their level comes.
@@ -504,9 +565,7 @@ Result<Image> synthesize_frame(std::span<const NoisySource> sources, const Noisy
             }
             x0 += medium.width();
         }
-        if (several) {
-            input.target_labels = resize(frame.source_map, tw, th, ResampleFilter::Nearest, 1);
-        }
+        if (several) input.target_labels = labels;
         if (!all_active) input.target_mask = std::move(active);
         if (options.coarse_weight > 0.0f) {
             GuidePair coarse;
@@ -514,6 +573,16 @@ Result<Image> synthesize_frame(std::span<const NoisySource> sources, const Noisy
             coarse.source =
                 side_by_side(resized_like(source_low, media, ResampleFilter::Gaussian, threads));
             coarse.target = resize(reference_low, tw, th, ResampleFilter::Gaussian, threads);
+            if (several) {
+                RegionParts level;
+                for (std::size_t m = 0; m < sources.size(); ++m) {
+                    level.weighted.push_back(resize(reference_regions.weighted[m], tw, th,
+                                                    ResampleFilter::Gaussian, threads));
+                    level.weights.push_back(resize(reference_regions.weights[m], tw, th,
+                                                   ResampleFilter::Gaussian, threads));
+                }
+                coarse.target = within_regions(level, labels, std::move(coarse.target));
+            }
             coarse.weight = options.coarse_weight;
             // A pixel of lower noise m(p) < 1 follows h_{f m(p)} * R, which h_f * R would pull
             // towards blur; it starts from the reference on a finer level instead, so the

@@ -134,7 +134,8 @@ struct NoisyFrame {
     /// values k = 0 .. sources - 1 (compared after rounding); a pixel takes patches of
     /// sources[k] only, on every level (the engine's label groups), so each region of the frame
     /// is drawn with its own medium and the boundaries between regions stay where the map puts
-    /// them. Required with several sources; with one source it must be all 0.
+    /// them; the reference's low frequencies (the levels' starts, the coarse guide) are taken
+    /// within each region. Required with several sources; with one source it must be all 0.
     Image source_map;
 };
 
