@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
             level_wall.push_back(seconds());
             level_cpu.push_back(bench::cpu_seconds() - c0);
         };
-        auto frame = synthesize_frame(*medium, NoisyFrame{reference, {}, {}}, settings.options,
+        auto frame = synthesize_frame(*medium, NoisyFrame{reference, {}, {}, {}}, settings.options,
                                       settings.frame + r, context);
         const double wall = seconds(), cpu = bench::cpu_seconds() - c0;
         if (!frame.ok()) {

@@ -385,8 +385,10 @@ private:
     using NoisyOptions = noisy::NoisyOptions;
     Status apply_config();
     CLI::App* app_ = nullptr;
-    std::string exemplar_, frames_, output_, noise_map_, mp4_, filter_ = "box", config_;
-    std::string exemplar_orientation_, frame_orientation_;
+    // Several --exemplar (and as many --exemplar-orientation) with a --source-map (§4.3.3).
+    std::vector<std::string> exemplars_, exemplar_orientations_;
+    std::string frames_, output_, noise_map_, source_map_, mp4_, filter_ = "box", config_;
+    std::string frame_orientation_;
     int first_ = 0, last_ = 0;
     bool first_given_ = false, last_given_ = false;
     double fps_ = 24.0;

@@ -4,6 +4,8 @@
 // every frame is the same bytes. Finished frames are skipped (resume), each output is written
 // atomically, and --mp4 collects the range once every frame exists.
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -27,7 +29,9 @@ NoisyCommand::NoisyCommand(CLI::App& app) {
         "noisy",
         "Color Me Noisy: re-synthesize a coherent reference animation from a drawing medium "
         "with controlled temporal noise (docs/noisy.md)");
-    app_->add_option("--exemplar", exemplar_, "Scan of the drawing medium (S)");
+    app_->add_option("--exemplar", exemplars_,
+                     "Scan of the drawing medium (S); repeat for several media chosen per pixel "
+                     "by --source-map");
     app_->add_option("--frames", frames_,
                      "Reference animation: frame pattern (\"R/%04d.png\") or video file");
     app_->add_option("--first", first_, "First frame number (pattern: required)");
@@ -36,9 +40,13 @@ NoisyCommand::NoisyCommand(CLI::App& app) {
     app_->add_option("--noise-map", noise_map_,
                      "Per-pixel noise strength in [0, 1] scaling --noise: one image, or a "
                      "frame pattern with the reference's numbers");
-    app_->add_option("--exemplar-orientation", exemplar_orientation_,
+    app_->add_option("--source-map", source_map_,
+                     "Local choice of source: grey level k (of 255) takes the k-th --exemplar "
+                     "(0 = the first); one image, or a frame pattern with the reference's "
+                     "numbers. Required with several --exemplar");
+    app_->add_option("--exemplar-orientation", exemplar_orientations_,
                      "Orientation field of the medium: angles in radians, EXR or float TIFF "
-                     "(needs --frame-orientation)");
+                     "(needs --frame-orientation); one per --exemplar, in their order");
     app_->add_option("--frame-orientation", frame_orientation_,
                      "Orientation fields of the frames: one file, or a frame pattern with the "
                      "reference's numbers (needs --exemplar-orientation)");
@@ -83,6 +91,21 @@ Status NoisyCommand::apply_config() {
             if (!value.is_number()) return type_error(config_, raw_key, "a number");
         } else if (key == "resume" || key == "quiet") {
             if (!value.is_boolean()) return type_error(config_, raw_key, "true or false");
+        } else if (key == "exemplar" || key == "exemplar-orientation") {
+            // One file, or an array of files (several media with a source map).
+            const bool strings =
+                value.is_string() || (value.is_array() && !value.empty() &&
+                                      std::all_of(value.begin(), value.end(),
+                                                  [](const auto& v) { return v.is_string(); }));
+            if (!strings) return type_error(config_, raw_key, "a string or an array of strings");
+            auto& files = key == "exemplar" ? exemplars_ : exemplar_orientations_;
+            files.clear();
+            if (value.is_string()) {
+                files.push_back(value.get<std::string>());
+            } else {
+                for (const auto& file : value) files.push_back(file.get<std::string>());
+            }
+            continue;
         } else if (!value.is_string()) {
             return type_error(config_, raw_key, "a string");
         }
@@ -105,16 +128,14 @@ Status NoisyCommand::apply_config() {
             resume_ = value.get<bool>();
         } else if (key == "quiet") {
             quiet_ = value.get<bool>();
-        } else if (key == "exemplar") {
-            exemplar_ = value.get<std::string>();
         } else if (key == "frames") {
             frames_ = value.get<std::string>();
         } else if (key == "output") {
             output_ = value.get<std::string>();
         } else if (key == "noise-map") {
             noise_map_ = value.get<std::string>();
-        } else if (key == "exemplar-orientation") {
-            exemplar_orientation_ = value.get<std::string>();
+        } else if (key == "source-map") {
+            source_map_ = value.get<std::string>();
         } else if (key == "frame-orientation") {
             frame_orientation_ = value.get<std::string>();
         } else if (key == "mp4") {
@@ -130,9 +151,15 @@ Status NoisyCommand::run(const Streams& streams) {
     first_given_ = app_->get_option("--first")->count() > 0;
     last_given_ = app_->get_option("--last")->count() > 0;
     EXEMPLAR_RETURN_IF_ERROR(apply_config());
+    if (exemplars_.empty()) return invalid_argument("--exemplar: is required");
     for (const auto& [flag, value] : std::vector<std::pair<const char*, const std::string*>>{
-             {"--exemplar", &exemplar_}, {"--frames", &frames_}, {"--output", &output_}}) {
+             {"--frames", &frames_}, {"--output", &output_}}) {
         if (value->empty()) return invalid_argument(std::string(flag) + ": is required");
+    }
+    if (exemplars_.size() > 1 && source_map_.empty()) {
+        return invalid_argument("--source-map: is required with " +
+                                std::to_string(exemplars_.size()) +
+                                " --exemplar (it chooses the medium of every pixel)");
     }
     if (numeric_flags_.at("noise")->count() == 0 && numeric_from_config_.count("noise") == 0) {
         return invalid_argument("--noise: is required (the low-pass strength f in pixels)");
@@ -156,9 +183,14 @@ Status NoisyCommand::run(const Streams& streams) {
         return invalid_argument("--threads: " + std::to_string(threads_) +
                                 " is invalid (must be >= 0)");
 
-    // Inputs: the medium, the reference frames (a missing one is reported now), the map.
-    auto source = load_image(exemplar_);
-    if (!source.ok()) return source.status();
+    // Inputs: the media, the reference frames (a missing one is reported now), the maps.
+    std::vector<noisy::NoisySource> sources;
+    for (const std::string& path : exemplars_) {
+        auto medium = load_image(path);
+        if (!medium.ok()) return medium.status();
+        sources.push_back({std::move(*medium), Image()});
+    }
+    const Image& source = sources.front().image;
     const bool is_pattern = frames_.find('%') != std::string::npos;
     Result<video::FrameSequence> sequence = invalid_argument("--frames: unset");
     if (is_pattern) {
@@ -179,9 +211,15 @@ Status NoisyCommand::run(const Streams& streams) {
                                 std::to_string(hi) + " is invalid (the video has frames 0.." +
                                 std::to_string(sequence->size() - 1) + ")");
     }
-    if (exemplar_orientation_.empty() != frame_orientation_.empty()) {
+    if (exemplar_orientations_.empty() != frame_orientation_.empty()) {
         return invalid_argument(
             "--exemplar-orientation and --frame-orientation: give both, or neither");
+    }
+    if (!exemplar_orientations_.empty() && exemplar_orientations_.size() != exemplars_.size()) {
+        return invalid_argument(
+            "--exemplar-orientation: " + std::to_string(exemplar_orientations_.size()) +
+            " given for " + std::to_string(exemplars_.size()) +
+            " --exemplar (give one per exemplar, in their order)");
     }
     // Angles in radians need a float format (an 8-bit PNG stores only 0..1).
     auto load_angles = [](const std::string& flag, const std::string& path) -> Result<Image> {
@@ -200,11 +238,10 @@ Status NoisyCommand::run(const Streams& streams) {
         }
         return first;
     };
-    Image source_orientation;
-    if (!exemplar_orientation_.empty()) {
-        auto angles = load_angles("--exemplar-orientation", exemplar_orientation_);
+    for (std::size_t k = 0; k < exemplar_orientations_.size(); ++k) {
+        auto angles = load_angles("--exemplar-orientation", exemplar_orientations_[k]);
         if (!angles.ok()) return angles.status();
-        source_orientation = std::move(*angles);
+        sources[k].orientation = std::move(*angles);
     }
     const bool orientation_is_pattern = frame_orientation_.find('%') != std::string::npos;
     Image fixed_orientation;
@@ -213,20 +250,44 @@ Status NoisyCommand::run(const Streams& streams) {
         if (!angles.ok()) return angles.status();
         fixed_orientation = std::move(*angles);
     }
+    // A per-pixel map (--noise-map, --source-map): one image for the range or a frame
+    // pattern; a grey image saved as RGB(A) gives its first channel.
+    auto load_map = [](const std::string& path) -> Result<Image> {
+        auto map = load_image(path);
+        if (!map.ok() || map->channels() == 1) return map;
+        Image grey(map->width(), map->height(), 1);
+        for (int y = 0; y < grey.height(); ++y) {
+            for (int x = 0; x < grey.width(); ++x) grey.at(x, y, 0) = map->at(x, y, 0);
+        }
+        return grey;
+    };
+    // Grey level k (of 255) names the k-th --exemplar.
+    auto load_source_map = [&](const std::string& path) -> Result<Image> {
+        auto map = load_map(path);
+        if (!map.ok()) return map;
+        for (float& v : map->data()) v = std::round(v * 255.0f);
+        const Status checked = noisy::check_source_map(*map, sources.size());
+        if (!checked.is_ok()) return Status(checked.code(), path + ": " + checked.message());
+        return map;
+    };
+    // A map given as one file is read once; a pattern's files per frame (read_frame).
+    auto range_map = [](const std::string& value, auto&& load) -> Result<Image> {
+        if (value.empty() || value.find('%') != std::string::npos) return Image();
+        return load(value);
+    };
     const bool map_is_pattern = noise_map_.find('%') != std::string::npos;
-    Image fixed_map;
-    if (!noise_map_.empty() && !map_is_pattern) {
-        auto map = load_image(noise_map_);
-        if (!map.ok()) return map.status();
-        fixed_map = std::move(*map);
-    }
+    auto fixed_map = range_map(noise_map_, load_map);
+    if (!fixed_map.ok()) return fixed_map.status();
+    const bool source_map_is_pattern = source_map_.find('%') != std::string::npos;
+    auto fixed_source_map = range_map(source_map_, load_source_map);
+    if (!fixed_source_map.ok()) return fixed_source_map.status();
     auto output_path = [&](int number) { return video::format_frame_path(output_, number); };
     {
         auto probe = output_path(lo);
         if (!probe.ok()) return probe.status();
         EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", *probe));
-        EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", *probe, *source,
-                                                     output_options(*source, exemplar_, *probe)));
+        EXEMPLAR_RETURN_IF_ERROR(check_output_format(
+            "--output", *probe, source, output_options(source, exemplars_.front(), *probe)));
     }
     if (!mp4_.empty()) EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(mp4_));
 
@@ -255,7 +316,8 @@ Status NoisyCommand::run(const Streams& streams) {
                                     std::to_string(image->height()) + " but " + first_name +
                                     " is " + std::to_string(width) + "x" + std::to_string(height));
         }
-        noisy::NoisyFrame frame{std::move(*image), fixed_map, fixed_orientation};
+        noisy::NoisyFrame frame{std::move(*image), *fixed_map, fixed_orientation,
+                                *fixed_source_map};
         if (orientation_is_pattern) {
             auto path = video::format_frame_path(frame_orientation_, number);
             if (!path.ok()) return path.status();
@@ -263,41 +325,34 @@ Status NoisyCommand::run(const Streams& streams) {
             if (!angles.ok()) return angles.status();
             frame.orientation = std::move(*angles);
         }
-        std::string map_name = noise_map_;
-        if (map_is_pattern) {
-            auto path = video::format_frame_path(noise_map_, number);
-            if (!path.ok()) return path.status();
-            auto map = load_image(*path);
-            if (!map.ok()) return map.status();
-            frame.noise_map = std::move(*map);
-            map_name = *path;
-        }
-        if (!frame.noise_map.empty()) {
-            if (frame.noise_map.channels() > 1) {
-                // A grey image saved as RGB(A): its first channel.
-                Image grey(frame.noise_map.width(), frame.noise_map.height(), 1);
-                for (int y = 0; y < grey.height(); ++y) {
-                    for (int x = 0; x < grey.width(); ++x) {
-                        grey.at(x, y, 0) = frame.noise_map.at(x, y, 0);
-                    }
-                }
-                frame.noise_map = std::move(grey);
+        // Each map: this frame's file of a pattern, the same size as the frame.
+        auto frame_map = [&](const std::string& flag_value, bool per_frame, auto&& load,
+                             Image& map) -> Status {
+            std::string map_name = flag_value;
+            if (per_frame) {
+                auto path = video::format_frame_path(flag_value, number);
+                if (!path.ok()) return path.status();
+                auto loaded = load(*path);
+                if (!loaded.ok()) return loaded.status();
+                map = std::move(*loaded);
+                map_name = *path;
             }
-            if (!frame.noise_map.same_size(frame.reference)) {
-                return invalid_argument(map_name + ": is " +
-                                        std::to_string(frame.noise_map.width()) + "x" +
-                                        std::to_string(frame.noise_map.height()) + " but " + name +
-                                        " is " + std::to_string(frame.reference.width()) + "x" +
-                                        std::to_string(frame.reference.height()));
-            }
-        }
+            if (map.empty() || map.same_size(frame.reference)) return Status::ok();
+            return invalid_argument(map_name + ": is " + std::to_string(map.width()) + "x" +
+                                    std::to_string(map.height()) + " but " + name + " is " +
+                                    std::to_string(frame.reference.width()) + "x" +
+                                    std::to_string(frame.reference.height()));
+        };
+        EXEMPLAR_RETURN_IF_ERROR(frame_map(noise_map_, map_is_pattern, load_map, frame.noise_map));
+        EXEMPLAR_RETURN_IF_ERROR(
+            frame_map(source_map_, source_map_is_pattern, load_source_map, frame.source_map));
         return frame;
     };
 
     // Batches of frames in parallel (one thread each), or one frame with all threads.
     const int threads = resolve_threads(threads_);
     const int batch = static_cast<int>(todo.size()) >= threads ? threads : 1;
-    const SaveOptions save = output_options(*source, exemplar_, *output_path(lo));
+    const SaveOptions save = output_options(source, exemplars_.front(), *output_path(lo));
     ProgressBar bar(streams.err, "noisy", streams.err_is_terminal && !quiet_);
     for (std::size_t start = 0; start < todo.size(); start += static_cast<std::size_t>(batch)) {
         const std::size_t end = std::min(todo.size(), start + static_cast<std::size_t>(batch));
@@ -311,9 +366,8 @@ Status NoisyCommand::run(const Streams& streams) {
         const int inner = batch > 1 ? 1 : threads_;
         parallel_for(0, static_cast<int>(inputs.size()), batch > 1 ? threads : 1, [&](int i) {
             const int number = todo[start + static_cast<std::size_t>(i)];
-            auto image = noisy::synthesize_frame(*source, source_orientation,
-                                                 inputs[static_cast<std::size_t>(i)], options,
-                                                 number, RunContext(inner));
+            auto image = noisy::synthesize_frame(sources, inputs[static_cast<std::size_t>(i)],
+                                                 options, number, RunContext(inner));
             if (!image.ok()) {
                 statuses[static_cast<std::size_t>(i)] =
                     Status(image.status().code(),

@@ -893,7 +893,7 @@ def fluid_simulate(
     """
 
 def noisy_frame(
-    exemplar: Image,
+    exemplar: Image | Sequence[Image],
     reference: Image,
     *,
     frame: int = 0,
@@ -911,7 +911,8 @@ def noisy_frame(
     seed: int = 1,
     filter: str = 'box',
     noise_map: Image | None = None,
-    exemplar_orientation: Image | None = None,
+    source_map: numpy.ndarray | None = None,
+    exemplar_orientation: Image | Sequence[Image] | None = None,
     frame_orientation: Image | None = None,
     threads: int = 0,
     progress: Callable[[Progress], bool | None] | None = None,
@@ -925,8 +926,9 @@ def noisy_frame(
     channels and dtype.
 
     Parameters:
-      exemplar (Image)
-          S: the scan of the drawing medium (1..4 channels).
+      exemplar (Image | Sequence[Image])
+          S: the scan of the drawing medium (1..4 channels), or a list of media of one
+          channel count chosen per pixel by source_map.
       reference (Image)
           R_i: the reference frame (1, 3 or 4 channels).
       frame (int, default 0)
@@ -972,8 +974,12 @@ def noisy_frame(
           Low-pass filter: 'box' or 'lanczos3'.
       noise_map (Image | None, default None)
           Per-pixel noise strength in [0, 1] scaling noise (HxW, reference size).
-      exemplar_orientation (Image | None, default None)
-          Orientation field of the exemplar (HxW float32, radians); with frame_orientation.
+      source_map (numpy.ndarray | None, default None)
+          Local choice of source: HxW integer indices into the list of exemplars (reference
+          size; required with several).
+      exemplar_orientation (Image | Sequence[Image] | None, default None)
+          Orientation field of the exemplar (HxW float32, radians), a list with several;
+          with frame_orientation.
       frame_orientation (Image | None, default None)
           Orientation field of the frame (HxW float32, radians, reference size).
       threads (int, default 0)

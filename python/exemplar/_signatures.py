@@ -295,7 +295,9 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
         "reference, options, seed, frame). Returns the frame at the reference's size in the "
         "exemplar's channels and dtype.",
         [
-            Param("exemplar", _IMAGE, "S: the scan of the drawing medium (1..4 channels).",
+            Param("exemplar", "Image | Sequence[Image]",
+                  "S: the scan of the drawing medium (1..4 channels), or a list of media of one "
+                  "channel count chosen per pixel by source_map.",
                   positional=True),
             Param("reference", _IMAGE, "R_i: the reference frame (1, 3 or 4 channels).",
                   positional=True),
@@ -307,9 +309,12 @@ _VERBS: dict[str, tuple[str, list[Any], str]] = {
             Param("noise_map", "Image | None",
                   "Per-pixel noise strength in [0, 1] scaling noise (HxW, reference size).",
                   None),
-            Param("exemplar_orientation", "Image | None",
-                  "Orientation field of the exemplar (HxW float32, radians); with "
-                  "frame_orientation.", None),
+            Param("source_map", "numpy.ndarray | None",
+                  "Local choice of source: HxW integer indices into the list of exemplars "
+                  "(reference size; required with several).", None),
+            Param("exemplar_orientation", "Image | Sequence[Image] | None",
+                  "Orientation field of the exemplar (HxW float32, radians), a list with "
+                  "several; with frame_orientation.", None),
             Param("frame_orientation", "Image | None",
                   "Orientation field of the frame (HxW float32, radians, reference size).",
                   None),

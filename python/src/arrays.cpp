@@ -1,6 +1,7 @@
 #include "arrays.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -104,6 +105,26 @@ py::array array_from_image(Image&& image, SampleType type) {
     std::uint8_t* bytes = out.mutable_data();
     const std::span<const float> values = image.data();
     std::transform(values.begin(), values.end(), bytes, to_level);
+    return out;
+}
+
+Image integer_ids(const py::handle& object, const std::string& what, const std::string& noun,
+                  double max_id) {
+    const auto array =
+        py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(object);
+    if (!array || array.ndim() != 2) {
+        throw InputError(what + ": must be an HxW array of integer " + noun + "s");
+    }
+    Image out(static_cast<int>(array.shape(1)), static_cast<int>(array.shape(0)), 1);
+    for (std::size_t i = 0; i < out.pixel_count(); ++i) {
+        const double v = array.data()[i];
+        if (!(v >= 0.0 && v <= max_id) || v != std::floor(v)) {
+            throw InputError(what + ": " + std::to_string(v) + " is not a " + noun +
+                             " (integers 0.." + std::to_string(static_cast<long long>(max_id)) +
+                             ")");
+        }
+        out.data()[i] = static_cast<float>(v);
+    }
     return out;
 }
 

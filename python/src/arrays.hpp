@@ -34,6 +34,12 @@ enum class Shape {
 /// ("style: dtype float64 is not supported (must be float32 or uint8) ...").
 ImageArg image_from_array(const py::handle& object, const std::string& what, Shape shape);
 
+/// An HxW array of integer ids 0..max_id as they are (not scaled like images: uint8 id 3 is 3),
+/// as a 1-channel image; `what` names the argument and `noun` one id in errors
+/// ("source_labels: 2.5 is not a segment id (integers 0..16777215)").
+Image integer_ids(const py::handle& object, const std::string& what, const std::string& noun,
+                  double max_id);
+
 /// The image as an HxWxC array: float32 without a copy (the array owns the image's buffer), or
 /// uint8 quantized as the io module writes 8-bit files (clamped to [0, 1], rounded, NaN -> 0).
 py::array array_from_image(Image&& image, SampleType type);

@@ -123,9 +123,13 @@ void pop_seed(py::dict& kwargs, std::uint64_t& seed) {
 Image pop_angles(py::dict& kwargs, const char* name) {
     const py::object value = pop(kwargs, name);
     if (value.is_none()) return {};
+    return angles_from(value, name);
+}
+
+Image angles_from(const py::handle& value, const std::string& name) {
     ImageArg arg = image_from_array(value, name, Shape::Grey);
     if (arg.type != SampleType::Float32) {
-        throw InputError(std::string(name) +
+        throw InputError(name +
                          ": an orientation field holds angles in radians and must be float32");
     }
     return std::move(arg.image);

@@ -65,6 +65,8 @@ void pop_seed(py::dict& kwargs, std::uint64_t& seed);
 /// Pops an orientation-field keyword: HxW float32 angles in radians (uint8 would hold 0..1);
 /// empty when not given.
 Image pop_angles(py::dict& kwargs, const char* name);
+/// One orientation field as pop_angles takes it; `name` names it in errors.
+Image angles_from(const py::handle& value, const std::string& name);
 
 /// One option-table entry for Python, as option_specs_for_python() makes them.
 py::dict option_entry(std::string_view name, std::string_view doc, std::string_view unit,

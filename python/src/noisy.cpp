@@ -1,7 +1,8 @@
 // exemplar.noisy_frame: Color Me Noisy for one frame (the library's noisy::synthesize_frame, the
 // call `exemplar noisy` makes per frame). Keywords: the noisy option table
 // (noisy_option_specs(): noise, level_ratio, patch_size, ...) plus the CLI's --seed, --filter,
-// --noise-map, --exemplar-orientation and --frame-orientation, arrays where it reads files.
+// --noise-map, --source-map, --exemplar-orientation and --frame-orientation, arrays where it
+// reads files; several media as a list of exemplars.
 
 #include "exemplar/noisy/noisy.hpp"
 
@@ -11,6 +12,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
@@ -48,13 +50,40 @@ py::array noisy_frame_py(const py::object& exemplar, const py::object& reference
     if (const py::object map = pop(args, "noise_map"); !map.is_none()) {
         input.noise_map = image_from_array(map, "noise_map", Shape::Grey).image;
     }
-    const Image source_orientation = pop_angles(args, "exemplar_orientation");
+    // Several media (a list) are chosen per pixel by source_map, an HxW array of their indices.
+    if (const py::object map = pop(args, "source_map"); !map.is_none()) {
+        input.source_map = integer_ids(map, "source_map", "source index", 255);
+    }
+    const py::object orientations = pop(args, "exemplar_orientation");
     input.orientation = pop_angles(args, "frame_orientation");
     reject_unknown(args, "noisy_frame");
-    if (source_orientation.empty() != input.orientation.empty()) {
+    if (orientations.is_none() != input.orientation.empty()) {
         throw InputError("exemplar_orientation and frame_orientation: give both, or neither");
     }
-    ImageArg source = image_from_array(exemplar, "exemplar", Shape::Colour);
+    const bool several = py::isinstance<py::list>(exemplar) || py::isinstance<py::tuple>(exemplar);
+    const py::sequence media = several ? py::reinterpret_borrow<py::sequence>(exemplar)
+                                       : py::sequence(py::make_tuple(exemplar));
+    if (media.size() == 0) throw InputError("exemplar: the list is empty (need at least one)");
+    if (!orientations.is_none() && several &&
+        (!(py::isinstance<py::list>(orientations) || py::isinstance<py::tuple>(orientations)) ||
+         py::len(orientations) != media.size())) {
+        throw InputError("exemplar_orientation: must be a list of " + std::to_string(media.size()) +
+                         " fields, one per exemplar");
+    }
+    std::vector<noisy::NoisySource> sources;
+    SampleType type = SampleType::Float32;
+    for (std::size_t k = 0; k < media.size(); ++k) {
+        const std::string name = several ? "exemplar[" + std::to_string(k) + "]" : "exemplar";
+        ImageArg medium = image_from_array(media[k], name, Shape::Colour);
+        if (k == 0) type = medium.type;
+        Image field;
+        if (!orientations.is_none()) {
+            field = several ? angles_from(orientations[py::int_(k)],
+                                          "exemplar_orientation[" + std::to_string(k) + "]")
+                            : angles_from(orientations, "exemplar_orientation");
+        }
+        sources.push_back({std::move(medium.image), std::move(field)});
+    }
     input.reference = image_from_array(reference, "reference", Shape::Colour).image;
     if (!input.noise_map.empty() && !input.noise_map.same_size(input.reference)) {
         throw InputError("noise_map: is " + std::to_string(input.noise_map.width()) + "x" +
@@ -65,10 +94,9 @@ py::array noisy_frame_py(const py::object& exemplar, const py::object& reference
 
     PythonRun run(run_keywords);
     Image image = run([&](const RunContext& context) {
-        return noisy::synthesize_frame(source.image, source_orientation, input, options,
-                                       frame_index, context);
+        return noisy::synthesize_frame(sources, input, options, frame_index, context);
     });
-    return array_from_image(std::move(image), source.type);
+    return array_from_image(std::move(image), type);
 }
 
 }  // namespace

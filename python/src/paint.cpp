@@ -99,27 +99,6 @@ paint::Stroke stroke_from(const py::handle& dict, const std::string& what) {
     return stroke;
 }
 
-// paint's source_labels: an HxW array of integer segment ids as they are (not scaled like
-// images: uint8 id 3 is label 3), 0..2^24 - 1 like Stroke::label.
-Image segment_ids(const py::object& labels) {
-    const auto array =
-        py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(labels);
-    if (!array || array.ndim() != 2) {
-        throw InputError("source_labels: must be an HxW array of integer segment ids");
-    }
-    Image out(static_cast<int>(array.shape(1)), static_cast<int>(array.shape(0)), 1);
-    for (std::size_t i = 0; i < out.pixel_count(); ++i) {
-        const double v = array.data()[i];
-        if (!(v >= 0.0 && v <= paint::max_stroke_label) || v != std::floor(v)) {
-            throw InputError("source_labels: " + std::to_string(v) +
-                             " is not a segment id (integers 0.." +
-                             std::to_string(paint::max_stroke_label) + ")");
-        }
-        out.data()[i] = static_cast<float>(v);
-    }
-    return out;
-}
-
 // Strokes: a sequence of stroke dicts, `name[i]` in messages.
 std::vector<paint::Stroke> strokes_from(const py::handle& strokes, const char* name) {
     if (!py::isinstance<py::sequence>(strokes) || py::isinstance<py::str>(strokes)) {
@@ -215,7 +194,9 @@ py::array paint_py(const py::object& source, const py::object& strokes, py::kwar
         }
         input.directions = std::move(arg.image);
     }
-    if (!labels_given.is_none()) input.labels = segment_ids(labels_given);
+    if (!labels_given.is_none())
+        input.labels =
+            integer_ids(labels_given, "source_labels", "segment id", paint::max_stroke_label);
     const std::vector<paint::Stroke> stroke_list = strokes_from(strokes, "strokes");
     paint::PaintCanvas canvas(width, height);
     for (const paint::Stroke& stroke : stroke_list) take(canvas.add_stroke(stroke));

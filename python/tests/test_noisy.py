@@ -66,3 +66,35 @@ def test_noisy_frame_reports_progress_and_cancels():
     calls = []
     exemplar.noisy_frame(medium, reference, noise=3, progress=calls.append)
     assert calls and calls[-1].fraction == pytest.approx(1.0)
+
+
+def test_noisy_source_map_chooses_the_medium_as_the_cli_does(cli, tmp_path):
+    dark = (0.1 + 0.3 * pattern(40, 44, 3, 0.3) / 255).astype(np.float32)
+    bright = (0.6 + 0.3 * pattern(40, 44, 3, 0.7) / 255).astype(np.float32)
+    reference = pattern(32, 36, 3, 1.0)
+    source_map = np.zeros((32, 36), np.uint8)
+    source_map[:, 18:] = 1
+    for name, image in (("dark", dark), ("bright", bright)):
+        exemplar.save_image(image, str(tmp_path / f"{name}.png"))
+    (tmp_path / "ref").mkdir()
+    exemplar.save_image(reference, str(tmp_path / "ref/0000.png"))
+    exemplar.save_image(source_map[:, :, None].astype(np.float32) / 255, str(tmp_path / "map.png"))
+    subprocess.run([cli, "noisy", "--exemplar", str(tmp_path / "dark.png"), "--exemplar",
+                    str(tmp_path / "bright.png"), "--source-map", str(tmp_path / "map.png"),
+                    "--frames", str(tmp_path / "ref/%04d.png"), "--first", "0", "--last", "0",
+                    "--noise", "2", "--patch-size", "5", "-o", str(tmp_path / "out%d.png"), "-q"],
+                   check=True)
+    media = [exemplar.load_image(str(tmp_path / f"{name}.png")) for name in ("dark", "bright")]
+    frame = exemplar.noisy_frame(media, exemplar.load_image(str(tmp_path / "ref/0000.png")),
+                                 noise=2, patch_size=5, source_map=source_map)
+    expected = exemplar.load_image(str(tmp_path / "out0.png"))
+    np.testing.assert_allclose(frame, expected, atol=0.51 / 255)
+    # Away from the boundary each half holds its own medium only.
+    assert frame[:, :16].max() < 0.5 and frame[:, 20:].min() > 0.5
+    with pytest.raises(exemplar.InvalidArgumentError,
+                       match=r"^source map: value 2 at \(0, 0\) has no source \(2 given: 0..1\)"):
+        exemplar.noisy_frame(media, reference, noise=2, source_map=source_map + 2)
+    with pytest.raises(exemplar.InvalidArgumentError, match=r"^source map: is required"):
+        exemplar.noisy_frame(media, reference, noise=2)
+    with pytest.raises(exemplar.InvalidArgumentError, match=r"^source_map: 0.500000 is not"):
+        exemplar.noisy_frame(media, reference, noise=2, source_map=source_map + 0.5)

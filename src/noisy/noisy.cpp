@@ -13,6 +13,10 @@
 //   warm-search-iterations (1 x 2) from that field instead of the chapter's 4 x 8 from a random
 //   one, about 10x less work per frame for the same evidence (docs/noisy.md, "Speed");
 //   warm-search-iterations 0 restores the chapter's schedule;
+// - local choice of source (§4.3.3; the chapter leaves its details to the supplementary
+//   material): media side by side as one engine source with a label each, the source map as
+//   the target's labels; the reference is low-passed within each region of the map, so a
+//   region's start and coarse guide carry no other region's colours;
 // - patches are rotated only by orientation fields (§4.3.3), never reflected, and there is no
 //   free rotation search (the chapter allows rotations and reflections in eq. 4.1).
 
@@ -111,6 +115,82 @@ Result<Image> to_channels(const Image& image, int channels) {
     return out;
 }
 
+// Images side by side, left to right and top-aligned, on a ground of `ground` (one image is
+// returned as it is): a level's sources as the engine's one source.
+Image side_by_side(const std::vector<Image>& images, float ground = 0.0f) {
+    if (images.size() == 1) return images.front();
+    int width = 0, height = 0;
+    for (const Image& image : images) {
+        width += image.width();
+        height = std::max(height, image.height());
+    }
+    Image out(width, height, images.front().channels(), ground);
+    int x0 = 0;
+    for (const Image& image : images) {
+        for (int y = 0; y < image.height(); ++y) {
+            std::copy_n(image.pixel(0, y),
+                        static_cast<std::size_t>(image.width()) * image.channels(),
+                        out.pixel(x0, y));
+        }
+        x0 += image.width();
+    }
+    return out;
+}
+
+// Each image resized to the size of its counterpart in `sizes`.
+std::vector<Image> resized_like(const std::vector<Image>& images, const std::vector<Image>& sizes,
+                                ResampleFilter filter, int threads) {
+    std::vector<Image> out;
+    for (std::size_t k = 0; k < images.size(); ++k) {
+        out.push_back(resize(images[k], sizes[k].width(), sizes[k].height(), filter, threads));
+    }
+    return out;
+}
+
+// The reference low-passed within each region of the source map (normalized convolution): per
+// region k, the low-pass of R·1_k over that of 1_k, so no region's low frequencies carry another
+// region's colours across the map's boundaries. `region_parts` returns them at strength f,
+// `within_regions` combines them on a level where the map's label is k.
+struct RegionParts {
+    std::vector<Image> weighted;  // h_f * (R·1_k)
+    std::vector<Image> weights;   // h_f * 1_k
+};
+
+RegionParts region_parts(const Image& reference, const Image& map, std::size_t regions,
+                         double strength, LowPassFilter filter, int threads) {
+    RegionParts parts;
+    for (std::size_t k = 0; k < regions; ++k) {
+        Image inside(map.width(), map.height(), 1, 0.0f);
+        Image weighted(reference.width(), reference.height(), reference.channels(), 0.0f);
+        for (int y = 0; y < map.height(); ++y) {
+            for (int x = 0; x < map.width(); ++x) {
+                if (std::lround(map.at(x, y, 0)) != static_cast<long>(k)) continue;
+                inside.at(x, y, 0) = 1.0f;
+                std::copy_n(reference.pixel(x, y), reference.channels(), weighted.pixel(x, y));
+            }
+        }
+        parts.weighted.push_back(low_pass(weighted, strength, filter, threads));
+        parts.weights.push_back(low_pass(inside, strength, filter, threads));
+    }
+    return parts;
+}
+
+// `fallback` (the plain low-pass, the level's size) where a region's weight is too small to
+// divide by (a region thinner than the filter's support on this level).
+Image within_regions(const RegionParts& parts, const Image& labels, Image fallback) {
+    for (int y = 0; y < fallback.height(); ++y) {
+        for (int x = 0; x < fallback.width(); ++x) {
+            const auto k = static_cast<std::size_t>(std::lround(labels.at(x, y, 0)));
+            const float weight = parts.weights[k].at(x, y, 0);
+            if (!(weight > 1e-3f)) continue;
+            for (int c = 0; c < fallback.channels(); ++c) {
+                fallback.at(x, y, c) = parts.weighted[k].at(x, y, c) / weight;
+            }
+        }
+    }
+    return fallback;
+}
+
 }  // namespace
 
 std::string_view to_string(LowPassFilter filter) {
@@ -194,14 +274,59 @@ Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
 Result<Image> synthesize_frame(const Image& source, const Image& source_orientation,
                                const NoisyFrame& frame, const NoisyOptions& options,
                                std::int64_t frame_index, const RunContext& context) {
+    const NoisySource one{source, source_orientation};
+    return synthesize_frame(std::span<const NoisySource>(&one, 1), frame, options, frame_index,
+                            context);
+}
+
+Status check_source_map(const Image& map, std::size_t sources) {
+    if (map.channels() != 1) {
+        return invalid_argument("has " + std::to_string(map.channels()) +
+                                " channels (must be 1: a source number per pixel)");
+    }
+    for (int y = 0; y < map.height(); ++y) {
+        for (int x = 0; x < map.width(); ++x) {
+            const float v = map.at(x, y, 0);
+            if (std::isfinite(v) && std::lround(v) >= 0 &&
+                static_cast<std::size_t>(std::lround(v)) < sources) {
+                continue;
+            }
+            return invalid_argument("value " + format_option_number(v) + " at (" +
+                                    std::to_string(x) + ", " + std::to_string(y) +
+                                    ") has no source (" + std::to_string(sources) + " given: 0.." +
+                                    std::to_string(sources - 1) + ")");
+        }
+    }
+    return Status::ok();
+}
+
+Result<Image> synthesize_frame(std::span<const NoisySource> sources, const NoisyFrame& frame,
+                               const NoisyOptions& options, std::int64_t frame_index,
+                               const RunContext& context) {
     // Check the inputs.
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
-    if (source.empty()) return invalid_argument("source: is empty");
-    if (source.channels() > 4) {
-        return invalid_argument("source: has " + std::to_string(source.channels()) +
-                                " channels (must be 1..4)");
+    if (sources.empty()) return invalid_argument("sources: none given (need at least one)");
+    const bool several = sources.size() > 1;
+    auto source_name = [&](std::size_t k) {
+        return several ? "source " + std::to_string(k) : std::string("source");
+    };
+    const Image& source = sources.front().image;
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        const Image& image = sources[k].image;
+        if (image.empty()) return invalid_argument(source_name(k) + ": is empty");
+        if (image.channels() > 4) {
+            return invalid_argument(source_name(k) + ": has " + std::to_string(image.channels()) +
+                                    " channels (must be 1..4)");
+        }
+        if (image.channels() != source.channels()) {
+            return invalid_argument(source_name(k) + ": has " + std::to_string(image.channels()) +
+                                    " channels but source 0 has " +
+                                    std::to_string(source.channels()) +
+                                    " (every source needs the same channels)");
+        }
+        if (!all_finite(image))
+            return invalid_argument(source_name(k) + ": contains NaN or infinity");
     }
-    if (!all_finite(source)) return invalid_argument("source: contains NaN or infinity");
     if (frame.reference.empty()) return invalid_argument("reference: is empty");
     if (!all_finite(frame.reference)) {
         return invalid_argument("reference: contains NaN or infinity");
@@ -224,57 +349,97 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
             }
         }
     }
-    const bool oriented = !source_orientation.empty();
+    if (several && frame.source_map.empty()) {
+        return invalid_argument("source map: is required with " + std::to_string(sources.size()) +
+                                " sources (it chooses one per pixel)");
+    }
+    if (!frame.source_map.empty()) {
+        if (!frame.source_map.same_size(reference)) {
+            return invalid_argument("source map: is " + size_str(frame.source_map) + " (must be " +
+                                    size_str(reference) + " like the reference)");
+        }
+        const Status map_ok = check_source_map(frame.source_map, sources.size());
+        if (!map_ok.is_ok()) return Status(map_ok.code(), "source map: " + map_ok.message());
+    }
+    const bool oriented = !sources.front().orientation.empty();
     if (oriented != !frame.orientation.empty()) {
         return invalid_argument(
             "orientation: give both the source's and the frame's orientation field, or neither");
     }
-    if (oriented) {
-        if (source_orientation.channels() != 1 || !source_orientation.same_size(source)) {
-            return invalid_argument("source orientation: is " + size_str(source_orientation) +
-                                    " with " + std::to_string(source_orientation.channels()) +
-                                    " channels (must be 1 channel, " + size_str(source) +
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        const Image& field = sources[k].orientation;
+        if (field.empty() == oriented) {
+            return invalid_argument(
+                source_name(k) + " orientation: " + (oriented ? "is missing" : "is given") +
+                " but " + source_name(0) + "'s " + (oriented ? "is given" : "is not") +
+                " (give every source's orientation field, or none)");
+        }
+        if (oriented && (field.channels() != 1 || !field.same_size(sources[k].image))) {
+            return invalid_argument(source_name(k) + " orientation: is " + size_str(field) +
+                                    " with " + std::to_string(field.channels()) +
+                                    " channels (must be 1 channel, " + size_str(sources[k].image) +
                                     " like the source)");
         }
+        if (oriented && !all_finite(field)) {
+            return invalid_argument("orientation: contains NaN or infinity");
+        }
+    }
+    if (oriented) {
         if (frame.orientation.channels() != 1 || !frame.orientation.same_size(reference)) {
             return invalid_argument("frame orientation: is " + size_str(frame.orientation) +
                                     " with " + std::to_string(frame.orientation.channels()) +
                                     " channels (must be 1 channel, " + size_str(reference) +
                                     " like the reference)");
         }
-        if (!all_finite(source_orientation) || !all_finite(frame.orientation)) {
+        if (!all_finite(frame.orientation)) {
             return invalid_argument("orientation: contains NaN or infinity");
         }
     }
     const std::vector<double> strengths = level_strengths(options.noise, options.level_ratio);
-    const int min_side = std::min({width, height, source.width(), source.height()});
-    // The coarsest level must hold a (rotated) patch's footprint.
+    // The smallest source sets the largest strength.
+    std::size_t smallest = 0;
+    for (std::size_t k = 1; k < sources.size(); ++k) {
+        const Image& a = sources[k].image;
+        const Image& b = sources[smallest].image;
+        if (std::min(a.width(), a.height()) < std::min(b.width(), b.height())) smallest = k;
+    }
+    const Image& small = sources[smallest].image;
+    const int min_side = std::min({width, height, small.width(), small.height()});
+    // The coarsest level must hold a (rotated) patch's footprint; with several sources, inside
+    // every source's border, or the engine would drop the label groups on that level and mix
+    // the media.
     const int radius = options.patch_size / 2;
-    const int need = oriented ? 2 * static_cast<int>(std::ceil(radius * std::sqrt(2.0))) + 1
-                              : options.patch_size;
+    const int need = (oriented ? 2 * static_cast<int>(std::ceil(radius * std::sqrt(2.0))) + 1
+                               : options.patch_size) +
+                     (several ? 2 : 0);
     if (scaled_size(min_side, strengths.front()) < need) {
         return invalid_argument(
             "noise: " + format_option_number(options.noise) + " is too strong for the " +
-            size_str(reference) + " reference and the " + size_str(source) +
-            " source with patch-size " + std::to_string(options.patch_size) +
+            size_str(reference) + " reference and the " + size_str(small) + " " +
+            source_name(smallest) + " with patch-size " + std::to_string(options.patch_size) +
             (oriented ? " and rotated patches" : "") + " (at most " +
             format_option_number(std::floor(100.0 * min_side / need) / 100.0) + ")");
     }
 
-    // Randomly pre-deform the source (§4.3.2) so features do not fuse between frames.
+    // Randomly pre-deform each source (§4.3.2) so features do not fuse between frames.
     const int threads = context.threads;
     const auto index = static_cast<std::uint64_t>(frame_index);
-    Image deformed = source;
-    Image deformed_orientation = source_orientation;
-    if (options.max_offset_px > 0.0f) {
-        const ControlPoints lattice = jittered_lattice(
-            source.width(), source.height(), options.lattice_spacing_px, options.min_offset_px,
-            options.max_offset_px, hash_keys(options.seed, index, 1));
-        const double smoothing = lattice_smoothing_px(options.lattice_spacing_px);
-        deformed = deform_rigid(source, lattice, smoothing, threads);
-        if (oriented) {
-            deformed_orientation =
-                deform_rigid_angles(source_orientation, lattice, smoothing, threads);
+    std::vector<Image> deformed, deformed_orientation;
+    for (std::size_t k = 0; k < sources.size(); ++k) {
+        const NoisySource& medium = sources[k];
+        if (options.max_offset_px > 0.0f) {
+            const ControlPoints lattice = jittered_lattice(
+                medium.image.width(), medium.image.height(), options.lattice_spacing_px,
+                options.min_offset_px, options.max_offset_px, hash_keys(options.seed, index, 1, k));
+            const double smoothing = lattice_smoothing_px(options.lattice_spacing_px);
+            deformed.push_back(deform_rigid(medium.image, lattice, smoothing, threads));
+            if (oriented) {
+                deformed_orientation.push_back(
+                    deform_rigid_angles(medium.orientation, lattice, smoothing, threads));
+            }
+        } else {
+            deformed.push_back(medium.image);
+            if (oriented) deformed_orientation.push_back(medium.orientation);
         }
     }
 
@@ -294,10 +459,18 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
     inner.cancel = context.cancel;
 
     // The coarse-consistency guide pair: both low-passed at the full strength f.
-    Image source_low, reference_low;
+    std::vector<Image> source_low;
+    Image reference_low;
+    RegionParts reference_regions;  // with several sources
     if (options.coarse_weight > 0.0f) {
-        source_low = low_pass(deformed, options.noise, options.filter, threads);
+        for (const Image& medium : deformed) {
+            source_low.push_back(low_pass(medium, options.noise, options.filter, threads));
+        }
         reference_low = low_pass(reference, options.noise, options.filter, threads);
+        if (several) {
+            reference_regions = region_parts(reference, frame.source_map, sources.size(),
+                                             options.noise, options.filter, threads);
+        }
     }
 
     // Coarse to fine; the coarsest target level is the low-passed reference (eq. 4.2).
@@ -312,6 +485,14 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
         const double strength = strengths[static_cast<std::size_t>(k)];
         const int tw = scaled_size(width, strength), th = scaled_size(height, strength);
         Image start = low_pass(reference, strength, options.filter, threads);
+        // With several sources each region starts from its own colours (see region_parts).
+        const Image labels =
+            several ? resize(frame.source_map, tw, th, ResampleFilter::Nearest, 1) : Image();
+        if (several) {
+            start = within_regions(region_parts(reference, frame.source_map, sources.size(),
+                                                strength, options.filter, threads),
+                                   labels, std::move(start));
+        }
 
         // Pixels whose own strength f_p reaches this level's are synthesized (§4.3.3); the
         // others hold the low-passed reference until their level comes.
@@ -353,24 +534,55 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
         }
 
         SynthesisInput input;
-        input.style = low_pass(deformed, strength, options.filter, threads);
+        // The level's sources side by side, each low-passed on its own, so no filter mixes
+        // two media.
+        std::vector<Image> media;
+        for (const Image& medium : deformed) {
+            media.push_back(low_pass(medium, strength, options.filter, threads));
+        }
+        input.style = side_by_side(media);
         input.target_width = tw;
         input.target_height = th;
         input.initial_target = std::move(start);
         // Patches that reach the source's border (read it repeated) are not used: the source
         // mask leaves out its outermost pixels. Random-search candidates clamped onto the
         // border are then rejected before their (slow, clamped) distance is computed.
+        // With several sources each has its own border, so no patch spans two media, and its
+        // own label: a pixel takes patches of the source its map value names only.
         input.source_mask = Image(input.style.width(), input.style.height(), 1, 0.0f);
-        for (int y = 1; y + 1 < input.style.height(); ++y) {
-            for (int x = 1; x + 1 < input.style.width(); ++x) input.source_mask.at(x, y, 0) = 1;
+        if (several) {
+            input.source_labels = Image(input.style.width(), input.style.height(), 1, -1.0f);
         }
+        for (int m = 0, x0 = 0; m < static_cast<int>(media.size()); ++m) {
+            const Image& medium = media[static_cast<std::size_t>(m)];
+            for (int y = 0; y < medium.height(); ++y) {
+                for (int x = 0; x < medium.width(); ++x) {
+                    const bool inside =
+                        y >= 1 && y + 1 < medium.height() && x >= 1 && x + 1 < medium.width();
+                    input.source_mask.at(x0 + x, y, 0) = inside ? 1.0f : 0.0f;
+                    if (several) input.source_labels.at(x0 + x, y, 0) = static_cast<float>(m);
+                }
+            }
+            x0 += medium.width();
+        }
+        if (several) input.target_labels = labels;
         if (!all_active) input.target_mask = std::move(active);
         if (options.coarse_weight > 0.0f) {
             GuidePair coarse;
             coarse.name = "low-passed reference";
-            coarse.source = resize(source_low, input.style.width(), input.style.height(),
-                                   ResampleFilter::Gaussian, threads);
+            coarse.source =
+                side_by_side(resized_like(source_low, media, ResampleFilter::Gaussian, threads));
             coarse.target = resize(reference_low, tw, th, ResampleFilter::Gaussian, threads);
+            if (several) {
+                RegionParts level;
+                for (std::size_t m = 0; m < sources.size(); ++m) {
+                    level.weighted.push_back(resize(reference_regions.weighted[m], tw, th,
+                                                    ResampleFilter::Gaussian, threads));
+                    level.weights.push_back(resize(reference_regions.weights[m], tw, th,
+                                                   ResampleFilter::Gaussian, threads));
+                }
+                coarse.target = within_regions(level, labels, std::move(coarse.target));
+            }
             coarse.weight = options.coarse_weight;
             // A pixel of lower noise m(p) < 1 follows h_{f m(p)} * R, which h_f * R would pull
             // towards blur; it starts from the reference on a finer level instead, so the
@@ -382,8 +594,8 @@ Result<Image> synthesize_frame(const Image& source, const Image& source_orientat
             input.guides.push_back(std::move(coarse));
         }
         if (oriented) {
-            input.source_orientation = resize(deformed_orientation, input.style.width(),
-                                              input.style.height(), ResampleFilter::Nearest, 1);
+            input.source_orientation =
+                side_by_side(resized_like(deformed_orientation, media, ResampleFilter::Nearest, 1));
             input.target_orientation =
                 resize(frame.orientation, tw, th, ResampleFilter::Nearest, 1);
         }

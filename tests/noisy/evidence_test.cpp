@@ -61,7 +61,7 @@ std::vector<Image> frames(float noise, int count, const Image& noise_map = {},
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < count; ++i) {
         Result<Image> frame =
-            synthesize_frame(source(), NoisyFrame{reference(), noise_map, {}}, options, i, {});
+            synthesize_frame(source(), NoisyFrame{reference(), noise_map, {}, {}}, options, i, {});
         EXEMPLAR_CHECK(frame.ok());
         out.push_back(std::move(frame.value()));
     }

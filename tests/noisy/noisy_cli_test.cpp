@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -228,6 +230,108 @@ TEST_F(NoisyCli, TakesOrientationFields) {
     EXPECT_EQ(r.err, "exemplar: --exemplar-orientation " + path("OS.png") +
                          ": an orientation field holds angles in radians and needs a float "
                          "format (EXR or float TIFF)\n");
+}
+
+// Two media and a source map (thesis §4.3.3): a dark medium left of the map's boundary, a bright
+// one right of it; frames come from their own medium, from flags or a job file alike.
+TEST_F(NoisyCli, ChoosesTheMediumPerPixelFromASourceMap) {
+    Image dark = testing::medium(64, 64), bright = testing::medium(64, 64, 7);
+    for (float& v : dark.data()) v = 0.05f + 0.4f * std::clamp(v, 0.0f, 1.0f);
+    for (float& v : bright.data()) v = 0.55f + 0.4f * std::clamp(v, 0.0f, 1.0f);
+    ASSERT_TRUE(save_image(dark, path("dark.png")).ok());
+    ASSERT_TRUE(save_image(bright, path("bright.png")).ok());
+    fs::create_directories(dir_ / "M");
+    for (int n = 1; n <= 4; ++n) {
+        Image map(32, 32, 1, 0.0f);  // grey level 1 of 255 names the second --exemplar
+        for (int y = 0; y < 32; ++y) {
+            for (int x = 12 + n; x < 32; ++x) map.at(x, y, 0) = 1.0f / 255.0f;
+        }
+        ASSERT_TRUE(save_image(map, path("M/%04d.png", n)).ok());
+    }
+    std::vector<std::string> a = args("T/%04d.png", "2");
+    a[1] = path("dark.png");
+    a.insert(a.end(), {"--exemplar", path("bright.png"), "--source-map", path("M/%04d.png")});
+    const CliRun r = run_noisy(a);
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (int n = 1; n <= 4; ++n) {
+        auto frame = load_image(path("T/%04d.png", n));
+        ASSERT_TRUE(frame.ok());
+        long own = 0, count = 0;
+        for (int y = 0; y < 32; ++y) {
+            for (int x = 0; x < 32; ++x) {
+                if (std::abs(x - (12 + n)) <= 1) continue;  // the last vote's 3x3 mixes here
+                const bool bright_side = x >= 12 + n;
+                own += (frame->at(x, y, 0) > 0.5f) == bright_side;
+                ++count;
+            }
+        }
+        EXPECT_EQ(own, count) << "frame " << n;
+    }
+
+    // The same from a job file, with the media as an array: the same bytes.
+    {
+        std::ofstream job(path("job.json"));
+        job << "{\"exemplar\": [\"" << path("dark.png") << "\", \"" << path("bright.png")
+            << "\"], \"source-map\": \"" << path("M/%04d.png") << "\", \"frames\": \""
+            << path("R/%04d.png") << "\", \"first\": 2, \"last\": 2, \"noise\": 3, \"output\": \""
+            << path("J/%04d.png")
+            << "\", \"patch_size\": 5, \"em-iterations\": 2, \"search-iterations\": 3}";
+    }
+    const CliRun from_job = run_noisy({"--config", path("job.json"), "-q"});
+    ASSERT_EQ(from_job.code, 0) << from_job.err;
+    EXPECT_EQ(file_bytes(path("J/%04d.png", 2)), file_bytes(path("T/%04d.png", 2)));
+}
+
+TEST_F(NoisyCli, BadSourceMapsStopTheRangeWithOneLineErrors) {
+    ASSERT_TRUE(save_image(testing::medium(64, 64, 7), path("S2.png")).ok());
+    fs::create_directories(dir_ / "M");
+    for (int n = 1; n <= 4; ++n) {
+        ASSERT_TRUE(save_image(Image(32, 32, 1, (n % 2) / 255.0f), path("M/%04d.png", n)).ok());
+    }
+    std::vector<std::string> a = args("E/%04d.png", "1");
+    a.insert(a.end(), {"--exemplar", path("S2.png")});
+    CliRun r = run_noisy(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err,
+              "exemplar: --source-map: is required with 2 --exemplar (it chooses the "
+              "medium of every pixel)\n");
+
+    // Frame 3's map has another size: frames 1 and 2 are written, 3 and 4 are not.
+    a.insert(a.end(), {"--source-map", path("M/%04d.png")});
+    ASSERT_TRUE(save_image(Image(30, 32, 1, 0.0f), path("M/%04d.png", 3)).ok());
+    r = run_noisy(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("M/%04d.png", 3) + ": is 30x32 but " +
+                         path("R/%04d.png", 3) + " is 32x32\n");
+    EXPECT_TRUE(fs::exists(path("E/%04d.png", 2)));
+    EXPECT_FALSE(fs::exists(path("E/%04d.png", 3)));
+    EXPECT_FALSE(fs::exists(path("E/%04d.png", 4)));
+
+    // Frame 4's map names a third medium: frame 3 is made on resume, 4 is not.
+    ASSERT_TRUE(save_image(Image(32, 32, 1, 0.0f), path("M/%04d.png", 3)).ok());
+    Image third(32, 32, 1, 0.0f);
+    third.at(5, 9, 0) = 2.0f / 255.0f;
+    ASSERT_TRUE(save_image(third, path("M/%04d.png", 4)).ok());
+    r = run_noisy(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "exemplar: " + path("M/%04d.png", 4) +
+                         ": value 2 at (5, 9) has no source (2 given: 0..1)\n");
+    EXPECT_TRUE(fs::exists(path("E/%04d.png", 3)));
+    EXPECT_FALSE(fs::exists(path("E/%04d.png", 4)));
+    for (const auto& entry : fs::directory_iterator(dir_ / "E")) {
+        EXPECT_EQ(entry.path().extension(), ".png") << "a partial file: " << entry.path();
+    }
+
+    // Orientation fields: one per medium.
+    ASSERT_TRUE(save_image(Image(64, 64, 1, 0.0f), path("OS.exr")).ok());
+    ASSERT_TRUE(save_image(Image(32, 32, 1, 0.0f), path("O.exr")).ok());
+    a.insert(a.end(),
+             {"--exemplar-orientation", path("OS.exr"), "--frame-orientation", path("O.exr")});
+    r = run_noisy(a);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err,
+              "exemplar: --exemplar-orientation: 1 given for 2 --exemplar (give one per "
+              "exemplar, in their order)\n");
 }
 
 TEST_F(NoisyCli, ReadsAVideo) {

@@ -88,7 +88,7 @@ TEST(NoisyOptions, DefaultsAreTheChaptersAndRangesAreChecked) {
 
 struct Fixture {
     Image source = testing::medium(128, 128);
-    NoisyFrame frame{testing::cel(64, 64, 30, 28, 16), {}, {}};
+    NoisyFrame frame{testing::cel(64, 64, 30, 28, 16), {}, {}, {}};
 };
 
 bool identical(const Image& a, const Image& b) {
@@ -190,7 +190,7 @@ TEST(NoisyFrame, WarmLevelsKeepTheChaptersFineConsistency) {
         double sum = 0.0;
         for (int i = 0; i < 3; ++i) {
             const Result<Image> frame =
-                synthesize_frame(source, NoisyFrame{reference, {}, {}}, o, i, RunContext(2));
+                synthesize_frame(source, NoisyFrame{reference, {}, {}, {}}, o, i, RunContext(2));
             EXPECT_TRUE(frame.ok());
             sum += nearest_patch_distance(frame.value(), source) / 3.0;
         }
@@ -237,7 +237,8 @@ TEST(NoisyFrame, GreyAndRgbaReferencesAreConverted) {
     NoisyOptions options;
     options.noise = 2.0f;
     Image grey(64, 64, 1, 0.6f);
-    const Result<Image> out = synthesize_frame(in.source, NoisyFrame{grey, {}, {}}, options, 0, {});
+    const Result<Image> out =
+        synthesize_frame(in.source, NoisyFrame{grey, {}, {}, {}}, options, 0, {});
     ASSERT_TRUE(out.ok()) << out.status().message();
     EXPECT_EQ(out.value().channels(), 3);
 }

@@ -130,7 +130,26 @@ struct NoisyFrame {
     /// grid, angles in radians (e.g. filters::orientation_field of the frame, or painted).
     /// Needs the source's orientation too; patches are then rotated by the difference.
     Image orientation;
+    /// Optional local choice of source (§4.3.3): 1 channel on the reference's grid, integer
+    /// values k = 0 .. sources - 1 (compared after rounding); a pixel takes patches of
+    /// sources[k] only, on every level (the engine's label groups), so each region of the frame
+    /// is drawn with its own medium and the boundaries between regions stay where the map puts
+    /// them; the reference's low frequencies (the levels' starts, the coarse guide) are taken
+    /// within each region. Required with several sources; with one source it must be all 0.
+    Image source_map;
 };
+
+/// One drawing medium of a frame: a scan S (1..4 channels) and, optionally, its orientation
+/// field (§4.3.3, O_S: 1 channel on the scan's grid, angles in radians).
+struct NoisySource {
+    Image image;
+    Image orientation;
+};
+
+/// Checks a source map against the number of sources: 1 channel, finite, every value rounds to
+/// 0 .. sources - 1. The message has no prefix (callers name the map): `value 2 at (5, 3) has
+/// no source (2 given: 0..1)`.
+Status check_source_map(const Image& map, std::size_t sources);
 
 /// Synthesizes frame `frame_index` from `source` (the scanned drawing medium S, 1..4
 /// channels) and the frame's inputs: the source randomly pre-deformed by rigid MLS, a source
@@ -157,5 +176,18 @@ Result<Image> synthesize_frame(const Image& source, const NoisyFrame& frame,
 Result<Image> synthesize_frame(const Image& source, const Image& source_orientation,
                                const NoisyFrame& frame, const NoisyOptions& options,
                                std::int64_t frame_index, const RunContext& context = {});
+
+/// The same with several sources chosen per pixel by NoisyFrame::source_map (§4.3.3, "local
+/// choice of source"). Every source needs the same channel count and each is pre-deformed with
+/// its own random lattice (keyed by seed, frame index and its position in `sources`; source 0's
+/// is the single-source call's, so one source gives that call's frame bit for bit). Give
+/// orientation fields for every source and the frame, or for none. With several sources the
+/// coarsest level must hold a patch of every source inside its border: sides of patch-size + 2
+/// (rotated: the rotated footprint + 2) instead of patch-size. Errors as above, plus: no
+/// sources, differing channel counts, a map of the wrong size, a map value without a source, a
+/// missing map with several sources.
+Result<Image> synthesize_frame(std::span<const NoisySource> sources, const NoisyFrame& frame,
+                               const NoisyOptions& options, std::int64_t frame_index,
+                               const RunContext& context = {});
 
 }  // namespace exemplar::noisy
