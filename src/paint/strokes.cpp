@@ -21,8 +21,11 @@ namespace {
 struct Kernel {
     double sigma = 1.0;
     double support = 2.0;
-    double cut = 0.0;        // exp(-support² / 2σ²), subtracted so the kernel ends at 0
-    double line_weight = 1;  // integral over an infinite line through the evaluation point
+    double cut = 0.0;           // exp(-support² / 2σ²), subtracted so the kernel ends at 0
+    double line_weight = 1;     // integral over an infinite line through the evaluation point
+    double inv_scale = 1.0;     // 1 / (σ√2), erf's argument per unit length
+    double inv_support2 = 1.0;  // 1 / support²
+    double gauss_norm = 1.0;  // σ·√(π/2): ∫ exp(-s² / 2σ²) ds = gauss_norm · erf(s / σ√2)
 };
 
 Kernel kernel_of(const Stroke& s) {
@@ -33,6 +36,9 @@ Kernel kernel_of(const Stroke& s) {
     k.line_weight = k.sigma * std::sqrt(2.0 * std::numbers::pi) *
                         std::erf(k.support / (k.sigma * std::numbers::sqrt2)) -
                     2.0 * k.support * k.cut;
+    k.inv_scale = 1.0 / (k.sigma * std::numbers::sqrt2);
+    k.inv_support2 = 1.0 / (k.support * k.support);
+    k.gauss_norm = k.sigma * std::sqrt(0.5 * std::numbers::pi);
     return k;
 }
 
@@ -102,10 +108,10 @@ double chord_weight(double px, double py, const Chord& c, const Kernel& k,
     const double half = std::sqrt(r2 - h2);
     const double lo = std::max(0.0, s0 - half), hi = std::min(c.length, s0 + half);
     if (lo >= hi) return 0.0;
-    const double scale = 1.0 / (k.sigma * std::numbers::sqrt2);
-    const double gauss = tables.gauss(h2 / (k.support * k.support)) * k.sigma *
-                         std::sqrt(0.5 * std::numbers::pi) *
-                         (tables.erf((hi - s0) * scale) - tables.erf((lo - s0) * scale));
+    // No division per pixel: the kernel's reciprocals are precomputed.
+    const double gauss =
+        tables.gauss(h2 * k.inv_support2) * k.gauss_norm *
+        (tables.erf((hi - s0) * k.inv_scale) - tables.erf((lo - s0) * k.inv_scale));
     return std::max(0.0, gauss - k.cut * (hi - lo));
 }
 
