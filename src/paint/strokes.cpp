@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "exemplar/core/parallel.hpp"
+
 namespace exemplar::paint {
 
 namespace {
@@ -269,8 +271,8 @@ void cover(const Stroke& s, double radius, Image& coverage, Image& labels) {
     }
 }
 
-// Eq. 1-2 summed over the strokes, then normalized, over the strokes' box: `add(stroke, kernel,
-// box, sum)` accumulates (Σ w·u_x, Σ w·u_y, Σ w / w_line) per pixel of the box.
+// Eq. 1-2 summed over the strokes, then normalized, over the strokes' box: `add(box, sum)`
+// accumulates (Σ w·u_x, Σ w·u_y, Σ w / w_line) per pixel of the box, stroke by stroke.
 template <class Accumulate>
 Image diffuse(std::span<const Stroke> strokes, int width, int height, Accumulate add) {
     PixelRect box;
@@ -282,7 +284,7 @@ Image diffuse(std::span<const Stroke> strokes, int width, int height, Accumulate
     if (box.empty()) return out;
     const int bw = box.x1 - box.x0;
     std::vector<double> sum(static_cast<std::size_t>(bw) * (box.y1 - box.y0) * 3, 0.0);
-    for (const Stroke& s : strokes) add(s, kernel_of(s), box, sum);
+    add(box, sum);
 
     // Normalize (eq. 1-2: dividing by w_k only scales, so the unit vector is the same).
     for (int y = box.y0; y < box.y1; ++y) {
@@ -340,35 +342,50 @@ Status validate(const Stroke& stroke) {
     return Status::ok();
 }
 
-Image diffuse_strokes(std::span<const Stroke> strokes, int width, int height) {
+Image diffuse_strokes(std::span<const Stroke> strokes, int width, int height, int threads) {
     const KernelTables& tables = KernelTables::get();
-    return diffuse(
-        strokes, width, height,
-        [&](const Stroke& s, const Kernel& k, const PixelRect& box, std::vector<double>& sum) {
-            for (const Chord& c : simplify(s, k, chord_tolerance(s))) {
+    // Each stroke's chords and the rows each reaches.
+    struct Piece {
+        Chord chord;
+        std::size_t stroke;
+        int y0, y1;
+    };
+    std::vector<Kernel> kernels;
+    std::vector<Piece> pieces;
+    for (const Stroke& s : strokes) {
+        kernels.push_back(kernel_of(s));
+        for (const Chord& c : simplify(s, kernels.back(), chord_tolerance(s))) {
+            const double by = c.ay + c.length * c.uy;
+            pieces.push_back({c, kernels.size() - 1,
+                              static_cast<int>(std::floor(std::min(c.ay, by) - c.radius)),
+                              static_cast<int>(std::ceil(std::max(c.ay, by) + c.radius)) + 1});
+        }
+    }
+    return diffuse(strokes, width, height, [&](const PixelRect& box, std::vector<double>& sum) {
+        // Row by row (in parallel), every chord reaching the row in turn: a pixel's sums are
+        // added in the same order for any thread count.
+        parallel_for(box.y0, box.y1, threads, [&](int y) {
+            for (const Piece& piece : pieces) {
+                if (y < piece.y0 || y >= piece.y1) continue;
+                const Chord& c = piece.chord;
+                const Kernel& k = kernels[piece.stroke];
                 const double bx = c.ax + c.length * c.ux, by = c.ay + c.length * c.uy;
-                const int y0 =
-                    std::max(box.y0, static_cast<int>(std::floor(std::min(c.ay, by) - c.radius)));
-                const int y1 = std::min(
-                    box.y1, static_cast<int>(std::ceil(std::max(c.ay, by) + c.radius)) + 1);
-                for (int y = y0; y < y1; ++y) {
-                    const auto span = row_span(y + 0.5, c.ax, c.ay, bx, by, c.radius);
-                    auto [x0, x1] = span_pixels(span, width);
-                    x0 = std::max(x0, box.x0);
-                    x1 = std::min(x1, box.x1);
-                    for (int x = x0; x < x1; ++x) {
-                        accumulate(chord_weight(x + 0.5, y + 0.5, c, k, tables), c.ux, c.uy, k, box,
-                                   x, y, sum);
-                    }
+                auto [x0, x1] = span_pixels(row_span(y + 0.5, c.ax, c.ay, bx, by, c.radius), width);
+                x0 = std::max(x0, box.x0);
+                x1 = std::min(x1, box.x1);
+                for (int x = x0; x < x1; ++x) {
+                    accumulate(chord_weight(x + 0.5, y + 0.5, c, k, tables), c.ux, c.uy, k, box, x,
+                               y, sum);
                 }
             }
         });
+    });
 }
 
 Image diffuse_strokes_reference(std::span<const Stroke> strokes, int width, int height) {
-    return diffuse(
-        strokes, width, height,
-        [&](const Stroke& s, const Kernel& k, const PixelRect& box, std::vector<double>& sum) {
+    return diffuse(strokes, width, height, [&](const PixelRect& box, std::vector<double>& sum) {
+        for (const Stroke& s : strokes) {
+            const Kernel k = kernel_of(s);
             for (std::size_t i = 1; i < s.points.size(); ++i) {
                 const double ax = s.points[i - 1].x, ay = s.points[i - 1].y;
                 const double dx = s.points[i].x - ax, dy = s.points[i].y - ay;
@@ -385,7 +402,8 @@ Image diffuse_strokes_reference(std::span<const Stroke> strokes, int width, int 
                     }
                 }
             }
-        });
+        }
+    });
 }
 
 PaintCanvas::PaintCanvas(int width, int height)
@@ -397,11 +415,11 @@ PaintCanvas::PaintCanvas(int width, int height)
     directions_.set_channel_names({"x", "y"});
 }
 
-Result<PixelRect> PaintCanvas::add_stroke(const Stroke& stroke) {
-    return add_strokes(std::span<const Stroke>(&stroke, 1));
+Result<PixelRect> PaintCanvas::add_stroke(const Stroke& stroke, int threads) {
+    return add_strokes(std::span<const Stroke>(&stroke, 1), threads);
 }
 
-Result<PixelRect> PaintCanvas::add_strokes(std::span<const Stroke> strokes) {
+Result<PixelRect> PaintCanvas::add_strokes(std::span<const Stroke> strokes, int threads) {
     for (const Stroke& s : strokes) {
         if (Status st = validate(s); !st.is_ok()) return st;
         if (s.comb != strokes[0].comb) {
@@ -425,7 +443,7 @@ Result<PixelRect> PaintCanvas::add_strokes(std::span<const Stroke> strokes) {
     }
 
     // Blend the diffused direction into the field (eq. 3).
-    const Image diffused = diffuse_strokes(strokes, w, h);
+    const Image diffused = diffuse_strokes(strokes, w, h, threads);
     for (int y = changed.y0; y < changed.y1; ++y) {
         for (int x = changed.x0; x < changed.x1; ++x) {
             const float* d = diffused.pixel(x, y);

@@ -125,6 +125,26 @@ TEST(Strokes, MergedChordsAndTablesMatchTheReference) {
     }
 }
 
+TEST(Strokes, DiffusionIsTheSameForAnyThreadCount) {
+    std::vector<Stroke> strokes = {stroke({{20, 40}, {60, 70}, {140, 50}, {180, 120}}, 60),
+                                   stroke({{30, 130}, {170, 20}}, 24)};
+    for (float x = 10.0f; x < 190.0f; x += 1.0f) {
+        strokes[0].points.push_back({x, 100.0f + 20.0f * std::sin(x / 25.0f)});
+    }
+    const Image one = diffuse_strokes(strokes, 200, 150, 1);
+    for (int threads : {2, 3, 0}) {
+        const Image many = diffuse_strokes(strokes, 200, 150, threads);
+        EXPECT_EQ(std::memcmp(one.data().data(), many.data().data(), one.size() * sizeof(float)), 0)
+            << threads << " threads";
+    }
+    PaintCanvas a(200, 150), b(200, 150);
+    ASSERT_TRUE(a.add_strokes(strokes, 1).ok());
+    ASSERT_TRUE(b.add_strokes(strokes, 2).ok());
+    EXPECT_EQ(std::memcmp(a.directions().data().data(), b.directions().data().data(),
+                          a.directions().size() * sizeof(float)),
+              0);
+}
+
 TEST(Strokes, StraightStrokeGivesItsDirectionAndFullWeightOnItsCentreLine) {
     PaintCanvas canvas(100, 60);
     ASSERT_TRUE(canvas.add_stroke(stroke({{10, 30}, {90, 30}}, 20)).ok());
