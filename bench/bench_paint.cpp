@@ -2,7 +2,7 @@
 // issue's budgets are 0.5 s for a 0.25 MPix painted region (interactive) and 2 s per MPix, both
 // with 2 threads (the paper reports about 5 s per MPix).
 // Timed, wall and process CPU (the host is shared: compare CPU time, or A/B with
-// scripts/ab_bench.sh): `PaintCanvas::add_stroke` (region and direction diffusion, one thread)
+// scripts/ab_bench.sh): `PaintCanvas::add_stroke` (region and direction diffusion)
 // and `paint` of one wide wavy stroke covering about 0.25 MPix; `repaint` after
 // a 48 px stroke across it (what an interactive front end runs per stroke); `paint` of about
 // 1 MPix (five overlapping strokes). Each case best of the repeats.
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
     Timing stroke_setup;
     if (!time_best(repeats, stroke_setup, [&] {
             quarter = PaintCanvas(1000, 500);
-            return quarter.add_stroke(wave(40.0f, 960.0f, 250.0f, 80.0f, 270.0f)).ok();
+            return quarter.add_stroke(wave(40.0f, 960.0f, 250.0f, 80.0f, 270.0f), threads).ok();
         })) {
         return 1;
     }

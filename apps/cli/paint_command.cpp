@@ -183,7 +183,7 @@ Status PaintCommand::run(const Streams& streams) const {
     // Strokes one after the other (painting, then combing refines), then the synthesis.
     paint::PaintCanvas canvas(width, height);
     for (const paint::Stroke& stroke : *strokes) {
-        auto changed = canvas.add_stroke(stroke);
+        auto changed = canvas.add_stroke(stroke, threads_);
         if (!changed.ok()) return changed.status();
     }
     auto result = paint::paint(source, canvas, options, RunContext(threads_));

@@ -1,6 +1,7 @@
 #include "patch_distance.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -45,6 +46,24 @@ float general_distance(const Level& L, int tx, int ty, int sx, int sy, float ang
     return sum;
 }
 
+// The pixel offsets (dx, dy) of a patch of radius 0..7 in row-major order.
+struct PatchGrid {
+    int dx[15 * 15];
+    int dy[15 * 15];
+};
+constexpr auto kPatchGrids = [] {
+    std::array<PatchGrid, 8> grids{};
+    for (int r = 0; r < 8; ++r) {
+        for (int dy = -r, k = 0; dy <= r; ++dy) {
+            for (int dx = -r; dx <= r; ++dx, ++k) {
+                grids[r].dx[k] = dx;
+                grids[r].dy[k] = dy;
+            }
+        }
+    }
+    return grids;
+}();
+
 // Rotated patches inside both images, flat and without weight maps (Brushables' direction
 // field, oriented stylization): the rotated source patch is gathered into a contiguous block,
 // whose rows then go through the same SIMD kernel as an unrotated patch (ssd_rows). The scalar
@@ -73,11 +92,11 @@ bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, f
     int offset[kMaxPixels];
     const int pixel_stride = L.source_features.stride();
     const int row_stride = static_cast<int>(L.source_features.row_bytes());
-    for (int dy = -r, k = 0; dy <= r; ++dy) {
-        for (int dx = -r; dx <= r; ++dx, ++k) {
-            const RotatedOffset o = rotate_offset(dx, dy, c, s);
-            offset[k] = o.dy * row_stride + o.dx * pixel_stride;
-        }
+    // One flat loop over the patch's pixels (it vectorizes; a loop per row of P would not).
+    const PatchGrid& grid = kPatchGrids[r];
+    for (int k = 0; k < P * P; ++k) {
+        const RotatedOffset o = rotate_offset(grid.dx[k], grid.dy[k], c, s);
+        offset[k] = o.dy * row_stride + o.dx * pixel_stride;
     }
     const std::uint8_t* centre = L.source_features.pixel(sx, sy);
     alignas(64) std::uint8_t block[kBlockBytes];

@@ -150,6 +150,21 @@ void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params
     const int patch_r = params.patch_size / 2;
     const int vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
     const bool blend_seams = params.blend_seams && vote_r < patch_r;
+    // Each rotated match's cosine and sine, once: every pixel reads its patch_size² neighbours'.
+    std::vector<std::array<float, 2>> rotation;
+    bool rotated = false;
+    for (std::size_t i = 0; i < nnf.pixel_count() && !rotated; ++i) {
+        rotated = nnf[i].angle_rad != 0.0f;
+    }
+    if (rotated) {
+        rotation.resize(nnf.pixel_count());
+        parallel_for(0, h, threads, [&](int y) {
+            for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
+                const float angle = nnf[i].angle_rad;
+                if (angle != 0.0f) rotation[i] = {std::cos(angle), std::sin(angle)};
+            }
+        });
+    }
     parallel_for(0, h, threads, [&](int y) {
         using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
                                         std::vector<double>>;
@@ -164,10 +179,9 @@ void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params
             if (params.active != nullptr && !params.active[ci]) return false;
             const Match& m = nnf[ci];
             if (m.x < 0) return false;  // not a patch centre
-            const RotatedOffset o =
-                m.angle_rad == 0.0f
-                    ? RotatedOffset{dx, dy}
-                    : rotate_offset(dx, dy, std::cos(m.angle_rad), std::sin(m.angle_rad));
+            const RotatedOffset o = m.angle_rad == 0.0f
+                                        ? RotatedOffset{dx, dy}
+                                        : rotate_offset(dx, dy, rotation[ci][0], rotation[ci][1]);
             sx = m.x + o.dx;
             sy = m.y + o.dy;
             return true;
