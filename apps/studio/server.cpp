@@ -13,6 +13,7 @@
 
 #include "assets.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/noisy/noisy.hpp"
 #include "exemplar/sketch/svg.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "exemplar/version.hpp"
@@ -281,6 +282,7 @@ struct StudioServer::Impl {
     /// A job's files (style, source, target, output): resolved in the workspace by the route.
     using JobPaths = std::map<std::string, std::filesystem::path>;
     Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
+    Result<JobWork> noisy_work(const json& body, const JobPaths& paths);
 };
 
 void StudioServer::Impl::add_routes() {
@@ -543,6 +545,19 @@ void StudioServer::Impl::add_brush_routes() {
     });
 }
 
+namespace {
+
+// A job's output must be an image the atomic writers know.
+Status check_image_output(const std::filesystem::path& output) {
+    const std::string type = content_type_of(output.string());
+    if (type != "image/png" && type != "image/jpeg") {
+        return invalid_argument("output: must end in .png or .jpg");
+    }
+    return Status::ok();
+}
+
+}  // namespace
+
 // A stylize job (guided synthesis, one guide pair): the inputs are loaded and checked here, so a
 // bad job is refused at once; the work is the synthesis and the atomic write of its output.
 Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPaths& paths) {
@@ -558,10 +573,7 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPath
             return invalid_argument(std::string(field) + ": " + loaded.status().message());
         *image = std::move(*loaded);
     }
-    const std::string type = content_type_of(paths.at("output").string());
-    if (type != "image/png" && type != "image/jpeg") {
-        return invalid_argument("output: must end in .png or .jpg");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
     auto quality = parse_quality(body.value("quality", std::string("default")));
     if (!quality.ok()) return quality.status();
     SynthesisOptions synthesis = SynthesisOptions::preset(*quality);
@@ -577,6 +589,51 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPath
     });
 }
 
+// A noisy job (Color Me Noisy, one frame; the call `exemplar noisy` makes per frame): the keys
+// are the noisy option table's (noise required, as on the command line), `seed`, `filter` and
+// `frame` (the frame index the randomness is keyed by); any other key is refused.
+Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths& paths) {
+    noisy::NoisyOptions noisy_options;
+    if (!body.contains("noise")) {
+        return invalid_argument("noise: missing (the low-pass strength f in pixels)");
+    }
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) || key == "seed" || key == "frame") continue;
+        if (key == "filter") {
+            if (!value.is_string()) return invalid_argument("filter: must be a string");
+            auto filter = noisy::parse_low_pass_filter(value.get<std::string>());
+            if (!filter.ok()) return filter.status();
+            noisy_options.filter = *filter;
+            continue;
+        }
+        const noisy::NoisyOptionSpec* spec = noisy::find_noisy_option(key);
+        if (spec == nullptr) return invalid_argument(key + ": unknown option of a noisy job");
+        if (!value.is_number()) return invalid_argument(key + ": must be a number");
+        EXEMPLAR_RETURN_IF_ERROR(noisy::set_option(noisy_options, *spec, value.get<double>()));
+    }
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!seed.ok()) return seed.status();
+    noisy_options.seed = static_cast<std::uint64_t>(*seed);
+    auto frame = number_field(body, "frame", 0.0, 0.0, 1e9);
+    if (!frame.ok()) return frame.status();
+    if (*frame != std::floor(*frame)) return invalid_argument("frame: must be an integer");
+    EXEMPLAR_RETURN_IF_ERROR(noisy::validate(noisy_options));
+    noisy::NoisyFrame input;
+    auto exemplar = load_image(paths.at("exemplar").string());
+    if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
+    auto reference = load_image(paths.at("reference").string());
+    if (!reference.ok()) return invalid_argument("reference: " + reference.status().message());
+    input.reference = std::move(*reference);
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
+    return JobWork([exemplar = std::move(*exemplar), input = std::move(input), noisy_options,
+                    index = static_cast<std::int64_t>(*frame),
+                    path = paths.at("output").string()](const RunContext& context) -> Status {
+        auto image = noisy::synthesize_frame(exemplar, input, noisy_options, index, context);
+        if (!image.ok()) return image.status();
+        return save_image(*image, path);
+    });
+}
+
 void StudioServer::Impl::add_job_routes() {
     http->route("POST", "/api/jobs", [this](const Request& req, Response& res) {
         const std::string id = client_id(req, res);
@@ -584,11 +641,16 @@ void StudioServer::Impl::add_job_routes() {
         const auto body = json_body(req, res);
         if (!body) return;
         const std::string kind = body->value("kind", std::string());
-        if (kind != "stylize")
-            return fail(res, 400, "kind: \"" + kind + "\" is invalid (must be stylize)");
+        using Fields = std::vector<const char*>;
+        const std::map<std::string, Fields> files = {
+            {"stylize", {"style", "source", "target", "output"}},
+            {"noisy", {"exemplar", "reference", "output"}}};
+        const auto kind_files = files.find(kind);
+        if (kind_files == files.end())
+            return fail(res, 400, "kind: \"" + kind + "\" is invalid (must be stylize or noisy)");
         // Every path is checked before anything is read: a refusal is 403.
         JobPaths paths;
-        for (const char* field : {"style", "source", "target", "output"}) {
+        for (const char* field : kind_files->second) {
             auto name = text_field(*body, field);
             if (!name.ok()) return fail(res, name.status());
             auto path = workspace.resolve(*name);
@@ -596,7 +658,7 @@ void StudioServer::Impl::add_job_routes() {
                 return fail(res, 403, std::string(field) + ": " + path.status().message());
             paths[field] = *path;
         }
-        auto work = stylize_work(*body, paths);
+        auto work = kind == "stylize" ? stylize_work(*body, paths) : noisy_work(*body, paths);
         if (!work.ok()) return fail(res, 400, work.status().message());
         const std::string output = body->value("output", std::string());
         auto job = jobs.start(id, kind, output, std::move(*work));

@@ -13,8 +13,11 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <vector>
 
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/paint.hpp"
@@ -487,6 +490,65 @@ TEST_F(StudioTest, JobsReportProgressAndWriteTheirOutput) {
               400);
 }
 
+TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
+    start();
+    auto job = post("/api/jobs", {{"kind", "noisy"},
+                                  {"exemplar", "tex.png"},
+                                  {"reference", "tex.png"},
+                                  {"output", "outputs/noisy.png"},
+                                  {"noise", 4},
+                                  {"patch-size", 5},
+                                  {"seed", 7},
+                                  {"frame", 3}});
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    EXPECT_EQ(end["state"], "done") << end.dump();
+    EXPECT_EQ(end["output"], "outputs/noisy.png");
+    EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the levels'";
+    // The same bytes as the library's call and atomic writer.
+    auto tex = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(tex.ok());
+    noisy::NoisyOptions options;
+    options.noise = 4.0f;
+    options.patch_size = 5;
+    options.seed = 7;
+    noisy::NoisyFrame frame;
+    frame.reference = *tex;
+    auto image = noisy::synthesize_frame(*tex, frame, options, 3, RunContext(1));
+    ASSERT_TRUE(image.ok()) << image.status().message();
+    ASSERT_TRUE(save_image(*image, (base_ / "library.png").string()).is_ok());
+    EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "noisy.png"),
+              file_bytes(base_ / "library.png"));
+    // Bad parameters are refused at once with one line naming the parameter.
+    const json good = {{"kind", "noisy"},
+                       {"exemplar", "tex.png"},
+                       {"reference", "tex.png"},
+                       {"output", "o.png"},
+                       {"noise", 4}};
+    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
+             {"noise", -1, "noise: "},
+             {"patch-size", 4, "patch-size: "},
+             {"filter", "gauss", "gauss"},
+             {"frame", 1.5, "frame: "},
+             {"wobble", 1, "wobble: "},
+             {"output", "o.txt", "output: "},
+             {"reference", "nope.png", "reference: "}}) {
+        json bad = good;
+        bad[key] = value;
+        auto refused = post("/api/jobs", bad);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
+        const std::string message = body_of(refused)["error"];
+        EXPECT_NE(message.find(word), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    json no_noise = good;
+    no_noise.erase("noise");
+    EXPECT_EQ(post("/api/jobs", no_noise)->status, 400);
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
+}
+
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
 json long_job(const std::string& output) {
     return {{"kind", "stylize"},
@@ -526,6 +588,29 @@ TEST_F(StudioJobTest, CancelStopsARunningJobAndWritesNothing) {
     EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "cancelled.png"));
     EXPECT_EQ(hidden_files(base_ / "ws"), 0);
     EXPECT_EQ(client_->Post("/api/jobs/999/cancel")->status, 404);
+}
+
+TEST_F(StudioJobTest, CancelStopsANoisyJobAndWritesNothing) {
+    start();
+    auto job = post("/api/jobs", {{"kind", "noisy"},
+                                  {"exemplar", "texbynum/source_photo.png"},
+                                  {"reference", "texbynum/source_photo.png"},
+                                  {"output", "outputs/noisy.png"},
+                                  {"noise", 16},
+                                  {"warm-search-iterations", 0}});
+    ASSERT_EQ(job->status, 202) << job->body;
+    const std::string id = body_of(job)["id"];
+    httplib::Client canceller("127.0.0.1", server_->port());
+    const json end = follow(server_->port(), id, [&](int progress) {
+        if (progress == 2) {
+            auto c =
+                canceller.Post(("/api/jobs/" + id + "/cancel").c_str(), "{}", "application/json");
+            EXPECT_EQ(c->status, 200);
+        }
+    });
+    EXPECT_EQ(end["state"], "cancelled") << end.dump();
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "noisy.png"));
+    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
 }
 
 TEST_F(StudioJobTest, JobsPerClientAreBoundedAndShutdownCancelsThem) {
