@@ -2,7 +2,7 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, then stop the server with SIGINT while a job runs.
+// cancel it, run a noisy frame, then stop the server with SIGINT while a job runs.
 //
 // Run by ctest (Browser.Studio) with EXEMPLAR_CLI set to the built command; by hand:
 //   EXEMPLAR_CLI=build/release/exemplar node --test tests/browser/studio.test.mjs
@@ -280,7 +280,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.selectOption('select[name=source]', 'texbynum/source_segment.png');
     await page.selectOption('select[name=target]', 'texbynum/target_segment.png');
     await page.selectOption('select[name=quality]', 'best');
-    await page.fill('input[name=output]', 'outputs/cancelled.png');
+    await page.fill('#job-form input[name=output]', 'outputs/cancelled.png');
     await page.click('#job-form button[type=submit]');
     await page.waitForFunction(() => {
       const bar = document.querySelector('#job-list li progress');
@@ -291,10 +291,18 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.screenshot({ path: path.join(artifacts, 'jobs.png') });
     assert.ok(!fs.existsSync(path.join(workspace, 'outputs', 'cancelled.png')));
 
+    // A noisy frame from the second form: done, its image shown, the file in the workspace.
+    await page.selectOption('#noisy-form select[name=exemplar]', 'texbynum/source_photo.png');
+    await page.selectOption('#noisy-form select[name=reference]', 'texbynum/target_segment.png');
+    await page.fill('#noisy-form input[name=noise]', '2');
+    await page.click('#noisy-form button[type=submit]');
+    await page.waitForSelector('#job-list li[data-state=done] img', { timeout: 120000 });
+    assert.ok(fs.existsSync(path.join(workspace, 'outputs', 'noisy.png')));
+
     // Shutdown: another job running, then SIGINT: exit 0, nothing half-written.
-    await page.fill('input[name=output]', 'outputs/interrupted.png');
+    await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
     await page.click('#job-form button[type=submit]');
-    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 2 &&
+    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 3 &&
       document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
     studio.child.kill('SIGINT');
     const exit = await studio.exited;

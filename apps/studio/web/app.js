@@ -349,15 +349,19 @@ function followJob(id, output) {
     }
   });
 }
-$('job-form').addEventListener('submit', async (e) => {
-  e.preventDefault();
-  const form = new FormData(e.target);
-  const body = { kind: 'stylize' };
-  for (const [k, v] of form) body[k] = v;
-  try {
-    const { id } = await api('POST', '/api/jobs', body);
-    followJob(id, body.output);
-  } catch (err) { fail(err); }
-});
+// Each job form names its kind; number fields are sent as JSON numbers.
+for (const jobForm of document.querySelectorAll('.job-form')) {
+  jobForm.addEventListener('submit', async (e) => {
+    e.preventDefault();
+    const body = { kind: e.target.dataset.kind };
+    for (const [k, v] of new FormData(e.target)) {
+      body[k] = e.target.elements[k].type === 'number' ? Number(v) : v;
+    }
+    try {
+      const { id } = await api('POST', '/api/jobs', body);
+      followJob(id, body.output);
+    } catch (err) { fail(err); }
+  });
+}
 
 refreshFiles().catch(fail);
