@@ -279,7 +279,8 @@ struct StudioServer::Impl {
     template <class Session>
     void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
     void add_job_routes();
-    /// A job's files (style, source, target, output): resolved in the workspace by the route.
+    /// A job's files by field (stylize: style, source, target, output; noisy: exemplar,
+    /// reference, output): resolved in the workspace by the route.
     using JobPaths = std::map<std::string, std::filesystem::path>;
     Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
     Result<JobWork> noisy_work(const json& body, const JobPaths& paths);
