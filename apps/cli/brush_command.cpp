@@ -58,12 +58,9 @@ BrushCommand::BrushCommand(CLI::App& parent) {
 Status BrushCommand::run(const Streams& streams) const {
     // Checks that need no file.
     paint::FeatureBrushOptions options;
-    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
-        options, paint::feature_brush_option_specs(),
-        [](paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec, double value) {
-            return paint::set_option(o, spec, value);
-        },
-        numeric_values_, numeric_flags_));
+    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(options, paint::feature_brush_option_specs(),
+                                                   ModuleSetOption{}, numeric_values_,
+                                                   numeric_flags_));
     auto walk = paint::parse_walk_mode(walk_);
     if (!walk.ok()) return invalid_argument("--" + walk.status().message());
     options.walk = *walk;

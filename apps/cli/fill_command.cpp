@@ -54,12 +54,9 @@ FillCommand::FillCommand(CLI::App& parent) {
 Status FillCommand::run(const Streams& streams) const {
     // Checks that need no file.
     paint::FeatureFillOptions options;
-    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
-        options, paint::feature_fill_option_specs(),
-        [](paint::FeatureFillOptions& o, const paint::FeatureFillOptionSpec& spec, double value) {
-            return paint::set_option(o, spec, value);
-        },
-        numeric_values_, numeric_flags_));
+    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(options, paint::feature_fill_option_specs(),
+                                                   ModuleSetOption{}, numeric_values_,
+                                                   numeric_flags_));
     auto usage = parse_usage_strategy(usage_);
     if (!usage.ok()) return invalid_argument("--" + usage.status().message());
     options.usage = *usage;

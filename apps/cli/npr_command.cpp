@@ -130,11 +130,7 @@ Status NprCommand::run(const Streams& streams) {
     if (!style.ok()) return invalid_argument("--" + style.status().message());
     options.style = *style;
     EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
-        options, npr::npr_option_specs(),
-        [](npr::NprOptions& o, const npr::NprOptionSpec& spec, double value) {
-            return npr::set_option(o, spec, value);
-        },
-        numeric_values_, numeric_flags_));
+        options, npr::npr_option_specs(), ModuleSetOption{}, numeric_values_, numeric_flags_));
     options.tone = tone_;
     options.orientation = orientation_;
     options.lines = lines_;

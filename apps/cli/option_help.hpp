@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 
+#include "exemplar/core/option_table.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/synth/options.hpp"
 
@@ -65,7 +66,7 @@ void add_table_flags(CLI::App& app, std::span<const Spec> specs, const Options& 
 }
 
 /// Sets the table options whose flags were given (see add_table_flags) with `set(options, spec,
-/// value)`; its error gets the flag's "--" in front.
+/// value)` (ModuleSetOption{}: the module's set_option); its error gets the flag's "--" in front.
 template <class Options, class Spec, class Set>
 Status set_given_table_flags(Options& options, std::span<const Spec> specs, Set set,
                              const std::map<std::string, double>& values,

@@ -51,18 +51,12 @@ VectorizeStyleCommand::VectorizeStyleCommand(CLI::App& parent) {
 Status VectorizeStyleCommand::run(const Streams& streams) const {
     // Checks that need no file.
     paint::VectorizeStyleOptions options;
-    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
-        options.brush, paint::feature_brush_option_specs(),
-        [](paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec, double value) {
-            return paint::set_option(o, spec, value);
-        },
-        numeric_values_, numeric_flags_));
-    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(
-        options.fill, paint::feature_fill_option_specs(),
-        [](paint::FeatureFillOptions& o, const paint::FeatureFillOptionSpec& spec, double value) {
-            return paint::set_option(o, spec, value);
-        },
-        numeric_values_, numeric_flags_));
+    EXEMPLAR_RETURN_IF_ERROR(
+        set_given_table_flags(options.brush, paint::feature_brush_option_specs(), ModuleSetOption{},
+                              numeric_values_, numeric_flags_));
+    EXEMPLAR_RETURN_IF_ERROR(set_given_table_flags(options.fill, paint::feature_fill_option_specs(),
+                                                   ModuleSetOption{}, numeric_values_,
+                                                   numeric_flags_));
     auto walk = paint::parse_walk_mode(walk_);
     if (!walk.ok()) return invalid_argument("--" + walk.status().message());
     auto usage = parse_usage_strategy(usage_);

@@ -35,10 +35,7 @@ py::array fluid_frame_py(const py::object& exemplar, const py::object& target_al
     py::dict args(kwargs);
     // Options, as the CLI sets them: defaults, the table's options, seed, rotations, usage.
     fluid::FluidOptions options;
-    pop_table_options(args, options, fluid::fluid_option_specs(),
-                      [](fluid::FluidOptions& o, const fluid::FluidOptionSpec& spec, double value) {
-                          return fluid::set_option(o, spec, value);
-                      });
+    pop_table_options(args, options, fluid::fluid_option_specs());
     pop_seed(args, options.synthesis.seed);
     options.rotations = pop_bool(args, "rotations", options.rotations);
     if (const py::object usage = pop(args, "usage"); !usage.is_none()) {

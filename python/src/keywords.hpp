@@ -13,6 +13,7 @@
 
 #include "errors.hpp"
 #include "exemplar/core/image.hpp"
+#include "exemplar/core/option_table.hpp"
 #include "exemplar/synth/options.hpp"
 
 namespace exemplar::python {
@@ -86,10 +87,11 @@ py::list table_specs_for_python(std::span<const Spec> specs, Get get) {
     return list;
 }
 
-/// Pops every option of a module's table from `kwargs` into `options` through `set` (the
-/// module's set_option, whose errors become exceptions).
-template <class Options, class Spec, class Set>
-void pop_table_options(py::dict& kwargs, Options& options, std::span<const Spec> specs, Set set) {
+/// Pops every option of a module's table from `kwargs` into `options` through `set` (by default
+/// the module's set_option; its errors become exceptions).
+template <class Options, class Spec, class Set = ModuleSetOption>
+void pop_table_options(py::dict& kwargs, Options& options, std::span<const Spec> specs,
+                       Set set = {}) {
     for (const Spec& spec : specs) {
         const std::string name = python_name(spec.name);
         const py::object value = pop(kwargs, name.c_str());

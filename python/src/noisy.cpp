@@ -31,10 +31,7 @@ py::array noisy_frame_py(const py::object& exemplar, const py::object& reference
         // The CLI's rule: the noise level is the user's choice.
         throw InputError("noise: is required (the low-pass strength f in pixels)");
     }
-    pop_table_options(args, options, noisy::noisy_option_specs(),
-                      [](noisy::NoisyOptions& o, const noisy::NoisyOptionSpec& spec, double value) {
-                          return noisy::set_option(o, spec, value);
-                      });
+    pop_table_options(args, options, noisy::noisy_option_specs());
     pop_seed(args, options.seed);
     if (const py::object filter = pop(args, "filter"); !filter.is_none()) {
         options.filter = take(noisy::parse_low_pass_filter(text(filter, "filter")));

@@ -63,10 +63,7 @@ py::tuple npr_frame_py(const py::object& pattern, const py::object& buffers, py:
     for (const char* name : {"paper_grain", "erosion"})
         if (!options.paper && args.contains(name))
             check(invalid_argument(std::string(name) + ": needs paper="));
-    pop_table_options(args, options, npr::npr_option_specs(),
-                      [](npr::NprOptions& o, const npr::NprOptionSpec& spec, double value) {
-                          return npr::set_option(o, spec, value);
-                      });
+    pop_table_options(args, options, npr::npr_option_specs());
     if (const py::object tone = pop(args, "tone"); !tone.is_none())
         options.tone = text(tone, "tone");
     if (const py::object orientation = pop(args, "orientation"); !orientation.is_none())

@@ -215,9 +215,7 @@ py::array brush_py(const py::object& palette, const py::object& feature, const p
                    py::kwargs kwargs) {
     py::dict args(kwargs);
     paint::FeatureBrushOptions options;
-    pop_table_options(args, options, paint::feature_brush_option_specs(),
-                      [](paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec,
-                         double value) { return paint::set_option(o, spec, value); });
+    pop_table_options(args, options, paint::feature_brush_option_specs());
     if (const py::object walk = pop(args, "walk"); !walk.is_none()) {
         options.walk = take(paint::parse_walk_mode(text(walk, "walk")));
     }
@@ -263,9 +261,7 @@ py::array fill_py(const py::object& palette, const py::object& source_region,
                   const py::object& target_region, py::kwargs kwargs) {
     py::dict args(kwargs);
     paint::FeatureFillOptions options;
-    pop_table_options(args, options, paint::feature_fill_option_specs(),
-                      [](paint::FeatureFillOptions& o, const paint::FeatureFillOptionSpec& spec,
-                         double value) { return paint::set_option(o, spec, value); });
+    pop_table_options(args, options, paint::feature_fill_option_specs());
     if (const py::object usage = pop(args, "usage"); !usage.is_none()) {
         options.usage = take(parse_usage_strategy(text(usage, "usage")));
     }
@@ -294,12 +290,8 @@ py::array vectorize_style_py(const std::string& drawing_path, const std::string&
                              py::kwargs kwargs) {
     py::dict args(kwargs);
     paint::VectorizeStyleOptions options;
-    pop_table_options(args, options.brush, paint::feature_brush_option_specs(),
-                      [](paint::FeatureBrushOptions& o, const paint::FeatureBrushOptionSpec& spec,
-                         double value) { return paint::set_option(o, spec, value); });
-    pop_table_options(args, options.fill, paint::feature_fill_option_specs(),
-                      [](paint::FeatureFillOptions& o, const paint::FeatureFillOptionSpec& spec,
-                         double value) { return paint::set_option(o, spec, value); });
+    pop_table_options(args, options.brush, paint::feature_brush_option_specs());
+    pop_table_options(args, options.fill, paint::feature_fill_option_specs());
     if (const py::object walk = pop(args, "walk"); !walk.is_none()) {
         options.brush.walk = take(paint::parse_walk_mode(text(walk, "walk")));
     }

@@ -116,10 +116,7 @@ Status set_option(NprOptions& options, const NprOptionSpec& spec, double value) 
 
 Status validate(const NprOptions& options) {
     EXEMPLAR_RETURN_IF_ERROR(
-        validate_table_options(options, std::span<const NprOptionSpec>(kSpecs),
-                               [](NprOptions& o, const NprOptionSpec& spec, double value) {
-                                   return set_option(o, spec, value);
-                               }));
+        validate_table_options(options, std::span<const NprOptionSpec>(kSpecs)));
     if (options.style == Style::Pattern && options.tone)
         return invalid_argument("tone: not used by style pattern (it shows no tone)");
     if (options.tone && options.tone->empty())

@@ -112,9 +112,7 @@ Status set_option(FeatureBrushOptions& options, const FeatureBrushOptionSpec& sp
 
 Status validate(const FeatureBrushOptions& options) {
     EXEMPLAR_RETURN_IF_ERROR(
-        validate_table_options(options, std::span<const FeatureBrushOptionSpec>(kSpecs),
-                               [](FeatureBrushOptions& o, const FeatureBrushOptionSpec& spec,
-                                  double value) { return set_option(o, spec, value); }));
+        validate_table_options(options, std::span<const FeatureBrushOptionSpec>(kSpecs)));
     return parse_walk_mode(to_string(options.walk)).status();
 }
 

@@ -93,9 +93,7 @@ Status set_option(FeatureFillOptions& options, const FeatureFillOptionSpec& spec
 
 Status validate(const FeatureFillOptions& options) {
     EXEMPLAR_RETURN_IF_ERROR(
-        validate_table_options(options, std::span<const FeatureFillOptionSpec>(kSpecs),
-                               [](FeatureFillOptions& o, const FeatureFillOptionSpec& spec,
-                                  double value) { return set_option(o, spec, value); }));
+        validate_table_options(options, std::span<const FeatureFillOptionSpec>(kSpecs)));
     return parse_usage_strategy(to_string(options.usage)).status();
 }
 

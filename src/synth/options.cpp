@@ -258,10 +258,7 @@ const OptionSpec* find_option(std::string_view name) {
 }
 
 Status validate(const SynthesisOptions& options) {
-    return validate_table_options(options, std::span<const OptionSpec>(kSpecs),
-                                  [](SynthesisOptions& o, const OptionSpec& spec, double value) {
-                                      return set_option(o, spec, value);
-                                  });
+    return validate_table_options(options, std::span<const OptionSpec>(kSpecs));
 }
 
 }  // namespace exemplar

@@ -58,10 +58,20 @@ Status set_table_option(Options& options, const Spec& spec, double value, bool o
     return Status::ok();
 }
 
-/// Checks every entry's current value with `set(copy, spec, value)` (the module's set_option, so
-/// its own rules, such as odd patch sizes, apply) on a copy of `options`: the first error.
-template <class Options, class Spec, class Set>
-Status validate_table_options(const Options& options, std::span<const Spec> specs, Set set) {
+/// The module's own `set_option(options, spec, value)`, found by argument-dependent lookup in the
+/// options' namespace (so its own rules, such as odd patch sizes, apply): the setter that the
+/// table loops (validation here, the CLI's flags, Python's keywords) use unless given another.
+struct ModuleSetOption {
+    template <class Options, class Spec>
+    Status operator()(Options& options, const Spec& spec, double value) const {
+        return set_option(options, spec, value);
+    }
+};
+
+/// Checks every entry's current value with `set(copy, spec, value)` (by default the module's
+/// set_option) on a copy of `options`: the first error.
+template <class Options, class Spec, class Set = ModuleSetOption>
+Status validate_table_options(const Options& options, std::span<const Spec> specs, Set set = {}) {
     for (const Spec& spec : specs) {
         Options copy = options;
         EXEMPLAR_RETURN_IF_ERROR(set(copy, spec, get_table_option(options, spec)));
