@@ -172,10 +172,7 @@ Status set_option(FluidOptions& options, const FluidOptionSpec& spec, double val
 }
 
 Status validate(const FluidOptions& o) {
-    EXEMPLAR_RETURN_IF_ERROR(validate_table_options(
-        o, fluid_option_specs(), [](FluidOptions& copy, const FluidOptionSpec& spec, double value) {
-            return set_option(copy, spec, value);
-        }));
+    EXEMPLAR_RETURN_IF_ERROR(validate_table_options(o, fluid_option_specs()));
     if (o.patch_size % 2 == 0) {
         return invalid_argument("patch-size: " + std::to_string(o.patch_size) +
                                 " is invalid (must be odd, 3..15)");
