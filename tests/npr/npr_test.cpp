@@ -82,6 +82,10 @@ TEST(NprStyle, OptionTableChecksRangesAndTheToneAgainstTheStyle) {
     EXPECT_EQ(get_option(options, specs[3]), 0.0);  // motion-levels
     EXPECT_EQ(set_option(options, specs[3], 7).message(),
               "motion-levels: 7 is invalid (must be an integer, 0..6)");
+    EXPECT_EQ(set_option(options, specs[4], 1.5).message(),
+              "paper-grain: 1.5 is invalid (must be 0..1)");
+    EXPECT_EQ(set_option(options, specs[5], 0.25).message(),
+              "erosion: 0.25 is invalid (must be 0.5..20)");
     EXPECT_TRUE(validate(options).is_ok());
     options.levels = 0;
     EXPECT_EQ(validate(options).message(), "levels: 0 is invalid (must be an integer, 1..6)");
