@@ -3,6 +3,7 @@
 // per-channel weights (features.hpp), validity of source patch centres, labels, orientations
 // and the target's active/fixed pixels. Internal to the synth module.
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +25,15 @@ struct Level {
     /// Label group of each source pixel (index into valid_by_group); empty when labels are unused.
     std::vector<int> source_label;
     std::vector<float> source_angle;  ///< Empty when orientation is unused.
+    /// SynthesisInput::orientation_steps (0 = exact angles). With N steps, angle_for returns
+    /// step_angle[k] for the nearest step k, and step_offsets[k * P² + i] is the byte offset in
+    /// source_features of the i-th pixel (row-major) of a patch rotated by step_angle[k].
+    int orientation_steps = 0;
+    std::vector<float> step_angle;  ///< Per step k: 2πk / N as an angle in (−π, π].
+    std::vector<int> step_offsets;
+    /// Per step k, the rotated one-pixel moves of the search's propagation: rotate_offset of
+    /// (1, 0), (-1, 0), (0, 1) and (0, -1) by step_angle[k], as (dx, dy) pairs at 8k..8k+7.
+    std::vector<int> step_moves;
 
     // Target.
     int tw = 0, th = 0;
@@ -89,10 +99,26 @@ struct Level {
         if (!source_valid[s]) return false;
         return !labelled() || source_label[s] == target_label[target_pixel];
     }
-    /// Rotation from target to source coordinates for a pair (0 without orientation).
+    /// Rotation from target to source coordinates for a pair (0 without orientation), rounded
+    /// to the nearest step with orientation_steps.
     float angle_for(std::size_t target_pixel, int sx, int sy) const {
         if (!rotated()) return 0.0f;
-        return source_angle[source_index(sx, sy)] - target_angle[target_pixel];
+        const float angle = source_angle[source_index(sx, sy)] - target_angle[target_pixel];
+        return orientation_steps > 0 ? step_angle[static_cast<std::size_t>(step_of(angle))] : angle;
+    }
+    /// With orientation_steps: the step nearest to `angle` (radians, finite).
+    int step_of(float angle) const {
+        const int n = orientation_steps;
+        float steps = angle * (static_cast<float>(n) / 6.28318531f);
+        // Differences of angles in (−π, π] need no reduction; other inputs do.
+        if (!(std::abs(steps) < static_cast<float>(n))) {
+            steps = std::fmod(steps, static_cast<float>(n));
+        }
+        // Shifted positive (0..2n), so that truncation rounds half up; then into 0..n-1 without
+        // branches or an integer division (the search calls this for every candidate).
+        int k = static_cast<int>(steps + static_cast<float>(n) + 0.5f);
+        k = k >= n ? k - n : k;
+        return k >= n ? k - n : k;
     }
 };
 

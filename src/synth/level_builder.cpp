@@ -10,6 +10,7 @@
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "guide_pca.hpp"
+#include "patch_distance.hpp"
 
 namespace exemplar::synth {
 
@@ -362,6 +363,29 @@ Level LevelBuilder::build(int index, int patch_size) const {
     if (rotated) {
         L.source_angle = channel0(at(input_.source_orientation, RF::Nearest).get());
         L.target_angle = channel0(at(input_.target_orientation, RF::Nearest).get());
+        // Rounded rotations: each step's offset pattern once (patches up to 15x15, the rotated
+        // distance's fast path; larger ones compute their offsets per distance).
+        const int n = input_.orientation_steps;
+        if (n > 0) {
+            L.orientation_steps = n;
+            L.step_angle.resize(static_cast<std::size_t>(n));
+            const std::size_t area = static_cast<std::size_t>(L.patch_size) * L.patch_size;
+            if (L.patch_size <= 15) L.step_offsets.resize(area * static_cast<std::size_t>(n));
+            for (int k = 0; k < n; ++k) {
+                const float angle = 6.28318531f * static_cast<float>(2 * k <= n ? k : k - n) /
+                                    static_cast<float>(n);
+                L.step_angle[static_cast<std::size_t>(k)] = angle;
+                if (!L.step_offsets.empty()) {
+                    rotated_offsets(L, angle,
+                                    L.step_offsets.data() + area * static_cast<std::size_t>(k));
+                }
+                for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                    const RotatedOffset o = rotate_offset(dx, dy, std::cos(angle), std::sin(angle));
+                    L.step_moves.push_back(o.dx);
+                    L.step_moves.push_back(o.dy);
+                }
+            }
+        }
     }
 
     // Target: every pixel is a patch centre. A patch reaching over the border of either image

@@ -64,6 +64,23 @@ constexpr auto kPatchGrids = [] {
     return grids;
 }();
 
+}  // namespace
+
+void rotated_offsets(const Level& L, float angle_rad, int* offsets) {
+    const float c = std::cos(angle_rad);
+    const float s = std::sin(angle_rad);
+    const int pixel_stride = L.source_features.stride();
+    const int row_stride = static_cast<int>(L.source_features.row_bytes());
+    // One flat loop over the patch's pixels (it vectorizes; a loop per row of P would not).
+    const PatchGrid& grid = kPatchGrids[L.radius];
+    for (int k = 0; k < L.patch_size * L.patch_size; ++k) {
+        const RotatedOffset o = rotate_offset(grid.dx[k], grid.dy[k], c, s);
+        offsets[k] = o.dy * row_stride + o.dx * pixel_stride;
+    }
+}
+
+namespace {
+
 // Rotated patches inside both images, flat and without weight maps (Brushables' direction
 // field, oriented stylization): the rotated source patch is gathered into a contiguous block,
 // whose rows then go through the same SIMD kernel as an unrotated patch (ssd_rows). The scalar
@@ -86,17 +103,14 @@ bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, f
         sx >= L.sw - margin || sy >= L.sh - margin) {
         return false;
     }
-    const float c = std::cos(angle);
-    const float s = std::sin(angle);
-    // The offsets first, then the copies.
-    int offset[kMaxPixels];
-    const int pixel_stride = L.source_features.stride();
-    const int row_stride = static_cast<int>(L.source_features.row_bytes());
-    // One flat loop over the patch's pixels (it vectorizes; a loop per row of P would not).
-    const PatchGrid& grid = kPatchGrids[r];
-    for (int k = 0; k < P * P; ++k) {
-        const RotatedOffset o = rotate_offset(grid.dx[k], grid.dy[k], c, s);
-        offset[k] = o.dy * row_stride + o.dx * pixel_stride;
+    // The offsets first (the level's table for a rounded angle), then the copies.
+    int computed[kMaxPixels];
+    const int* offset = computed;
+    const int step = L.orientation_steps > 0 ? L.step_of(angle) : 0;
+    if (L.orientation_steps > 0 && L.step_angle[static_cast<std::size_t>(step)] == angle) {
+        offset = L.step_offsets.data() + static_cast<std::size_t>(step) * (P * P);
+    } else {
+        rotated_offsets(L, angle, computed);
     }
     const std::uint8_t* centre = L.source_features.pixel(sx, sy);
     alignas(64) std::uint8_t block[kBlockBytes];

@@ -30,6 +30,11 @@ inline RotatedOffset rotate_offset(int dx, int dy, float c, float s) {
             round_half_up(s * static_cast<float>(dx) + c * static_cast<float>(dy))};
 }
 
+/// The byte offsets in L.source_features of the pixels (row-major) of a patch rotated by
+/// `angle_rad`, relative to its centre: patch_size² entries; patches up to 15x15.
+/// (Level::step_offsets holds them for each step of a level with orientation steps.)
+void rotated_offsets(const Level& L, float angle_rad, int* offsets);
+
 /// The simple reference: every pixel and channel, no early termination. Test oracle.
 float patch_distance_reference(const Level& level, int tx, int ty, int sx, int sy, float angle_rad);
 

@@ -67,6 +67,21 @@ inline RotatedOffset rotated_step(float angle_rad, int dx, int dy) {
     return rotate_offset(dx, dy, std::cos(angle_rad), std::sin(angle_rad));
 }
 
+/// rotated_step for a one-pixel move (|dx| + |dy| = 1) on level L: the level's table when the
+/// angle is one of its orientation steps (the same offsets without a cosine and a sine).
+inline RotatedOffset rotated_step(const Level& L, float angle_rad, int dx, int dy) {
+    if (angle_rad == 0.0f) return {dx, dy};
+    if (L.orientation_steps > 0) {
+        const int k = L.step_of(angle_rad);
+        if (L.step_angle[static_cast<std::size_t>(k)] == angle_rad) {
+            const int move = dx != 0 ? (dx > 0 ? 0 : 1) : (dy > 0 ? 2 : 3);
+            const int* o = &L.step_moves[static_cast<std::size_t>(8 * k + 2 * move)];
+            return {o[0], o[1]};
+        }
+    }
+    return rotated_step(angle_rad, dx, dy);
+}
+
 /// Evaluates the cost of every active entry (entries whose position is no longer valid are
 /// replaced by a random valid one). Call after the problem's costs changed. With
 /// `only_invalid`, valid entries keep their stored cost (for when only validity changed).
@@ -155,7 +170,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         const std::size_t ni = static_cast<std::size_t>(y) * w + nx;
                         if (P.has_match(ni)) {
                             const Match& m = field[ni];
-                            const RotatedOffset o = rotated_step(m.angle_rad, step, 0);
+                            const RotatedOffset o = rotated_step(P.L, m.angle_rad, step, 0);
                             try_candidate(m.x + o.dx, m.y + o.dy);
                         }
                     }
@@ -166,7 +181,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                             const Match& m = same_band
                                                  ? field[ni]
                                                  : border[static_cast<std::size_t>(band) * w + x];
-                            const RotatedOffset o = rotated_step(m.angle_rad, 0, step);
+                            const RotatedOffset o = rotated_step(P.L, m.angle_rad, 0, step);
                             try_candidate(m.x + o.dx, m.y + o.dy);
                         }
                     }

@@ -350,6 +350,10 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
         EXEMPLAR_RETURN_IF_ERROR(
             check_single_channel(in.target_orientation, "target orientation", tw, th));
     }
+    if (in.orientation_steps != 0 && (in.orientation_steps < 4 || in.orientation_steps > 1024)) {
+        return invalid_argument("orientation steps: " + std::to_string(in.orientation_steps) +
+                                " is invalid (must be 0 or 4..1024)");
+    }
     const bool rotated = !in.source_orientation.empty();
     const int room =
         synth::max_levels(std::min(sw, sh), options.patch_size, options.pyramid_ratio, rotated);

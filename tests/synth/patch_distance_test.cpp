@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "level_builder.hpp"
+#include "patchmatch.hpp"
 #include "ssd.hpp"
 #include "test_images.hpp"
 
@@ -27,8 +28,10 @@ std::vector<float> random_weights(std::size_t n, std::uint64_t seed) {
     return v;
 }
 
-Level make_level(int patch, bool weight_map, float falloff, bool rotated, int guide_channels = 2) {
+Level make_level(int patch, bool weight_map, float falloff, bool rotated, int guide_channels = 2,
+                 int orientation_steps = 0) {
     SynthesisInput in;
+    in.orientation_steps = orientation_steps;
     in.style = testing::texture(30, 26, 3, 1);
     GuidePair g;
     g.source = testing::texture(30, 26, guide_channels, 2);
@@ -101,6 +104,55 @@ TEST(PatchDistance, RotatedGatherMatchesReference) {
                                       0.5f * ref);
                         }
                     }
+                }
+            }
+        }
+    }
+}
+
+// Orientation steps: every pair's angle is the step nearest to its exact difference; the
+// distance takes the step's precomputed offsets (the same as computing them), the reference's
+// value; the search's one-pixel moves from the table are the computed ones.
+TEST(PatchDistance, OrientationStepsRoundAnglesAndUseTheirTables) {
+    for (int steps : {7, 32}) {
+        const Level L = make_level(5, false, 0.0f, true, 9, steps);
+        ASSERT_EQ(L.orientation_steps, steps);
+        const float step = 6.28318531f / static_cast<float>(steps);
+        for (int k = 0; k < steps; ++k) {
+            const float angle = L.step_angle[static_cast<std::size_t>(k)];
+            EXPECT_EQ(L.step_of(angle), k);
+            EXPECT_GT(angle, -3.1415927f);
+            EXPECT_LE(angle, 3.1415927f);
+            int computed[25];
+            rotated_offsets(L, angle, computed);
+            for (int i = 0; i < 25; ++i) {
+                EXPECT_EQ(L.step_offsets[static_cast<std::size_t>(k * 25 + i)], computed[i]);
+            }
+            for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const RotatedOffset table = rotated_step(L, angle, dx, dy);
+                const RotatedOffset direct = rotated_step(angle, dx, dy);
+                EXPECT_EQ(table.dx, direct.dx);
+                EXPECT_EQ(table.dy, direct.dy);
+            }
+        }
+        // Angles beyond a turn either way wrap to the nearest step.
+        for (float angle : {-40.0f, -7.0f, -3.2f, -0.01f, 0.0f, 0.2f, 3.1f, 6.3f, 12.0f, 100.0f}) {
+            const float rounded = L.step_angle[static_cast<std::size_t>(L.step_of(angle))];
+            const double turns = (angle - rounded) / 6.283185307179586;
+            EXPECT_NEAR(turns, std::round(turns), 0.5 * step / 6.28318531f + 1e-5) << angle;
+        }
+        for (int ty = 0; ty < L.th; ty += 2) {
+            for (int tx = 0; tx < L.tw; tx += 2) {
+                for (const auto& [sx, sy] : {std::pair{12, 11}, {3, 4}, {27, 24}, {8, 18}}) {
+                    const std::size_t t = L.target_index(tx, ty);
+                    const float angle = L.angle_for(t, sx, sy);
+                    const float exact = L.source_angle[L.source_index(sx, sy)] - L.target_angle[t];
+                    const double off = (exact - angle) / step;
+                    ASSERT_LE(std::abs(off - steps * std::round(off / steps)), 0.5 + 1e-4);
+                    const float ref = patch_distance_reference(L, tx, ty, sx, sy, angle);
+                    ASSERT_NEAR(patch_distance(L, tx, ty, sx, sy, angle), ref, 1e-5f * (1.0f + ref))
+                        << "steps " << steps << " t " << tx << "," << ty << " s " << sx << ","
+                        << sy;
                 }
             }
         }

@@ -387,6 +387,30 @@ TEST(Synthesize, OrientationDifferenceRotatesStripes) {
     }
 }
 
+// Rotations rounded to orientation steps: every match's angle is one of the steps, and the result
+// is the same for any thread count.
+TEST(Synthesize, OrientationStepsRoundEveryAngle) {
+    SynthesisInput in;
+    in.style = testing::texture(40, 40, 3, 1);
+    in.source_orientation = testing::texture(40, 40, 1, 2);
+    in.target_orientation = testing::texture(36, 30, 1, 3);
+    in.target_width = 36;
+    in.target_height = 30;
+    in.orientation_steps = 8;
+    SynthesisOptions opt;
+    opt.usage = UsageStrategy::None;
+    auto one = synthesize(in, opt, RunContext{1});
+    auto two = synthesize(in, opt, RunContext{2});
+    ASSERT_TRUE(one.ok() && two.ok()) << one.status().message();
+    EXPECT_TRUE(
+        std::equal(one->image.data().begin(), one->image.data().end(), two->image.data().begin()));
+    for (const Match& m : one->nnf.matches()) {
+        if (m.x < 0) continue;
+        const double steps = m.angle_rad / (2.0 * std::numbers::pi / 8.0);
+        EXPECT_NEAR(steps, std::round(steps), 1e-5) << m.angle_rad;
+    }
+}
+
 // The quality dial: Default is the default-constructed options; the other presets are the
 // defaults with exactly their listed changes, each naming a real option, in range, and changing
 // it; Fast iterates less and Best more on every level; names parse and bad names are rejected.
@@ -691,6 +715,8 @@ TEST(Synthesize, RejectsBadInputWithOneLineMessages) {
          "label 2 does not occur"},
         {"levels", [](auto&, auto& o) { o.levels = 12; }, "levels: 12 is too many"},
         {"negative weight", [](auto& in, auto&) { in.guides[0].weight = -1; }, "weight"},
+        {"orientation steps", [](auto& in, auto&) { in.orientation_steps = 2; },
+         "orientation steps: 2 is invalid (must be 0 or 4..1024)"},
     };
     for (const BadCase& c : cases) {
         SynthesisInput in = identity_input(40, 40);

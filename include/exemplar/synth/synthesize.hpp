@@ -46,8 +46,14 @@ struct SynthesisInput {
     Image target_labels;
     Image source_orientation;  ///< Angle field on the style grid (both or neither).
     Image target_orientation;  ///< Angle field on the target grid.
-    Image initial_target;      ///< Optional start (required with target_mask): style channels.
-    Nnf initial_nnf;           ///< Optional start NNF on the target grid (finest level).
+    /// With orientations: 0 (default) rotates each patch by its exact angle; N (4..1024) rounds
+    /// every rotation to the nearest multiple of 2π / N (off by at most 180° / N), so that each
+    /// level precomputes the N rotated offset patterns instead of a cosine, a sine and the
+    /// rounded offsets per patch distance (the way Brushables and LazyFluids pre-rotate their
+    /// exemplars). The field's angles are the rounded ones.
+    int orientation_steps = 0;
+    Image initial_target;  ///< Optional start (required with target_mask): style channels.
+    Nnf initial_nnf;       ///< Optional start NNF on the target grid (finest level).
     /// Optional extra candidate fields on the target grid (e.g. ribbons, Bénard et al. 2013
     /// §4.1): downscaled like `initial_nnf`, each pixel tries its entries at the start of every
     /// level and again in every forward PatchMatch iteration (next to propagation and random
