@@ -109,6 +109,24 @@ std::vector<std::shared_ptr<Job>> JobManager::list() const {
     return out;
 }
 
+void JobManager::supersede(const std::string& client, const std::string& kind) {
+    std::vector<std::shared_ptr<Job>> superseded;
+    {
+        std::lock_guard lock(mutex_);
+        for (const auto& [id, job] : jobs_) {
+            std::lock_guard job_lock(job->mutex);
+            if (job->client == client && job->kind == kind && job->state == JobState::Running) {
+                superseded.push_back(job);
+            }
+        }
+    }
+    for (const auto& job : superseded) job->cancel.cancel();
+    for (const auto& job : superseded) {
+        std::unique_lock lock(job->mutex);
+        job->changed.wait(lock, [&] { return job->state != JobState::Running; });
+    }
+}
+
 void JobManager::shutdown() {
     std::map<std::string, std::shared_ptr<Job>> jobs;
     {

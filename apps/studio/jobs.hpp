@@ -56,6 +56,9 @@ public:
                                        const std::string& output, JobWork work);
     std::shared_ptr<Job> find(const std::string& id) const;
     std::vector<std::shared_ptr<Job>> list() const;
+    /// Cancels `client`'s running jobs of `kind` and waits until they have ended: a tool that
+    /// runs again on every change (StyLit) keeps one run, the latest.
+    void supersede(const std::string& client, const std::string& kind);
     /// Cancels every job, joins their threads and refuses new ones.
     void shutdown();
 

@@ -15,6 +15,7 @@
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/sketch/svg.hpp"
+#include "exemplar/stylit/stylit.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "exemplar/version.hpp"
 #include "http_server.hpp"
@@ -107,6 +108,22 @@ Result<std::vector<sketch::Vec2>> points_field(const json& body) {
         points.push_back({p[0].get<double>(), p[1].get<double>()});
     }
     return points;
+}
+
+// A list of workspace paths: one string or an array of 1..64 strings.
+Result<std::vector<std::string>> path_list_field(const json& body, const char* name) {
+    const auto it = body.find(name);
+    if (it != body.end() && it->is_string())
+        return std::vector<std::string>{it->get<std::string>()};
+    const std::string refusal = std::string(name) + ": missing (a path or an array of 1..64 paths)";
+    if (it == body.end() || !it->is_array() || it->empty() || it->size() > 64)
+        return invalid_argument(refusal);
+    std::vector<std::string> paths;
+    for (const json& p : *it) {
+        if (!p.is_string()) return invalid_argument(refusal);
+        paths.push_back(p.get<std::string>());
+    }
+    return paths;
 }
 
 // A brush stroke: "points", "width" (default 40 px), "comb" (default false).
@@ -279,11 +296,20 @@ struct StudioServer::Impl {
     template <class Session>
     void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
     void add_job_routes();
-    /// A job's files by field (stylize: style, source, target, output; noisy: exemplar,
-    /// reference, output): resolved in the workspace by the route.
-    using JobPaths = std::map<std::string, std::filesystem::path>;
+    /// A job's files by field, resolved in the workspace by the route: one path per field
+    /// (stylize: style, source, target, output; noisy: exemplar, reference, output; stylit:
+    /// exemplar, output) and lists of paths (stylit: source, target).
+    struct JobPaths {
+        std::map<std::string, std::filesystem::path> one;
+        std::map<std::string, std::vector<std::string>> lists;
+        const std::filesystem::path& at(const std::string& field) const { return one.at(field); }
+        bool contains(const std::string& field) const {
+            return one.contains(field) || lists.contains(field);
+        }
+    };
     Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
     Result<JobWork> noisy_work(const json& body, const JobPaths& paths);
+    Result<JobWork> stylit_work(const json& body, const JobPaths& paths);
 };
 
 void StudioServer::Impl::add_routes() {
@@ -635,6 +661,75 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
     });
 }
 
+// A StyLit job (the call `exemplar stylit` makes): the painting `exemplar` over the target
+// render, guided by both renders' light-path buffers; `source` and `target` are each a list of
+// buffer files in guide order, or one folder of `exemplar render` or one multi-layer EXR (a
+// string) whose files or layers `preset` (or `layers`) names. Every input is loaded and checked
+// here; the work is stylize_render and the atomic write of its image.
+Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths& paths) {
+    for (const auto& [key, value] : body.items()) {
+        const bool known = key == "kind" || paths.contains(key) || key == "preset" ||
+                           key == "layers" || key == "quality" || key == "usage" || key == "seed" ||
+                           key == "guidance-weight" || key == "preview";
+        if (!known) return invalid_argument(key + ": unknown option of a stylit job");
+    }
+    StylitOptions stylit;
+    if (body.contains("quality")) {
+        auto name = text_field(body, "quality");
+        if (!name.ok()) return name.status();
+        auto quality = parse_quality(*name);
+        if (!quality.ok()) return quality.status();
+        stylit.synthesis = SynthesisOptions::preset(*quality);
+    }
+    if (body.contains("usage")) {
+        auto usage = text_field(body, "usage");
+        if (!usage.ok()) return usage.status();
+        auto strategy = parse_usage_strategy(*usage);
+        if (!strategy.ok()) return invalid_argument("usage: " + strategy.status().message());
+        stylit.synthesis.usage = *strategy;
+    }
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!seed.ok()) return seed.status();
+    stylit.synthesis.seed = static_cast<std::uint64_t>(*seed);
+    auto weight = number_field(body, "guidance-weight", 2.0, 0.0, 100.0);
+    if (!weight.ok()) return weight.status();
+    stylit.guidance_weight = static_cast<float>(*weight);
+    const auto preview = body.find("preview");
+    if (preview != body.end() && !preview->is_boolean())
+        return invalid_argument("preview: must be true or false");
+    stylit.preview = preview != body.end() && preview->get<bool>();
+    Result<LayerPreset> preset = invalid_argument("");
+    if (body.contains("layers")) {
+        auto layers = text_field(body, "layers");
+        if (!layers.ok()) return layers.status();
+        preset = custom_layer_preset(*layers);
+    } else {
+        auto name = body.contains("preset") ? text_field(body, "preset")
+                                            : Result<std::string>(std::string("exemplar"));
+        if (!name.ok()) return name.status();
+        preset = find_layer_preset(*name);
+    }
+    if (!preset.ok()) return invalid_argument("preset: " + preset.status().message());
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
+
+    auto exemplar = load_image(paths.at("exemplar").string());
+    if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
+    auto source = load_lpe_buffers(paths.lists.at("source"), *preset);
+    if (!source.ok()) return invalid_argument("source: " + source.status().message());
+    auto target = load_lpe_buffers(paths.lists.at("target"), *preset);
+    if (!target.ok()) return invalid_argument("target: " + target.status().message());
+    auto input = stylit_input(*exemplar, *source, *target, stylit);
+    if (!input.ok()) return input.status();
+    EXEMPLAR_RETURN_IF_ERROR(validate_input(*input, stylit.synthesis));
+    return JobWork([exemplar = std::move(*exemplar), source = std::move(*source),
+                    target = std::move(*target), stylit,
+                    path = paths.at("output").string()](const RunContext& context) -> Status {
+        auto result = stylize_render(exemplar, source, target, stylit, context);
+        if (!result.ok()) return result.status();
+        return save_image(result->synthesis.image, path);
+    });
+}
+
 void StudioServer::Impl::add_job_routes() {
     http->route("POST", "/api/jobs", [this](const Request& req, Response& res) {
         const std::string id = client_id(req, res);
@@ -643,25 +738,48 @@ void StudioServer::Impl::add_job_routes() {
         if (!body) return;
         const std::string kind = body->value("kind", std::string());
         using Fields = std::vector<const char*>;
-        const std::map<std::string, Fields> files = {
-            {"stylize", {"style", "source", "target", "output"}},
-            {"noisy", {"exemplar", "reference", "output"}}};
-        const auto kind_files = files.find(kind);
-        if (kind_files == files.end())
-            return fail(res, 400, "kind: \"" + kind + "\" is invalid (must be stylize or noisy)");
+        struct Kind {
+            Fields files;       ///< One path each.
+            Fields file_lists;  ///< A path or a list of paths each.
+            Result<JobWork> (Impl::*work)(const json&, const JobPaths&);
+        };
+        const std::map<std::string, Kind> kinds = {
+            {"stylize", {{"style", "source", "target", "output"}, {}, &Impl::stylize_work}},
+            {"noisy", {{"exemplar", "reference", "output"}, {}, &Impl::noisy_work}},
+            {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}}};
+        const auto found = kinds.find(kind);
+        if (found == kinds.end()) {
+            return fail(res, 400,
+                        "kind: \"" + kind + "\" is invalid (must be stylize, noisy or stylit)");
+        }
         // Every path is checked before anything is read: a refusal is 403.
         JobPaths paths;
-        for (const char* field : kind_files->second) {
+        const auto resolve = [&](const char* field, const std::string& name) {
+            auto path = workspace.resolve(name);
+            if (!path.ok()) fail(res, 403, std::string(field) + ": " + path.status().message());
+            return path;
+        };
+        for (const char* field : found->second.files) {
             auto name = text_field(*body, field);
             if (!name.ok()) return fail(res, name.status());
-            auto path = workspace.resolve(*name);
-            if (!path.ok())
-                return fail(res, 403, std::string(field) + ": " + path.status().message());
-            paths[field] = *path;
+            auto path = resolve(field, *name);
+            if (!path.ok()) return;
+            paths.one[field] = *path;
         }
-        auto work = kind == "stylize" ? stylize_work(*body, paths) : noisy_work(*body, paths);
+        for (const char* field : found->second.file_lists) {
+            auto names = path_list_field(*body, field);
+            if (!names.ok()) return fail(res, names.status());
+            for (const std::string& name : *names) {
+                auto path = resolve(field, name);
+                if (!path.ok()) return;
+                paths.lists[field].push_back(path->string());
+            }
+        }
+        auto work = (this->*found->second.work)(*body, paths);
         if (!work.ok()) return fail(res, 400, work.status().message());
         const std::string output = body->value("output", std::string());
+        // A StyLit run replaces the client's previous one (the tool runs again on every change).
+        if (kind == "stylit") jobs.supersede(id, kind);
         auto job = jobs.start(id, kind, output, std::move(*work));
         if (!job.ok()) return fail(res, 429, job.status().message());
         answer(res, 202, {{"id", (*job)->id}});

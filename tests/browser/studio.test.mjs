@@ -2,7 +2,8 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame, then stop the server with SIGINT while a job runs.
+// cancel it, run a noisy frame, run StyLit and paint over its exemplar (the result follows),
+// then stop the server with SIGINT while a job runs.
 //
 // Run by ctest (Browser.Studio) with EXEMPLAR_CLI set to the built command; by hand:
 //   EXEMPLAR_CLI=build/release/exemplar node --test tests/browser/studio.test.mjs
@@ -10,7 +11,7 @@
 // Timings of the last stroke and suggestion are printed (docs/PERFORMANCE.md), never asserted.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -299,7 +300,59 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.waitForSelector('#job-list li[data-state=done] img', { timeout: 120000 });
     assert.ok(fs.existsSync(path.join(workspace, 'outputs', 'noisy.png')));
 
+    // StyLit: the bundled painting and buffers (examples/stylit) uploaded and run; the image
+    // shown is the server's, and the server's is `exemplar stylit`'s byte for byte. Then a stroke
+    // painted over the exemplar with the mouse runs it again by itself (live re-run).
+    const stylitDir = path.join(source, 'examples/stylit');
+    const buffers = (render) => ['fullgi', 'dirdif', 'dirspc', 'indirb'].map((b) => `${render}_${b}.png`);
+    await page.setInputFiles('#upload',
+      ['source_style.png', ...buffers('source'), ...buffers('target')].map((f) => path.join(stylitDir, f)));
+    await page.waitForSelector('#file-list a:text("target_indirb.png")', { state: 'attached' });
+    await page.click('nav button[data-tab=stylit]');
+    await page.uncheck('#stylit-live');
+    await page.selectOption('#stylit-exemplar', 'source_style.png');
+    await page.waitForFunction(() => window.studio.stylit.shown === 'source_style.png');
+    await page.click('#stylit-run');
+    await page.waitForFunction(() => window.studio.stylit.done === 1, null, { timeout: 120000 });
+    const stylitOutput = path.join(workspace, 'outputs', 'stylit.png');
+    const cliStylit = (exemplar, output) => {
+      const run = spawnSync(exemplarCli, ['stylit', '-q', '-j', '2', '--seed', '1', '--exemplar', exemplar,
+        '--source', ...buffers('source').map((f) => path.join(workspace, f)),
+        '--target', ...buffers('target').map((f) => path.join(workspace, f)), '-o', output]);
+      assert.equal(run.status, 0, `exemplar stylit: ${run.stderr}`);
+      return fs.readFileSync(output);
+    };
+    const firstStylit = fs.readFileSync(stylitOutput);
+    assert.ok(firstStylit.equals(cliStylit(path.join(workspace, 'source_style.png'), path.join(artifacts, 'stylit-cli.png'))),
+      'the studio\'s StyLit image differs from exemplar stylit\'s');
+    const [stylitServer] = await pixelsOf(page, ['/api/files/outputs/stylit.png']);
+    const stylitShown = await page.evaluate(() => {
+      const c = document.getElementById('stylit-result');
+      return { width: c.width, height: c.height,
+        data: Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data) };
+    });
+    const shownVsServer = difference(stylitServer, stylitShown);
+    assert.ok(shownVsServer.mean < 1 && shownVsServer.far < 0.002,
+      `the StyLit result shown is not the server's: ${JSON.stringify(shownVsServer)}`);
+    await page.check('#stylit-live');
+    await page.evaluate(() => {
+      document.getElementById('stylit-colour').value = '#1e50c8';
+      const size = document.getElementById('stylit-brush');
+      size.value = '30';
+      size.dispatchEvent(new Event('input'));
+    });
+    await drag(page, page.locator('#stylit-overlay'), [[120, 330], [300, 300], [480, 340]], 8);
+    await page.waitForFunction(() => window.studio.stylit.done === 2, null, { timeout: 120000 });
+    await page.locator('#tab-stylit').screenshot({ path: path.join(artifacts, 'stylit.png') });
+    const paintedExemplar = path.join(workspace, 'outputs', 'stylit_exemplar.png');
+    assert.ok(fs.existsSync(paintedExemplar), 'the painted exemplar was not saved');
+    const secondStylit = fs.readFileSync(stylitOutput);
+    assert.ok(!secondStylit.equals(firstStylit), 'painting the exemplar did not change the result');
+    assert.ok(secondStylit.equals(cliStylit(paintedExemplar, path.join(artifacts, 'stylit-painted-cli.png'))),
+      'the re-run differs from exemplar stylit on the painted exemplar');
+
     // Shutdown: another job running, then SIGINT: exit 0, nothing half-written.
+    await page.click('nav button[data-tab=jobs]');
     await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
     await page.click('#job-form button[type=submit]');
     await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 3 &&

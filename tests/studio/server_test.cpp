@@ -21,6 +21,7 @@
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/paint.hpp"
+#include "exemplar/stylit/stylit.hpp"
 #include "studio.hpp"
 
 namespace exemplar::studio {
@@ -549,6 +550,104 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
     EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
 }
 
+// Light-path buffers of a small render: smooth shading that differs per buffer and per render.
+Image buffer_of(int width, int height, int buffer, int render) {
+    Image image(width, height, 3);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const float u = static_cast<float>(x + 3 * render) / static_cast<float>(width);
+                const float v = static_cast<float>(y) / static_cast<float>(height);
+                image.at(x, y, c) = 0.5f + 0.45f * std::sin(3.0f * u * (buffer + 1) + 2.0f * v +
+                                                            static_cast<float>(c + buffer));
+            }
+        }
+    }
+    return image;
+}
+
+TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
+    // Two buffers per render: the exemplar render 64 x 48 (tex.png is its painting), the target
+    // 56 x 40, in the workspace's stylit/ folder.
+    fs::create_directories(base_ / "ws" / "stylit");
+    std::vector<LpeBuffer> source, target;
+    for (int b = 0; b < 2; ++b) {
+        for (int render = 0; render < 2; ++render) {
+            const std::string name =
+                (render == 0 ? "source_" : "target_") + std::to_string(b) + ".png";
+            const Image image = render == 0 ? buffer_of(64, 48, b, 0) : buffer_of(56, 40, b, 1);
+            ASSERT_TRUE(save_image(image, (base_ / "ws" / "stylit" / name).string()).is_ok());
+            auto loaded = load_image((base_ / "ws" / "stylit" / name).string());
+            ASSERT_TRUE(loaded.ok());
+            (render == 0 ? source : target).push_back({name, name, std::move(*loaded)});
+        }
+    }
+    start();
+    const json good = {{"kind", "stylit"},
+                       {"exemplar", "tex.png"},
+                       {"source", {"stylit/source_0.png", "stylit/source_1.png"}},
+                       {"target", {"stylit/target_0.png", "stylit/target_1.png"}},
+                       {"output", "outputs/stylit.png"},
+                       {"quality", "fast"},
+                       {"seed", 3},
+                       {"guidance-weight", 4}};
+    auto job = post("/api/jobs", good);
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    EXPECT_EQ(end["state"], "done") << end.dump();
+    EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the engine's";
+    // The same bytes as the library's call and atomic writer.
+    auto painting = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(painting.ok());
+    StylitOptions options;
+    options.synthesis = SynthesisOptions::preset(Quality::Fast);
+    options.synthesis.seed = 3;
+    options.guidance_weight = 4.0f;
+    auto result = stylize_render(*painting, source, target, options, RunContext(1));
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    ASSERT_TRUE(save_image(result->synthesis.image, (base_ / "library.png").string()).is_ok());
+    EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "stylit.png"),
+              file_bytes(base_ / "library.png"));
+    // Preview: half size.
+    json preview = good;
+    preview["preview"] = true;
+    preview["output"] = "outputs/preview.png";
+    const json preview_end = follow(server_->port(), body_of(post("/api/jobs", preview))["id"]);
+    EXPECT_EQ(preview_end["state"], "done") << preview_end.dump();
+    auto half = load_image((base_ / "ws" / "outputs" / "preview.png").string());
+    ASSERT_TRUE(half.ok());
+    EXPECT_EQ(half->width(), 28);
+    // Bad parameters are refused at once with one line naming the parameter; paths outside the
+    // workspace with 403.
+    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
+             {"guidance-weight", 101, "guidance-weight: "},
+             {"usage", "sometimes", "usage: "},
+             {"quality", "superb", "superb"},
+             {"preview", "yes", "preview: "},
+             {"preset", "maya", "preset: "},
+             {"wobble", 1, "wobble: "},
+             {"output", "o.txt", "output: "},
+             {"exemplar", "nope.png", "exemplar: "},
+             {"source", json::array(), "source: "},
+             {"source", {"stylit/source_0.png"}, "source has 1"},
+             {"target", {"stylit/target_0.png", "tex.png"}, "target"}}) {
+        json bad = good;
+        bad[key] = value;
+        bad["output"] = key == "output" ? value : json("o.png");
+        auto refused = post("/api/jobs", bad);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
+        const std::string message = body_of(refused)["error"];
+        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    json outside = good;
+    outside["target"] = {"stylit/target_0.png", "../outside/secret.txt"};
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
+}
+
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
 json long_job(const std::string& output) {
     return {{"kind", "stylize"},
@@ -606,6 +705,37 @@ TEST_F(StudioJobTest, CancelStopsANoisyJobAndWritesNothing) {
                                  {"noise", 16},
                                  {"warm-search-iterations", 0}},
                                 "outputs/noisy.png");
+}
+
+TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {
+    // The texture-by-numbers images as a one-buffer render pair, at the best quality: long enough
+    // to be running when the next run arrives.
+    start();
+    const json first = {{"kind", "stylit"},
+                        {"exemplar", "texbynum/source_photo.png"},
+                        {"source", "texbynum/source_segment.png"},
+                        {"target", "texbynum/target_segment.png"},
+                        {"output", "outputs/first.png"},
+                        {"quality", "best"}};
+    json second = first;
+    second["output"] = "outputs/second.png";
+    second["quality"] = "fast";
+    auto posted = post("/api/jobs", first);
+    ASSERT_EQ(posted->status, 202) << posted->body;
+    httplib::Client other_request("127.0.0.1", server_->port());
+    other_request.set_default_headers({{"X-Studio-Client", "tab1"}});
+    std::string second_id;
+    const json end = follow(server_->port(), body_of(posted)["id"], [&](int progress) {
+        if (progress != 2) return;
+        auto replaced = other_request.Post("/api/jobs", second.dump(), "application/json");
+        ASSERT_EQ(replaced->status, 202) << replaced->body;
+        second_id = body_of(replaced)["id"];
+    });
+    EXPECT_EQ(end["state"], "cancelled") << end.dump();
+    ASSERT_FALSE(second_id.empty());
+    EXPECT_EQ(follow(server_->port(), second_id)["state"], "done");
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "first.png"));
+    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "second.png"));
 }
 
 TEST_F(StudioJobTest, JobsPerClientAreBoundedAndShutdownCancelsThem) {

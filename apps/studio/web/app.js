@@ -85,6 +85,7 @@ async function refreshFiles() {
     if (images.includes(keep)) select.value = keep;
   }
   if ($('brush-palette').value !== brush.shown) await showPalette();
+  if ($('stylit-exemplar').value !== stylit.shown) await showStylitExemplar();
   return files;
 }
 
@@ -123,6 +124,13 @@ async function putRgba(res, context = paintContext) {
 // A stroke's preview on an overlay while it is drawn.
 function drawPreview(context, points, width, colour) {
   context.clearRect(0, 0, context.canvas.width, context.canvas.height);
+  drawLine(context, points, width, colour);
+}
+
+// A round-capped polyline (a dot for one point).
+function drawLine(context, points, width, colour) {
+  if (!points.length) return;
+  if (points.length === 1) points = [points[0], [points[0][0] + 0.01, points[0][1]]];
   context.strokeStyle = colour;
   context.lineWidth = width;
   context.lineCap = context.lineJoin = 'round';
@@ -308,6 +316,18 @@ for (const action of ['undo', 'redo', 'reset']) {
   });
 }
 
+// A job's server-sent events: `onProgress({fraction, stage, ...})`, then `onEnd({state, output,
+// error})`. Returns the EventSource (closing it stops following, not the job).
+function watchJob(id, onProgress, onEnd) {
+  const events = new EventSource(`/api/jobs/${id}/events`);
+  events.addEventListener('progress', (e) => onProgress(JSON.parse(e.data)));
+  events.addEventListener('end', (e) => {
+    events.close();
+    onEnd(JSON.parse(e.data));
+  });
+  return events;
+}
+
 // Jobs: start, follow the server-sent progress, cancel, show and download the output.
 function followJob(id, output) {
   const li = document.createElement('li');
@@ -324,15 +344,10 @@ function followJob(id, output) {
   cancel.addEventListener('click', () => api('POST', `/api/jobs/${id}/cancel`, {}).catch(fail));
   li.append(`job ${id} → ${output} `, bar, ' ', label, ' ', cancel);
   $('job-list').prepend(li);
-  const events = new EventSource(`/api/jobs/${id}/events`);
-  events.addEventListener('progress', (e) => {
-    const p = JSON.parse(e.data);
+  watchJob(id, (p) => {
     bar.value = p.fraction;
     label.textContent = `${p.stage} ${(100 * p.fraction).toFixed(0)}%`;
-  });
-  events.addEventListener('end', (e) => {
-    events.close();
-    const end = JSON.parse(e.data);
+  }, (end) => {
     li.dataset.state = end.state;
     label.textContent = end.state + (end.error ? `: ${end.error}` : '');
     cancel.remove();
@@ -349,6 +364,93 @@ function followJob(id, output) {
     }
   });
 }
+// StyLit: the exemplar painting (loaded, then painted over with the mouse) stylizes the target
+// render through both renders' light-path buffers. Every change (a stroke's pen-up, another
+// exemplar, buffers or seed) runs it again after a short pause; the server cancels the run
+// before (docs/studio.md).
+const stylit = { runs: 0, done: 0, painted: false, shown: null, timer: null, events: null, id: null };
+studio.stylit = stylit;
+const stylitCanvas = $('stylit-canvas');
+const stylitOverlay = $('stylit-overlay').getContext('2d');
+const stylitResult = $('stylit-result');
+
+// Draws a workspace image into `canvas`, resized to it, without colour conversion.
+async function showImage(canvas, name) {
+  const blob = await (await fetch(`/api/files/${encodeURI(name)}?t=${Date.now()}`)).blob();
+  const bitmap = await createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+  canvas.width = bitmap.width;
+  canvas.height = bitmap.height;
+  canvas.getContext('2d').drawImage(bitmap, 0, 0);
+}
+
+async function showStylitExemplar() {
+  const name = $('stylit-exemplar').value;
+  if (!name || name === stylit.shown) return;
+  await showImage(stylitCanvas, name);
+  stylitOverlay.canvas.width = stylitCanvas.width;
+  stylitOverlay.canvas.height = stylitCanvas.height;
+  stylit.shown = name;
+  stylit.painted = false;
+}
+
+function stylitLater() {
+  if (!$('stylit-live').checked) return;
+  clearTimeout(stylit.timer);
+  stylit.timer = setTimeout(() => runStylit().catch(fail), 400);
+}
+
+async function runStylit() {
+  clearTimeout(stylit.timer);
+  await showStylitExemplar();
+  let exemplar = $('stylit-exemplar').value;
+  if (stylit.painted) {
+    // The painted exemplar goes to the workspace first: the job reads files only.
+    exemplar = $('stylit-painting').value;
+    const png = await new Promise((resolve) => stylitCanvas.toBlob(resolve, 'image/png'));
+    await api('PUT', `/api/files/${encodeURI(exemplar)}`, png);
+  }
+  const list = (id) => $(id).value.trim().split(/[\s,]+/).filter((p) => p);
+  const body = {
+    kind: 'stylit', exemplar, source: list('stylit-source'), target: list('stylit-target'),
+    output: $('stylit-output').value, seed: Number($('stylit-seed').value),
+    preview: $('stylit-preview').checked,
+  };
+  if (stylit.events) stylit.events.close();
+  const { id } = await api('POST', '/api/jobs', body);
+  stylit.runs += 1;
+  stylit.id = id;
+  const started = performance.now();
+  $('stylit-state').textContent = 'running';
+  stylit.events = watchJob(id, (p) => {
+    $('stylit-progress').value = p.fraction;
+  }, async (end) => {
+    if (stylit.id !== id) return;
+    $('stylit-state').textContent = end.state + (end.error ? `: ${end.error}` : '');
+    if (end.state !== 'done') return;
+    $('stylit-progress').value = 1;
+    await showImage(stylitResult, end.output);
+    stylit.done += 1;
+    stylit.exemplar = exemplar;
+    say(`stylit run ${stylit.done}: ${(performance.now() - started).toFixed(0)} ms`);
+  });
+}
+
+$('stylit-brush').addEventListener('input', (e) => { $('stylit-brush-value').value = e.target.value; });
+$('stylit-exemplar').addEventListener('change', () => showStylitExemplar().then(stylitLater).catch(fail));
+for (const id of ['stylit-source', 'stylit-target', 'stylit-seed', 'stylit-preview']) {
+  $(id).addEventListener('change', stylitLater);
+}
+$('stylit-run').addEventListener('click', () => runStylit().catch(fail));
+strokes(stylitOverlay.canvas, (points) => {
+  drawPreview(stylitOverlay, points, Number($('stylit-brush').value), $('stylit-colour').value);
+}, (points) => {
+  // The stroke goes into the exemplar itself, as the preview showed it.
+  stylitOverlay.clearRect(0, 0, stylitOverlay.canvas.width, stylitOverlay.canvas.height);
+  drawLine(stylitCanvas.getContext('2d'), points, Number($('stylit-brush').value), $('stylit-colour').value);
+  stylit.painted = true;
+  stylitLater();
+});
+
 // Each job form names its kind; number fields are sent as JSON numbers.
 for (const jobForm of document.querySelectorAll('.job-form')) {
   jobForm.addEventListener('submit', async (e) => {
