@@ -14,6 +14,7 @@
 #include "assets.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/sketch/svg.hpp"
 #include "exemplar/stylit/stylit.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -94,16 +95,20 @@ Result<double> number_field(const json& body, const char* name, std::optional<do
     return it->get<double>();
 }
 
-Result<std::vector<sketch::Vec2>> points_field(const json& body) {
-    const auto it = body.find("points");
-    if (it == body.end() || !it->is_array() || it->empty() || it->size() > kMaxPoints) {
-        return invalid_argument("points: must be an array of 1..10000 [x, y] pairs");
+// An array of `min_points`..10000 [x, y] pairs under `name`.
+Result<std::vector<sketch::Vec2>> points_field(const json& body, const char* name = "points",
+                                               std::size_t min_points = 1) {
+    const auto it = body.find(name);
+    if (it == body.end() || !it->is_array() || it->size() < min_points || it->size() > kMaxPoints) {
+        return invalid_argument(std::string(name) + ": must be an array of " +
+                                std::to_string(min_points) + "..10000 [x, y] pairs");
     }
     std::vector<sketch::Vec2> points;
     for (const json& p : *it) {
         if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
             !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>())) {
-            return invalid_argument("points: every point must be [x, y] with finite numbers");
+            return invalid_argument(std::string(name) +
+                                    ": every point must be [x, y] with finite numbers");
         }
         points.push_back({p[0].get<double>(), p[1].get<double>()});
     }
@@ -140,6 +145,30 @@ Result<paint::Stroke> stroke_field(const json& body) {
     const auto comb = body.find("comb");
     stroke.comb = comb != body.end() && comb->is_boolean() && comb->get<bool>();
     return stroke;
+}
+
+// Sets the option `key` of a module's option table (the CLI's flag names) from a JSON number
+// with the module's own checks; nullopt when the table has no such key.
+template <class Options, class Spec>
+std::optional<Status> set_table_key(Options& options, std::span<const Spec> specs,
+                                    const std::string& key, const json& value) {
+    for (const Spec& spec : specs) {
+        if (spec.name != key) continue;
+        if (!value.is_number()) return invalid_argument(key + ": must be a number");
+        return set_option(options, spec, value.get<double>());
+    }
+    return std::nullopt;
+}
+
+// A region drawn as a polygon (canvas pixels) under `name`: its region image, `width` × `height`.
+Result<Image> region_field(const json& body, const char* name, int width, int height) {
+    auto points = points_field(body, name, 3);
+    if (!points.ok()) return points.status();
+    std::vector<paint::StrokePoint> polygon;
+    for (const sketch::Vec2& p : *points) {
+        polygon.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+    }
+    return paint::polygon_mask(std::span(&polygon, 1), width, height);
 }
 
 std::string content_type_of(const std::string& path) {
@@ -293,6 +322,7 @@ struct StudioServer::Impl {
                                             Response& res) const;
     void add_paint_routes();
     void add_brush_routes();
+    void add_fill_route();
     template <class Session>
     void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
     void add_job_routes();
@@ -343,6 +373,7 @@ void StudioServer::Impl::add_routes() {
     add_brush_routes();
     add_canvas_routes("paint", &ClientState::paint);
     add_canvas_routes("brush", &ClientState::brush);
+    add_fill_route();
     add_job_routes();
 }
 
@@ -572,6 +603,45 @@ void StudioServer::Impl::add_brush_routes() {
     });
 }
 
+void StudioServer::Impl::add_fill_route() {
+    http->route("POST", "/api/brush/fill", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        paint::FeatureFillOptions fill_options;
+        for (const auto& [key, value] : body->items()) {
+            if (key == "source" || key == "target") continue;
+            if (key == "usage") {
+                auto usage = value.is_string() ? parse_usage_strategy(value.get<std::string>())
+                                               : invalid_argument("must be a string");
+                if (!usage.ok()) return fail(res, 400, "usage: " + usage.status().message());
+                fill_options.usage = *usage;
+                continue;
+            }
+            if (key == "seed") {
+                auto seed = number_field(*body, "seed", 1.0, 0.0, 1e15);
+                if (!seed.ok()) return fail(res, seed.status());
+                fill_options.seed = static_cast<std::uint64_t>(*seed);
+                continue;
+            }
+            const auto set =
+                set_table_key(fill_options, paint::feature_fill_option_specs(), key, value);
+            if (!set) return fail(res, 400, key + ": unknown option of the fill");
+            if (!set->is_ok()) return fail(res, *set);
+        }
+        with_client(req, res, [&](ClientState& c) {
+            if (!c.brush) return fail(res, 409, "no painting: POST /api/brush/start first");
+            auto source = region_field(*body, "source", c.brush->palette().width(),
+                                       c.brush->palette().height());
+            if (!source.ok()) return fail(res, source.status());
+            auto target = region_field(*body, "target", c.brush->width(), c.brush->height());
+            if (!target.ok()) return fail(res, target.status());
+            auto changed = c.brush->fill(*source, *target, fill_options, interactive_context());
+            if (!changed.ok()) return fail(res, changed.status());
+            answer_rgba(res, c.brush->image(), *changed);
+        });
+    });
+}
+
 namespace {
 
 // A job's output must be an image the atomic writers know.
@@ -633,10 +703,9 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
             noisy_options.filter = *filter;
             continue;
         }
-        const noisy::NoisyOptionSpec* spec = noisy::find_noisy_option(key);
-        if (spec == nullptr) return invalid_argument(key + ": unknown option of a noisy job");
-        if (!value.is_number()) return invalid_argument(key + ": must be a number");
-        EXEMPLAR_RETURN_IF_ERROR(noisy::set_option(noisy_options, *spec, value.get<double>()));
+        const auto set = set_table_key(noisy_options, noisy::noisy_option_specs(), key, value);
+        if (!set) return invalid_argument(key + ": unknown option of a noisy job");
+        EXEMPLAR_RETURN_IF_ERROR(*set);
     }
     auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
     if (!seed.ok()) return seed.status();

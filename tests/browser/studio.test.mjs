@@ -245,7 +245,24 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
       return opaque;
     });
     assert.ok(brushed > 5000, `the brush stroke covers only ${brushed} pixels`);
+    // Fill: outline a patch of the painted water in the palette, then a region of the painting;
+    // it is filled (opaque) and undo takes it back.
+    await page.selectOption('#brush-tool', 'fill');
+    await drag(page, page.locator('#brush-palette-overlay'), [[90, 36], [170, 40], [170, 72], [100, 62], [90, 38]], 4);
+    const alphaAt = (x, y) => page.evaluate(([px, py]) => document.getElementById('brush-canvas')
+      .getContext('2d').getImageData(px, py, 1, 1).data[3], [x, y]);
+    assert.equal(await alphaAt(470, 290), 0);
+    await drag(page, page.locator('#brush-overlay'), [[400, 240], [560, 250], [540, 340], [390, 330], [400, 242]], 4);
+    await page.waitForFunction(() => window.studio.brush.fills === 1, null, { timeout: 60000 });
+    assert.equal(await alphaAt(470, 290), 255, 'the region is not filled');
+    const fillStatus = await page.textContent('#status');
     await page.locator('#tab-brush').screenshot({ path: path.join(artifacts, 'brush.png') });
+    await page.click('#brush-undo');
+    await page.waitForFunction(() => document.getElementById('brush-canvas').getContext('2d')
+      .getImageData(470, 290, 1, 1).data[3] === 0);
+    await page.click('#brush-redo');
+    await page.waitForFunction(() => document.getElementById('brush-canvas').getContext('2d')
+      .getImageData(470, 290, 1, 1).data[3] === 255);
 
     // Sketch: a wobbly stroke, suggestions on pen-up, Tab cycles, Enter accepts, undo/redo.
     await page.click('nav button[data-tab=sketch]');
@@ -366,7 +383,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
 
     console.log(`studio timings: paint stroke pen-up to canvas ${paintMs.map((t) => t.toFixed(0)).join(', ')} ms ` +
       `(strokes of ${PAINT_STROKES.map((s) => s.width).join(', ')} px on ${CANVAS.width}x${CANVAS.height}); ` +
-      `sketch suggestions ${sketchMs.toFixed(0)} ms; painting vs reference ${JSON.stringify(vsReference)}; ` +
+      `sketch suggestions ${sketchMs.toFixed(0)} ms; ${fillStatus} (160x100 px region); painting vs reference ${JSON.stringify(vsReference)}; ` +
       `screenshots in ${artifacts}`);
   } finally {
     await browser.close();

@@ -20,7 +20,9 @@
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
+#include "exemplar/paint/feature_fill.hpp"
 #include "exemplar/paint/paint.hpp"
+#include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/stylit/stylit.hpp"
 #include "studio.hpp"
 
@@ -459,6 +461,84 @@ json follow(int port, const std::string& id, const std::function<void(int)>& on_
         });
     EXPECT_TRUE(got);
     return end;
+}
+
+// The region image of one polygon, as the fill endpoint makes it.
+Image region_of(std::vector<paint::StrokePoint> polygon, int width, int height) {
+    return paint::polygon_mask(std::span(&polygon, 1), width, height);
+}
+
+TEST_F(StudioTest, BrushFillsARegionAsExemplarFillDoes) {
+    ASSERT_TRUE(save_image(band_palette(), (base_ / "ws" / "band.png").string()).is_ok());
+    start();
+    const json selection = {{"points", {{8, 32}, {100, 32}, {192, 32}}}, {"width", 14}};
+    ASSERT_EQ(
+        post("/api/brush/start",
+             {{"palette", "band.png"}, {"feature", selection}, {"width", 120}, {"height", 90}})
+            ->status,
+        200);
+    // A source region over the band in the palette, a target region on the canvas.
+    const json fill = {{"source", {{20, 10}, {140, 14}, {150, 56}, {24, 50}}},
+                       {"target", {{30, 20}, {100, 24}, {90, 80}, {20, 70}}},
+                       {"rotations", 3},
+                       {"seed", 4}};
+    auto filled = post("/api/brush/fill", fill);
+    ASSERT_TRUE(filled);
+    ASSERT_EQ(filled->status, 200) << filled->body;
+    EXPECT_EQ(filled->get_header_value("X-Rect"), "20,20,100,80");
+
+    // `exemplar fill`'s library call with the blank painting as the canvas: the same pixels.
+    auto palette = load_image((base_ / "ws" / "band.png").string());
+    ASSERT_TRUE(palette.ok());
+    paint::FeatureFillOptions options;
+    options.rotations = 3;
+    options.seed = 4;
+    auto expected = paint::fill_with_palette(
+        *palette, region_of({{20, 10}, {140, 14}, {150, 56}, {24, 50}}, 200, 64), Image(120, 90, 4),
+        region_of({{30, 20}, {100, 24}, {90, 80}, {20, 70}}, 120, 90), options, RunContext(1));
+    ASSERT_TRUE(expected.ok()) << expected.status().message();
+    ASSERT_EQ(filled->body.size(), std::size_t{80} * 60 * 4);
+    int differing = 0, opaque = 0;
+    for (int y = 20; y < 80; ++y) {
+        for (int x = 20; x < 100; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const auto want = static_cast<unsigned char>(
+                    std::lround(std::clamp(expected->at(x, y, c), 0.0f, 1.0f) * 255.0f));
+                const auto got =
+                    static_cast<unsigned char>(filled->body[((y - 20) * 80 + (x - 20)) * 4 + c]);
+                differing += got != want;
+            }
+            opaque += expected->at(x, y, 3) > 0.99f;
+        }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(opaque, 2500);
+    // Undo takes the fill back, redo brings it again.
+    auto undone = post("/api/brush/undo", json::object());
+    EXPECT_EQ(static_cast<unsigned char>(undone->body[(50 * 120 + 60) * 4 + 3]), 0);
+    auto redone = post("/api/brush/redo", json::object());
+    EXPECT_EQ(static_cast<unsigned char>(redone->body[(50 * 120 + 60) * 4 + 3]), 255);
+    // Bad parameters: one line naming the parameter.
+    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
+             {"target", {{1, 1}, {2, 2}}, "target: "},
+             {"source", "all", "source: "},
+             {"patch-size", 4, "patch-size: "},
+             {"rotations", "many", "rotations: "},
+             {"usage", "sometimes", "usage: "},
+             {"wobble", 1, "wobble: "},
+             {"target", {{-50, -50}, {-40, -50}, {-40, -40}}, "target"}}) {
+        json bad = fill;
+        bad[key] = value;
+        auto refused = post("/api/brush/fill", bad);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
+        const std::string message = body_of(refused)["error"];
+        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    httplib::Client other("127.0.0.1", server_->port());
+    other.set_default_headers({{"X-Studio-Client", "tab2"}});
+    EXPECT_EQ(other.Post("/api/brush/fill", fill.dump(), "application/json")->status, 409);
 }
 
 TEST_F(StudioTest, JobsReportProgressAndWriteTheirOutput) {

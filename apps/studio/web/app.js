@@ -189,7 +189,7 @@ canvasButtons('paint', paintContext);
 
 // Brush: Painting by Feature's line-feature brush. A rough line drawn on the palette picks the
 // feature (snapped to its edge by the server); strokes below are painted with it.
-const brush = { selection: null, strokes: 0, shown: null };
+const brush = { selection: null, fillSource: null, strokes: 0, fills: 0, shown: null };
 studio.brush = brush;
 const paletteCanvas = $('brush-palette-canvas');
 const paletteOverlay = $('brush-palette-overlay').getContext('2d');
@@ -208,9 +208,28 @@ async function showPalette() {
 }
 $('brush-palette').addEventListener('change', () => showPalette().catch(fail));
 $('brush-size').addEventListener('input', (e) => { $('brush-size-value').value = e.target.value; });
+const filling = () => $('brush-tool').value === 'fill';
+// A region outlined with the pointer, shown closed and filled.
+function drawLasso(context, points, colour) {
+  context.clearRect(0, 0, context.canvas.width, context.canvas.height);
+  context.fillStyle = colour;
+  context.beginPath();
+  points.forEach(([x, y], i) => (i ? context.lineTo(x, y) : context.moveTo(x, y)));
+  context.closePath();
+  context.fill();
+}
+$('brush-tool').addEventListener('change', () => {
+  $('brush-hint').textContent = filling()
+    ? 'Outline a region of the palette, then outline a region of the painting: it is filled with that texture.'
+    : 'Draw along a line in the palette to pick it, then paint with it below.';
+});
 strokes(paletteOverlay.canvas, (points) => {
-  drawPreview(paletteOverlay, points, Number($('brush-feature-width').value), 'rgba(230,140,20,0.45)');
-}, (points) => { brush.selection = points; });
+  if (filling()) drawLasso(paletteOverlay, points, 'rgba(40,150,90,0.4)');
+  else drawPreview(paletteOverlay, points, Number($('brush-feature-width').value), 'rgba(230,140,20,0.45)');
+}, (points) => {
+  if (filling()) brush.fillSource = points;
+  else brush.selection = points;
+});
 $('brush-start').addEventListener('click', async () => {
   try {
     if (!brush.selection) throw new Error('draw along a line in the palette first');
@@ -227,14 +246,23 @@ $('brush-start').addEventListener('click', async () => {
   } catch (e) { fail(e); }
 });
 strokes(brushOverlay.canvas, (points) => {
-  drawPreview(brushOverlay, points, Number($('brush-size').value), 'rgba(200,60,40,0.3)');
+  if (filling()) drawLasso(brushOverlay, points, 'rgba(40,150,90,0.3)');
+  else drawPreview(brushOverlay, points, Number($('brush-size').value), 'rgba(200,60,40,0.3)');
 }, async (points) => {
   const started = performance.now();
   try {
-    await putRgba(await api('POST', '/api/brush/stroke', { points, width: Number($('brush-size').value) }, true),
-      brushContext);
-    brush.strokes += 1;
-    say(`brush stroke ${brush.strokes}: ${(performance.now() - started).toFixed(0)} ms`);
+    if (filling()) {
+      if (!brush.fillSource) throw new Error('outline a region of the palette first');
+      await putRgba(await api('POST', '/api/brush/fill',
+        { source: brush.fillSource, target: points, seed: Number($('brush-seed').value) }, true), brushContext);
+      brush.fills += 1;
+      say(`fill ${brush.fills}: ${(performance.now() - started).toFixed(0)} ms`);
+    } else {
+      await putRgba(await api('POST', '/api/brush/stroke', { points, width: Number($('brush-size').value) }, true),
+        brushContext);
+      brush.strokes += 1;
+      say(`brush stroke ${brush.strokes}: ${(performance.now() - started).toFixed(0)} ms`);
+    }
   } catch (e) { fail(e); }
   brushOverlay.clearRect(0, 0, brushOverlay.canvas.width, brushOverlay.canvas.height);
 });
