@@ -43,8 +43,8 @@ const char* to_string(JobState state) {
 std::string Job::summary() const {
     std::lock_guard lock(mutex);
     return json{
-        {"id", id},         {"kind", kind},  {"state", to_string(state)}, {"fraction", fraction},
-        {"output", output}, {"error", error}}
+        {"id", id},         {"kind", kind},   {"state", to_string(state)}, {"fraction", fraction},
+        {"output", output}, {"error", error}, {"outputs", outputs}}
         .dump();
 }
 
@@ -77,10 +77,17 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
         RunContext context(threads);
         context.cancel = &job->cancel;
         context.progress = [&job](const ProgressEvent& event) { record_progress(*job, event); };
-        const Status status = work(context);
+        const OutputSink wrote = [&job](int frame, const std::string& path) {
+            std::lock_guard frame_lock(job->mutex);
+            job->outputs.push_back(path);
+            job->events.push_back(sse("frame", {{"frame", frame}, {"path", path}}));
+            job->changed.notify_all();
+        };
+        const Status status = work(context, wrote);
         std::lock_guard job_lock(job->mutex);
         json end;
         if (status.is_ok()) {
+            if (job->outputs.empty()) job->outputs.push_back(job->output);
             job->state = JobState::Done;
             job->fraction = 1.0;
             end = {{"state", "done"}, {"output", job->output}};

@@ -30,6 +30,8 @@ struct Job {
     JobState state = JobState::Running;
     double fraction = 0.0;
     std::string error;
+    /// Files the job has finished (workspace paths), in the order written: the frames of a range.
+    std::vector<std::string> outputs;
     /// Server-sent events ("event: ...\ndata: ...\n\n"), in order; the last is `end`.
     std::vector<std::string> events;
     std::thread thread;
@@ -38,8 +40,12 @@ struct Job {
     std::string summary() const;
 };
 
+/// What a job's work reports when a file of it is finished (written atomically): the frame
+/// number and the file's workspace path. It adds a `frame` event and lists the file.
+using OutputSink = std::function<void(int frame, const std::string& path)>;
+
 /// The work of a job: one library call and its atomic writes. It returns the call's status.
-using JobWork = std::function<Status(const RunContext&)>;
+using JobWork = std::function<Status(const RunContext&, const OutputSink&)>;
 
 class JobManager {
 public:

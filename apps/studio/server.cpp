@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "assets.hpp"
+#include "exemplar/animate/animate.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/vectorize_style.hpp"
@@ -19,6 +20,7 @@
 #include "exemplar/stylit/stylit.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "exemplar/version.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 #include "http_server.hpp"
 #include "jobs.hpp"
 #include "sessions.hpp"
@@ -329,17 +331,26 @@ struct StudioServer::Impl {
     /// A job's files by field, resolved in the workspace by the route: one path per field
     /// (stylize: style, source, target, output; noisy: exemplar, reference, output; stylit:
     /// exemplar, output) and lists of paths (stylit: source, target).
+    /// The frame files of a range job's pattern (a workspace path with one %d conversion)
+    /// formatted for first..last, each resolved in the workspace.
+    struct FrameFiles {
+        int first = 0;
+        std::vector<std::string> relative;  ///< As the client names them.
+        std::vector<std::string> absolute;  ///< Resolved.
+    };
     struct JobPaths {
         std::map<std::string, std::filesystem::path> one;
         std::map<std::string, std::vector<std::string>> lists;
+        std::map<std::string, FrameFiles> patterns;
         const std::filesystem::path& at(const std::string& field) const { return one.at(field); }
         bool contains(const std::string& field) const {
-            return one.contains(field) || lists.contains(field);
+            return one.contains(field) || lists.contains(field) || patterns.contains(field);
         }
     };
     Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
     Result<JobWork> noisy_work(const json& body, const JobPaths& paths);
     Result<JobWork> stylit_work(const json& body, const JobPaths& paths);
+    Result<JobWork> animate_work(const json& body, const JobPaths& paths);
 };
 
 void StudioServer::Impl::add_routes() {
@@ -679,7 +690,7 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPath
     synthesis.seed = static_cast<std::uint64_t>(*seed);
     EXEMPLAR_RETURN_IF_ERROR(validate_input(input, synthesis));
     return JobWork([input = std::move(input), synthesis, path = paths.at("output").string()](
-                       const RunContext& context) mutable -> Status {
+                       const RunContext& context, const OutputSink&) mutable -> Status {
         auto result = synthesize(std::move(input), synthesis, context);
         if (!result.ok()) return result.status();
         return save_image(result->image, path);
@@ -722,8 +733,8 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
     input.reference = std::move(*reference);
     EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
     return JobWork([exemplar = std::move(*exemplar), input = std::move(input), noisy_options,
-                    index = static_cast<std::int64_t>(*frame),
-                    path = paths.at("output").string()](const RunContext& context) -> Status {
+                    index = static_cast<std::int64_t>(*frame), path = paths.at("output").string()](
+                       const RunContext& context, const OutputSink&) -> Status {
         auto image = noisy::synthesize_frame(exemplar, input, noisy_options, index, context);
         if (!image.ok()) return image.status();
         return save_image(*image, path);
@@ -791,11 +802,105 @@ Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths
     if (!input.ok()) return input.status();
     EXEMPLAR_RETURN_IF_ERROR(validate_input(*input, stylit.synthesis));
     return JobWork([exemplar = std::move(*exemplar), source = std::move(*source),
-                    target = std::move(*target), stylit,
-                    path = paths.at("output").string()](const RunContext& context) -> Status {
+                    target = std::move(*target), stylit, path = paths.at("output").string()](
+                       const RunContext& context, const OutputSink&) -> Status {
         auto result = stylize_render(exemplar, source, target, stylit, context);
         if (!result.ok()) return result.status();
         return save_image(result->synthesis.image, path);
+    });
+}
+
+namespace {
+
+constexpr int kMaxFrames = 1000;
+
+// "first" and "last" of a frame-range job: integers, first <= last, at most kMaxFrames frames.
+Result<std::pair<int, int>> frame_range(const json& body) {
+    auto first = number_field(body, "first", 0.0, 0.0, 1e6);
+    if (!first.ok()) return first.status();
+    auto last = number_field(body, "last", std::nullopt, 0.0, 1e6);
+    if (!last.ok()) return last.status();
+    if (*first != std::floor(*first)) return invalid_argument("first: must be an integer");
+    if (*last != std::floor(*last)) return invalid_argument("last: must be an integer");
+    if (*last < *first || *last - *first >= kMaxFrames) {
+        return invalid_argument("last: " + json(*last).dump() + " is invalid (must be first.." +
+                                "first + " + std::to_string(kMaxFrames - 1) + ")");
+    }
+    return std::pair{static_cast<int>(*first), static_cast<int>(*last)};
+}
+
+}  // namespace
+
+// An animate job (TCIA, the call `exemplar animate` makes for a job whose flows are estimated):
+// the frames `frames` (a pattern) first..last stylized by the pair `style-input` →
+// `style-output`; each output frame is written to `output` (a pattern) as soon as it is final
+// (the library hands them over from the last to the first).
+Result<JobWork> StudioServer::Impl::animate_work(const json& body, const JobPaths& paths) {
+    animate::AnimateOptions animate_options;
+    for (const auto& [key, value] : body.items()) {
+        const bool known = key == "kind" || paths.contains(key) || key == "frames" ||
+                           key == "output" || key == "first" || key == "last" || key == "quality" ||
+                           key == "seed" || key == "levels" || key == "input-weight" ||
+                           key == "output-weight" || key == "temporal-weight";
+        if (!known) return invalid_argument(key + ": unknown option of an animate job");
+    }
+    if (body.contains("quality")) {
+        auto name = text_field(body, "quality");
+        if (!name.ok()) return name.status();
+        auto quality = parse_quality(*name);
+        if (!quality.ok()) return quality.status();
+        animate_options.synthesis = animate::animate_synthesis_options(*quality);
+    }
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!seed.ok()) return seed.status();
+    animate_options.synthesis.seed = static_cast<std::uint64_t>(*seed);
+    const std::pair<const char*, float*> weights[] = {
+        {"input-weight", &animate_options.input_weight},
+        {"output-weight", &animate_options.output_weight},
+        {"temporal-weight", &animate_options.temporal_weight}};
+    for (const auto& [name, field] : weights) {
+        auto weight = number_field(body, name, *field, 0.0, 100.0);
+        if (!weight.ok()) return weight.status();
+        *field = static_cast<float>(*weight);
+    }
+    auto levels = number_field(body, "levels", animate_options.levels, 1.0, 8.0);
+    if (!levels.ok()) return levels.status();
+    if (*levels != std::floor(*levels)) return invalid_argument("levels: must be an integer");
+    animate_options.levels = static_cast<int>(*levels);
+    animate_options.keep_frames = false;
+
+    const FrameFiles& frames = paths.patterns.at("frames");
+    const FrameFiles& outputs = paths.patterns.at("output");
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+    animate::AnimationInput input;
+    const std::pair<const char*, Image*> styles[] = {{"style-input", &input.style_input},
+                                                     {"style-output", &input.style_output}};
+    for (const auto& [field, image] : styles) {
+        auto loaded = load_image(paths.at(field).string());
+        if (!loaded.ok())
+            return invalid_argument(std::string(field) + ": " + loaded.status().message());
+        *image = std::move(*loaded);
+    }
+    input.frame_count = static_cast<int>(frames.absolute.size());
+    input.frame = [files = frames.absolute](int t) -> Result<Image> {
+        auto frame = load_image(files[static_cast<std::size_t>(t)]);
+        if (!frame.ok()) return invalid_argument("frames: " + frame.status().message());
+        return frame;
+    };
+    for (std::size_t k = 0; k < frames.absolute.size(); ++k) {
+        if (!std::filesystem::is_regular_file(frames.absolute[k]))
+            return invalid_argument("frames: " + frames.relative[k] + ": no such file");
+    }
+    EXEMPLAR_RETURN_IF_ERROR(animate::validate(input, animate_options));
+    return JobWork([input = std::move(input), animate_options, outputs, first = frames.first](
+                       const RunContext& context, const OutputSink& wrote) mutable -> Status {
+        animate_options.on_frame = [&](int t, const Image& image) -> Status {
+            const auto k = static_cast<std::size_t>(t);
+            EXEMPLAR_RETURN_IF_ERROR(save_image(image, outputs.absolute[k]));
+            wrote(first + t, outputs.relative[k]);
+            return Status::ok();
+        };
+        return animate::animate(input, animate_options, context).status();
     });
 }
 
@@ -812,14 +917,19 @@ void StudioServer::Impl::add_job_routes() {
             Fields file_lists;  ///< A path or a list of paths each.
             Result<JobWork> (Impl::*work)(const json&, const JobPaths&);
         };
+        // Frame patterns (range jobs): "frames", "output" formatted for first..last.
+        using Patterns = std::vector<const char*>;
+        const std::map<std::string, Patterns> patterns = {{"animate", {"frames", "output"}}};
         const std::map<std::string, Kind> kinds = {
             {"stylize", {{"style", "source", "target", "output"}, {}, &Impl::stylize_work}},
             {"noisy", {{"exemplar", "reference", "output"}, {}, &Impl::noisy_work}},
-            {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}}};
+            {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
+            {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}}};
         const auto found = kinds.find(kind);
         if (found == kinds.end()) {
-            return fail(res, 400,
-                        "kind: \"" + kind + "\" is invalid (must be stylize, noisy or stylit)");
+            return fail(
+                res, 400,
+                "kind: \"" + kind + "\" is invalid (must be stylize, noisy, stylit or animate)");
         }
         // Every path is checked before anything is read: a refusal is 403.
         JobPaths paths;
@@ -842,6 +952,25 @@ void StudioServer::Impl::add_job_routes() {
                 auto path = resolve(field, name);
                 if (!path.ok()) return;
                 paths.lists[field].push_back(path->string());
+            }
+        }
+        if (const auto p = patterns.find(kind); p != patterns.end()) {
+            auto range = frame_range(*body);
+            if (!range.ok()) return fail(res, range.status());
+            for (const char* field : p->second) {
+                auto pattern = text_field(*body, field);
+                if (!pattern.ok()) return fail(res, pattern.status());
+                FrameFiles& files = paths.patterns[field];
+                files.first = range->first;
+                for (int n = range->first; n <= range->second; ++n) {
+                    auto name = video::format_frame_path(*pattern, n);
+                    if (!name.ok())
+                        return fail(res, 400, std::string(field) + ": " + name.status().message());
+                    auto path = resolve(field, *name);
+                    if (!path.ok()) return;
+                    files.relative.push_back(*name);
+                    files.absolute.push_back(path->string());
+                }
             }
         }
         auto work = (this->*found->second.work)(*body, paths);

@@ -2,7 +2,8 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame, run StyLit and paint over its exemplar (the result follows),
+// cancel it, run a noisy frame and three animate frames, run StyLit and paint over its
+// exemplar (the result follows),
 // then stop the server with SIGINT while a job runs.
 //
 // Run by ctest (Browser.Studio) with EXEMPLAR_CLI set to the built command; by hand:
@@ -317,6 +318,37 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.waitForSelector('#job-list li[data-state=done] img', { timeout: 120000 });
     assert.ok(fs.existsSync(path.join(workspace, 'outputs', 'noisy.png')));
 
+    // Animate: three frames of the bundled disc (examples/animate) from the third form; each
+    // frame is linked as it is written, and they are `exemplar animate`'s bytes.
+    const animDir = path.join(source, 'examples/animate');
+    const animFrames = ['0000.png', '0001.png', '0002.png'];
+    await page.setInputFiles('#upload', [...animFrames.map((f) => path.join(animDir, 'frames', f)),
+      path.join(animDir, 'style_input.png'), path.join(animDir, 'style_output.png')]);
+    await page.waitForSelector('#file-list a:text("style_output.png")', { state: 'attached' });
+    await page.selectOption('#animate-form select[name="style-input"]', 'style_input.png');
+    await page.selectOption('#animate-form select[name="style-output"]', 'style_output.png');
+    await page.selectOption('#animate-form select[name=quality]', 'fast');
+    await page.click('#animate-form button[type=submit]');
+    await page.waitForFunction(() => {
+      const li = document.querySelector('#job-list li');
+      return li.textContent.includes('outputs/animate/') && li.dataset.state === 'done' && li.querySelector('img');
+    }, null, { timeout: 120000 });
+    assert.equal(await page.locator('#job-list li:first-child .job-frames a').count(), 3);
+    const animJob = path.join(artifacts, 'animate-job.json');
+    fs.writeFileSync(animJob, JSON.stringify({
+      frames: path.join(workspace, '%04d.png'), first: 0, last: 2, flows: 'estimate', quality: 'fast',
+      style: { input: path.join(workspace, 'style_input.png'), output: path.join(workspace, 'style_output.png') },
+      output: path.join(artifacts, 'animate-cli', '%04d.png'),
+    }));
+    fs.rmSync(path.join(artifacts, 'animate-cli'), { recursive: true, force: true });
+    const animCli = spawnSync(exemplarCli, ['animate', animJob, '-q', '-j', '2']);
+    assert.equal(animCli.status, 0, `exemplar animate: ${animCli.stderr}`);
+    for (const f of animFrames) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'animate', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'animate-cli', f))), `animate frame ${f} differs from the command's`);
+    }
+    await page.screenshot({ path: path.join(artifacts, 'jobs-animate.png') });
+
     // StyLit: the bundled painting and buffers (examples/stylit) uploaded and run; the image
     // shown is the server's, and the server's is `exemplar stylit`'s byte for byte. Then a stroke
     // painted over the exemplar with the mouse runs it again by itself (live re-run).
@@ -372,7 +404,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.click('nav button[data-tab=jobs]');
     await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
     await page.click('#job-form button[type=submit]');
-    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 3 &&
+    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 4 &&
       document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
     studio.child.kill('SIGINT');
     const exit = await studio.exited;

@@ -16,6 +16,7 @@
 #include <tuple>
 #include <vector>
 
+#include "exemplar/animate/animate.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/directions.hpp"
@@ -24,6 +25,7 @@
 #include "exemplar/paint/paint.hpp"
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/stylit/stylit.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 #include "studio.hpp"
 
 namespace exemplar::studio {
@@ -441,6 +443,7 @@ json follow(int port, const std::string& id, const std::function<void(int)>& on_
     events.set_read_timeout(120, 0);
     std::string buffer;
     json end;
+    json frames = json::array();
     int progress = 0;
     auto got = events.Get(
         ("/api/jobs/" + id + "/events").c_str(), [&](const char* data, std::size_t length) {
@@ -449,12 +452,15 @@ json follow(int port, const std::string& id, const std::function<void(int)>& on_
                 const std::string event = buffer.substr(0, cut);
                 buffer.erase(0, cut + 2);
                 const std::size_t data_at = event.find("data: ");
-                if (event.starts_with("event: progress")) {
+                if (event.starts_with("event: frame")) {
+                    frames.push_back(json::parse(event.substr(data_at + 6)));
+                } else if (event.starts_with("event: progress")) {
                     ++progress;
                     if (on_progress) on_progress(progress);
                 } else if (event.starts_with("event: end")) {
                     end = json::parse(event.substr(data_at + 6));
                     end["progress_events"] = progress;
+                    end["frames"] = frames;
                 }
             }
             return true;
@@ -728,6 +734,96 @@ TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
     EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
 }
 
+TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
+    // Three frames of a texture moving right by 2 px a frame, a grey style pair.
+    fs::create_directories(base_ / "ws" / "frames");
+    const auto frame_path = [&](int n) {
+        return base_ / "ws" / "frames" / *video::format_frame_path("f%d.png", n);
+    };
+    const Image tex = texture(72, 40);
+    for (int t = 0; t < 3; ++t) {
+        Image frame(48, 32, 1);
+        for (int y = 0; y < 32; ++y) {
+            for (int x = 0; x < 48; ++x) frame.at(x, y, 0) = tex.at(x + 10 - 2 * t, y + 4, 2);
+        }
+        ASSERT_TRUE(save_image(frame, frame_path(t + 4).string()).is_ok());
+    }
+    Image style_input(40, 32, 1);
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 40; ++x) style_input.at(x, y, 0) = tex.at(x, y, 1);
+    }
+    ASSERT_TRUE(save_image(style_input, (base_ / "ws" / "si.png").string()).is_ok());
+    start();
+    const json good = {{"kind", "animate"},
+                       {"frames", "frames/f%d.png"},
+                       {"first", 4},
+                       {"last", 6},
+                       {"style-input", "si.png"},
+                       {"style-output", "tex.png"},
+                       {"quality", "fast"},
+                       {"seed", 9},
+                       {"levels", 2},
+                       {"output", "outputs/anim/%03d.png"}};
+    ASSERT_TRUE(save_image(texture(40, 32), (base_ / "ws" / "tex.png").string()).is_ok());
+    auto job = post("/api/jobs", good);
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    EXPECT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u) << end.dump();
+    EXPECT_EQ(end["frames"][0]["frame"], 6) << "the library hands frames over last first";
+    EXPECT_EQ(end["frames"][0]["path"], "outputs/anim/006.png");
+    auto list = body_of(client_->Get("/api/jobs"));
+    EXPECT_EQ(list["jobs"][0]["outputs"].size(), 3u) << list.dump();
+
+    // The library's call on the same frames: the same bytes, frame by frame.
+    animate::AnimationInput input;
+    input.style_input = *load_image((base_ / "ws" / "si.png").string());
+    input.style_output = *load_image((base_ / "ws" / "tex.png").string());
+    input.frame_count = 3;
+    input.frame = [&](int t) { return load_image(frame_path(t + 4).string()); };
+    animate::AnimateOptions options;
+    options.synthesis = animate::animate_synthesis_options(Quality::Fast);
+    options.synthesis.seed = 9;
+    options.levels = 2;
+    auto expected = animate::animate(input, options, RunContext(1));
+    ASSERT_TRUE(expected.ok()) << expected.status().message();
+    for (int t = 0; t < 3; ++t) {
+        const fs::path mine = base_ / *video::format_frame_path("library%d.png", t);
+        ASSERT_TRUE(
+            save_image(expected->frames[static_cast<std::size_t>(t)], mine.string()).is_ok());
+        EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "anim" /
+                             *video::format_frame_path("%03d.png", t + 4)),
+                  file_bytes(mine))
+            << "frame " << t + 4;
+    }
+    // Bad parameters: one line naming the parameter (400); paths outside the workspace: 403.
+    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
+             {"last", 3, "last: "},
+             {"last", 2000, "last: "},
+             {"first", 4.5, "first: "},
+             {"frames", "frames/f.png", "frames: "},
+             {"frames", "frames/g%d.png", "frames: frames/g4.png"},
+             {"levels", 0, "levels: "},
+             {"temporal-weight", -1, "temporal-weight: "},
+             {"quality", "superb", "superb"},
+             {"wobble", 1, "wobble: "},
+             {"output", "outputs/%d.txt", "output: "},
+             {"style-input", "nope.png", "style-input: "}}) {
+        json bad = good;
+        bad[key] = value;
+        auto refused = post("/api/jobs", bad);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
+        const std::string message = body_of(refused)["error"];
+        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    json outside = good;
+    outside["output"] = "../outside/%04d.png";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+}
+
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
 json long_job(const std::string& output) {
     return {{"kind", "stylize"},
@@ -785,6 +881,23 @@ TEST_F(StudioJobTest, CancelStopsANoisyJobAndWritesNothing) {
                                  {"noise", 16},
                                  {"warm-search-iterations", 0}},
                                 "outputs/noisy.png");
+}
+
+TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {
+    // The texture-by-numbers target as a still animation of four frames, at the best quality.
+    for (int n = 0; n < 4; ++n) {
+        fs::copy_file(base_ / "ws" / "texbynum" / "target_segment.png",
+                      base_ / "ws" / "texbynum" / *video::format_frame_path("frame%d.png", n));
+    }
+    start();
+    cancel_after_first_progress({{"kind", "animate"},
+                                 {"frames", "texbynum/frame%d.png"},
+                                 {"last", 3},
+                                 {"style-input", "texbynum/source_segment.png"},
+                                 {"style-output", "texbynum/source_photo.png"},
+                                 {"output", "outputs/%d.png"},
+                                 {"quality", "best"}},
+                                "outputs/0.png");
 }
 
 TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {

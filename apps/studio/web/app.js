@@ -344,11 +344,13 @@ for (const action of ['undo', 'redo', 'reset']) {
   });
 }
 
-// A job's server-sent events: `onProgress({fraction, stage, ...})`, then `onEnd({state, output,
-// error})`. Returns the EventSource (closing it stops following, not the job).
-function watchJob(id, onProgress, onEnd) {
+// A job's server-sent events: `onProgress({fraction, stage, ...})`, `onFrame({frame, path})` for
+// each finished frame of a range, then `onEnd({state, output, error})`. Returns the EventSource
+// (closing it stops following, not the job).
+function watchJob(id, onProgress, onEnd, onFrame = () => {}) {
   const events = new EventSource(`/api/jobs/${id}/events`);
   events.addEventListener('progress', (e) => onProgress(JSON.parse(e.data)));
+  events.addEventListener('frame', (e) => onFrame(JSON.parse(e.data)));
   events.addEventListener('end', (e) => {
     events.close();
     onEnd(JSON.parse(e.data));
@@ -370,8 +372,17 @@ function followJob(id, output) {
   cancel.textContent = 'Cancel';
   cancel.className = 'job-cancel';
   cancel.addEventListener('click', () => api('POST', `/api/jobs/${id}/cancel`, {}).catch(fail));
-  li.append(`job ${id} → ${output} `, bar, ' ', label, ' ', cancel);
+  const frames = document.createElement('span');
+  frames.className = 'job-frames';
+  const frameFiles = [];
+  li.append(`job ${id} → ${output} `, bar, ' ', label, ' ', cancel, frames);
   $('job-list').prepend(li);
+  const download = (path, text) => {
+    const a = document.createElement('a');
+    a.href = `/api/files/${encodeURI(path)}?download=1`;
+    a.textContent = text;
+    return a;
+  };
   watchJob(id, (p) => {
     bar.value = p.fraction;
     label.textContent = `${p.stage} ${(100 * p.fraction).toFixed(0)}%`;
@@ -381,15 +392,17 @@ function followJob(id, output) {
     cancel.remove();
     if (end.state === 'done') {
       bar.value = 1;
-      const url = `/api/files/${encodeURI(end.output)}`;
-      const a = document.createElement('a');
-      a.href = `${url}?download=1`;
-      a.textContent = ' download';
+      // A range shows its first frame; every frame is linked as it is written.
+      const shown = frameFiles.length ? frameFiles.sort()[0] : end.output;
       const img = document.createElement('img');
-      img.src = `${url}?t=${Date.now()}`;
-      li.append(a, img);
-      refreshFiles().catch(fail);
+      img.src = `/api/files/${encodeURI(shown)}?t=${Date.now()}`;
+      if (!frameFiles.length) li.append(download(end.output, ' download'));
+      li.append(img);
     }
+    if (end.state === 'done' || frameFiles.length) refreshFiles().catch(fail);
+  }, (f) => {
+    frameFiles.push(f.path);
+    frames.append(' ', download(f.path, `${f.frame}`));
   });
 }
 // StyLit: the exemplar painting (loaded, then painted over with the mouse) stylizes the target
