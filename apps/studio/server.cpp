@@ -13,6 +13,9 @@
 
 #include "assets.hpp"
 #include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/fluid/simulate.hpp"
+#include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/vectorize_style.hpp"
@@ -351,6 +354,10 @@ struct StudioServer::Impl {
     Result<JobWork> noisy_work(const json& body, const JobPaths& paths);
     Result<JobWork> stylit_work(const json& body, const JobPaths& paths);
     Result<JobWork> animate_work(const json& body, const JobPaths& paths);
+    Result<JobWork> fluid_simulate_work(const json& body, const JobPaths& paths);
+    Result<JobWork> fluid_work(const json& body, const JobPaths& paths);
+    static Status check_job_keys(const json& body, const JobPaths& paths,
+                                 std::initializer_list<std::string_view> known, const char* kind);
 };
 
 void StudioServer::Impl::add_routes() {
@@ -747,12 +754,9 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
 // string) whose files or layers `preset` (or `layers`) names. Every input is loaded and checked
 // here; the work is stylize_render and the atomic write of its image.
 Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths& paths) {
-    for (const auto& [key, value] : body.items()) {
-        const bool known = key == "kind" || paths.contains(key) || key == "preset" ||
-                           key == "layers" || key == "quality" || key == "usage" || key == "seed" ||
-                           key == "guidance-weight" || key == "preview";
-        if (!known) return invalid_argument(key + ": unknown option of a stylit job");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_job_keys(
+        body, paths, {"preset", "layers", "quality", "usage", "seed", "guidance-weight", "preview"},
+        "a stylit job"));
     StylitOptions stylit;
     if (body.contains("quality")) {
         auto name = text_field(body, "quality");
@@ -837,13 +841,10 @@ Result<std::pair<int, int>> frame_range(const json& body) {
 // (the library hands them over from the last to the first).
 Result<JobWork> StudioServer::Impl::animate_work(const json& body, const JobPaths& paths) {
     animate::AnimateOptions animate_options;
-    for (const auto& [key, value] : body.items()) {
-        const bool known = key == "kind" || paths.contains(key) || key == "frames" ||
-                           key == "output" || key == "first" || key == "last" || key == "quality" ||
-                           key == "seed" || key == "levels" || key == "input-weight" ||
-                           key == "output-weight" || key == "temporal-weight";
-        if (!known) return invalid_argument(key + ": unknown option of an animate job");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_job_keys(body, paths,
+                                            {"first", "last", "quality", "seed", "levels",
+                                             "input-weight", "output-weight", "temporal-weight"},
+                                            "an animate job"));
     if (body.contains("quality")) {
         auto name = text_field(body, "quality");
         if (!name.ok()) return name.status();
@@ -904,6 +905,180 @@ Result<JobWork> StudioServer::Impl::animate_work(const json& body, const JobPath
     });
 }
 
+// Refuses keys of `body` that are not `kind`, the job's files or one of `known`.
+Status StudioServer::Impl::check_job_keys(const json& body, const JobPaths& paths,
+                                          std::initializer_list<std::string_view> known,
+                                          const char* kind) {
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) ||
+            std::find(known.begin(), known.end(), key) != known.end()) {
+            continue;
+        }
+        return invalid_argument(key + ": unknown option of " + kind);
+    }
+    return Status::ok();
+}
+
+// A fluid-simulate job (`exemplar fluid simulate --scene plume`): the built-in plume in a
+// `width` × `height` domain simulated for frames 0..last; frames first..last are written, the
+// alpha mask to `alpha` and the forward motion to `motion` (patterns; .flo or .exr), each
+// atomically as it comes.
+Result<JobWork> StudioServer::Impl::fluid_simulate_work(const json& body, const JobPaths& paths) {
+    EXEMPLAR_RETURN_IF_ERROR(check_job_keys(
+        body, paths, {"scene", "width", "height", "first", "last"}, "a fluid-simulate job"));
+    const std::string scene_name = body.value("scene", std::string("plume"));
+    if (scene_name != "plume") {
+        return invalid_argument("scene: \"" + scene_name + "\" is invalid (must be plume)");
+    }
+    auto width = number_field(body, "width", 256.0, 8, kMaxCanvas);
+    if (!width.ok()) return width.status();
+    auto height = number_field(body, "height", 256.0, 8, kMaxCanvas);
+    if (!height.ok()) return height.status();
+    const fluid::FluidScene scene =
+        fluid::plume_scene(static_cast<int>(*width), static_cast<int>(*height));
+    EXEMPLAR_RETURN_IF_ERROR(fluid::validate(scene));
+    const FrameFiles& alpha = paths.patterns.at("alpha");
+    const FrameFiles& motion = paths.patterns.at("motion");
+    if (!check_image_output(alpha.absolute.front()).is_ok())
+        return invalid_argument("alpha: must end in .png or .jpg");
+    const std::string motion_type =
+        std::filesystem::path(motion.relative.front()).extension().string();
+    if (motion_type != ".flo" && motion_type != ".exr")
+        return invalid_argument("motion: must end in .flo or .exr");
+    return JobWork(
+        [scene, alpha, motion](const RunContext& context, const OutputSink& wrote) -> Status {
+            const int frames = alpha.first + static_cast<int>(alpha.absolute.size());
+            return fluid::simulate(
+                scene, frames,
+                [&](int frame, const Image& mask, const Image& flow) -> Status {
+                    context.report(
+                        {.stage = "simulate", .fraction = static_cast<double>(frame + 1) / frames});
+                    if (frame < alpha.first) return Status::ok();
+                    const auto k = static_cast<std::size_t>(frame - alpha.first);
+                    EXEMPLAR_RETURN_IF_ERROR(save_flow(flow, motion.absolute[k]));
+                    EXEMPLAR_RETURN_IF_ERROR(save_image(mask, alpha.absolute[k]));
+                    wrote(frame, alpha.relative[k]);
+                    return Status::ok();
+                },
+                context);
+        });
+}
+
+// A fluid job (LazyFluids, what `exemplar fluid` does with a still RGBA exemplar): frames
+// first..last of the target alpha masks `alpha` and motion `motion` (patterns) are synthesized
+// in order, each written atomically to `output` (a pattern) and read back as the next frame's
+// previous output, as the command does, so the frames are its bytes. A frame before `first`
+// whose output and motion exist is the first frame's previous output (a range continued).
+Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths& paths) {
+    fluid::FluidOptions fluid_options;
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
+            key == "seed") {
+            continue;
+        }
+        if (key == "usage") {
+            if (value != "uniform" && value != "none")
+                return invalid_argument("usage: must be uniform or none");
+            fluid_options.uniform_usage = value == "uniform";
+            continue;
+        }
+        if (key == "rotations") {
+            if (!value.is_boolean()) return invalid_argument("rotations: must be true or false");
+            fluid_options.rotations = value.get<bool>();
+            continue;
+        }
+        const auto set = set_table_key(fluid_options, fluid::fluid_option_specs(), key, value);
+        if (!set) return invalid_argument(key + ": unknown option of a fluid job");
+        EXEMPLAR_RETURN_IF_ERROR(*set);
+    }
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!seed.ok()) return seed.status();
+    fluid_options.synthesis.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(fluid::validate(fluid_options));
+    auto exemplar = load_image(paths.at("exemplar").string());
+    if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
+    if (exemplar->channels() != 4)
+        return invalid_argument("exemplar: needs an alpha channel (RGBA)");
+    const FrameFiles& alpha = paths.patterns.at("alpha");
+    const FrameFiles& motion = paths.patterns.at("motion");
+    const FrameFiles& outputs = paths.patterns.at("output");
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+    // Every alpha mask and the motion between them exist before anything runs.
+    for (std::size_t k = 0; k < alpha.absolute.size(); ++k) {
+        if (!std::filesystem::is_regular_file(alpha.absolute[k]))
+            return invalid_argument("alpha: " + alpha.relative[k] + ": no such file");
+        if (k + 1 < alpha.absolute.size() && !std::filesystem::is_regular_file(motion.absolute[k]))
+            return invalid_argument("motion: " + motion.relative[k] + ": no such file");
+    }
+    // The frame before the range, when it was made: its output and its motion to `first`.
+    std::optional<std::pair<std::string, std::string>> before;
+    if (alpha.first > 0) {
+        auto text = [&](const char* field) { return body.value(field, std::string()); };
+        auto output = video::format_frame_path(text("output"), alpha.first - 1);
+        auto flow = video::format_frame_path(text("motion"), alpha.first - 1);
+        if (output.ok() && flow.ok()) {
+            auto output_path = workspace.resolve(*output);
+            auto flow_path = workspace.resolve(*flow);
+            if (output_path.ok() && flow_path.ok() &&
+                std::filesystem::is_regular_file(*output_path) &&
+                std::filesystem::is_regular_file(*flow_path)) {
+                before.emplace(output_path->string(), flow_path->string());
+            }
+        }
+    }
+    return JobWork([exemplar = std::move(*exemplar), fluid_options, alpha, motion, outputs, before](
+                       const RunContext& context, const OutputSink& wrote) -> Status {
+        std::optional<Image> previous;
+        std::optional<Image> previous_motion;
+        if (before) {
+            auto image = load_image(before->first);
+            if (!image.ok()) return image.status();
+            auto flow = load_flow(before->second);
+            if (!flow.ok()) return flow.status();
+            previous = std::move(*image);
+            previous_motion = std::move(*flow);
+        }
+        const auto count = alpha.absolute.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            if (context.cancelled()) return cancelled();
+            auto mask = load_image(alpha.absolute[k]);
+            if (!mask.ok()) return mask.status();
+            std::optional<Image> own_motion;
+            if (fluid_options.motion_blur > 0.0f && k + 1 < count) {
+                auto flow = load_flow(motion.absolute[k]);
+                if (!flow.ok()) return flow.status();
+                own_motion = std::move(*flow);
+            }
+            fluid::FluidFrameInput input;
+            input.exemplar = &exemplar;
+            input.target_alpha = &*mask;
+            input.previous_output = previous ? &*previous : nullptr;
+            input.previous_motion = previous_motion ? &*previous_motion : nullptr;
+            input.motion = own_motion ? &*own_motion : nullptr;
+            RunContext frame_context = context;
+            frame_context.progress = [&](const ProgressEvent& event) {
+                ProgressEvent overall = event;
+                overall.fraction = (static_cast<double>(k) + event.fraction) / count;
+                context.report(overall);
+            };
+            auto frame = fluid::synthesize_fluid_frame(input, fluid_options, frame_context);
+            if (!frame.ok()) return frame.status();
+            EXEMPLAR_RETURN_IF_ERROR(save_image(frame->rgba, outputs.absolute[k]));
+            wrote(alpha.first + static_cast<int>(k), outputs.relative[k]);
+            // The next frame continues from the file, as `exemplar fluid` does.
+            auto stored = load_image(outputs.absolute[k]);
+            if (!stored.ok()) return stored.status();
+            previous = std::move(*stored);
+            if (k + 1 < count) {
+                auto flow = load_flow(motion.absolute[k]);
+                if (!flow.ok()) return flow.status();
+                previous_motion = std::move(*flow);
+            }
+        }
+        return Status::ok();
+    });
+}
+
 void StudioServer::Impl::add_job_routes() {
     http->route("POST", "/api/jobs", [this](const Request& req, Response& res) {
         const std::string id = client_id(req, res);
@@ -919,17 +1094,22 @@ void StudioServer::Impl::add_job_routes() {
         };
         // Frame patterns (range jobs): "frames", "output" formatted for first..last.
         using Patterns = std::vector<const char*>;
-        const std::map<std::string, Patterns> patterns = {{"animate", {"frames", "output"}}};
+        const std::map<std::string, Patterns> patterns = {{"animate", {"frames", "output"}},
+                                                          {"fluid-simulate", {"alpha", "motion"}},
+                                                          {"fluid", {"alpha", "motion", "output"}}};
         const std::map<std::string, Kind> kinds = {
             {"stylize", {{"style", "source", "target", "output"}, {}, &Impl::stylize_work}},
             {"noisy", {{"exemplar", "reference", "output"}, {}, &Impl::noisy_work}},
             {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
-            {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}}};
+            {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
+            {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
+            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}}};
         const auto found = kinds.find(kind);
         if (found == kinds.end()) {
-            return fail(
-                res, 400,
-                "kind: \"" + kind + "\" is invalid (must be stylize, noisy, stylit or animate)");
+            return fail(res, 400,
+                        "kind: \"" + kind +
+                            "\" is invalid (must be stylize, noisy, stylit, animate, "
+                            "fluid-simulate or fluid)");
         }
         // Every path is checked before anything is read: a refusal is 403.
         JobPaths paths;

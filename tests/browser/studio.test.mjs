@@ -2,7 +2,7 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame and three animate frames, run StyLit and paint over its
+// cancel it, run a noisy frame, three animate frames and fluid targets and frames, run StyLit and paint over its
 // exemplar (the result follows),
 // then stop the server with SIGINT while a job runs.
 //
@@ -349,6 +349,36 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     }
     await page.screenshot({ path: path.join(artifacts, 'jobs-animate.png') });
 
+    // Fluid: plume targets simulated (48x48, frames 0..3), then the bundled ink over frames
+    // 1..3; the frames are `exemplar fluid`'s bytes on the same targets.
+    await page.setInputFiles('#upload', path.join(source, 'examples/fluid/ink.png'));
+    await page.waitForSelector('#file-list a:text("ink.png")', { state: 'attached' });
+    const jobDone = (text) => page.waitForFunction((t) => {
+      const li = document.querySelector('#job-list li');
+      return li.textContent.includes(t) && li.dataset.state === 'done';
+    }, text, { timeout: 120000 });
+    await page.fill('#simulate-form input[name=width]', '48');
+    await page.fill('#simulate-form input[name=height]', '48');
+    await page.fill('#simulate-form input[name=last]', '3');
+    await page.click('#simulate-form button[type=submit]');
+    await jobDone('sim/alpha/%04d.png');
+    await page.selectOption('#fluid-form select[name=exemplar]', 'ink.png');
+    await page.fill('#fluid-form input[name=first]', '1');
+    await page.fill('#fluid-form input[name=last]', '3');
+    await page.click('#fluid-form button[type=submit]');
+    await jobDone('outputs/fluid/%04d.png');
+    assert.equal(await page.locator('#job-list li:first-child .job-frames a').count(), 3);
+    fs.rmSync(path.join(artifacts, 'fluid-cli'), { recursive: true, force: true });
+    const fluidCli = spawnSync(exemplarCli, ['fluid', '-q', '-j', '2', '--exemplar', path.join(workspace, 'ink.png'),
+      '--alpha', path.join(workspace, 'sim/alpha/%04d.png'), '--motion', path.join(workspace, 'sim/motion/%04d.flo'),
+      '--first', '1', '--last', '3', '--seed', '1', '-o', path.join(artifacts, 'fluid-cli', '%04d.png')]);
+    assert.equal(fluidCli.status, 0, `exemplar fluid: ${fluidCli.stderr}`);
+    for (const f of ['0001.png', '0002.png', '0003.png']) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'fluid', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'fluid-cli', f))), `fluid frame ${f} differs from the command's`);
+    }
+    await page.screenshot({ path: path.join(artifacts, 'jobs-fluid.png') });
+
     // StyLit: the bundled painting and buffers (examples/stylit) uploaded and run; the image
     // shown is the server's, and the server's is `exemplar stylit`'s byte for byte. Then a stroke
     // painted over the exemplar with the mouse runs it again by itself (live re-run).
@@ -404,7 +434,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.click('nav button[data-tab=jobs]');
     await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
     await page.click('#job-form button[type=submit]');
-    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 4 &&
+    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 6 &&
       document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
     studio.child.kill('SIGINT');
     const exit = await studio.exited;

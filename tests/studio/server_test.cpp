@@ -17,6 +17,9 @@
 #include <vector>
 
 #include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/fluid/simulate.hpp"
+#include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/paint/directions.hpp"
@@ -822,6 +825,122 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
     json outside = good;
     outside["output"] = "../outside/%04d.png";
     EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+}
+
+TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
+    // An RGBA exemplar: the texture inside a soft disc.
+    Image ink = texture(40, 40);
+    Image exemplar(40, 40, 4);
+    for (int y = 0; y < 40; ++y) {
+        for (int x = 0; x < 40; ++x) {
+            for (int c = 0; c < 3; ++c) exemplar.at(x, y, c) = ink.at(x, y, c);
+            const float r =
+                std::hypot(static_cast<float>(x) - 19.5f, static_cast<float>(y) - 19.5f);
+            exemplar.at(x, y, 3) = std::clamp((17.0f - r) / 4.0f, 0.0f, 1.0f);
+        }
+    }
+    ASSERT_TRUE(save_image(exemplar, (base_ / "ws" / "ink.png").string()).is_ok());
+    start();
+    // Targets: the built-in plume, 48 x 48, frames 0..3 (warm-up: the first frames are thin).
+    auto simulated = post("/api/jobs", {{"kind", "fluid-simulate"},
+                                        {"width", 48},
+                                        {"height", 48},
+                                        {"last", 3},
+                                        {"alpha", "sim/alpha/%04d.png"},
+                                        {"motion", "sim/motion/%04d.flo"}});
+    ASSERT_EQ(simulated->status, 202) << simulated->body;
+    const json sim_end = follow(server_->port(), body_of(simulated)["id"]);
+    ASSERT_EQ(sim_end["state"], "done") << sim_end.dump();
+    EXPECT_EQ(sim_end["frames"].size(), 4u);
+    ASSERT_TRUE(fluid::simulate(
+                    fluid::plume_scene(48, 48), 4,
+                    [&](int frame, const Image& alpha, const Image& motion) -> Status {
+                        const fs::path mine = base_ / *video::format_frame_path("a%d.png", frame);
+                        EXEMPLAR_RETURN_IF_ERROR(save_image(alpha, mine.string()));
+                        EXPECT_EQ(file_bytes(base_ / "ws" / "sim" / "alpha" /
+                                             *video::format_frame_path("%04d.png", frame)),
+                                  file_bytes(mine));
+                        EXPECT_EQ(file_bytes(base_ / "ws" / "sim" / "motion" /
+                                             *video::format_frame_path("%04d.flo", frame))
+                                      .size(),
+                                  std::size_t{48} * 48 * 8 + 12);
+                        (void)motion;
+                        return Status::ok();
+                    },
+                    RunContext(1))
+                    .is_ok());
+
+    // Transfer frames 1..3; frame 1 continues from nothing (no output 0 yet).
+    const json good = {{"kind", "fluid"},
+                       {"exemplar", "ink.png"},
+                       {"alpha", "sim/alpha/%04d.png"},
+                       {"motion", "sim/motion/%04d.flo"},
+                       {"first", 1},
+                       {"last", 3},
+                       {"output", "outputs/fluid/%04d.png"},
+                       {"seed", 5},
+                       {"patch-size", 3}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+    EXPECT_EQ(end["frames"][0]["path"], "outputs/fluid/0001.png");
+    // The library's frames, each continuing from the previous one read back from its file.
+    const Image stored_exemplar = *load_image((base_ / "ws" / "ink.png").string());
+    fluid::FluidOptions options;
+    options.synthesis.seed = 5;
+    options.patch_size = 3;
+    std::optional<Image> previous, previous_motion;
+    for (int n = 1; n <= 3; ++n) {
+        const auto sim = [&](const char* pattern) {
+            return (base_ / "ws" / "sim" / *video::format_frame_path(pattern, n)).string();
+        };
+        auto alpha = load_image(sim("alpha/%04d.png"));
+        ASSERT_TRUE(alpha.ok());
+        fluid::FluidFrameInput input;
+        input.exemplar = &stored_exemplar;
+        input.target_alpha = &*alpha;
+        input.previous_output = previous ? &*previous : nullptr;
+        input.previous_motion = previous_motion ? &*previous_motion : nullptr;
+        auto frame = fluid::synthesize_fluid_frame(input, options, RunContext(1));
+        ASSERT_TRUE(frame.ok()) << frame.status().message();
+        const fs::path mine = base_ / *video::format_frame_path("fluid%d.png", n);
+        ASSERT_TRUE(save_image(frame->rgba, mine.string()).is_ok());
+        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / "fluid" /
+                               *video::format_frame_path("%04d.png", n)) == file_bytes(mine))
+            << "frame " << n;
+        previous = *load_image(mine.string());
+        previous_motion = *load_flow(sim("motion/%04d.flo"));
+    }
+    // Bad parameters: one line naming the parameter (400); outside the workspace: 403.
+    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
+             {"last", 9, "alpha: sim/alpha/0004.png"},
+             {"patch-size", 4, "patch-size: "},
+             {"usage", "sometimes", "usage: "},
+             {"rotations", 1, "rotations: "},
+             {"wobble", 1, "wobble: "},
+             {"exemplar", "tex.png", "exemplar: "},
+             {"output", "outputs/%d.txt", "output: "}}) {
+        json bad = good;
+        bad[key] = value;
+        auto refused = post("/api/jobs", bad);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
+        const std::string message = body_of(refused)["error"];
+        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    json outside = good;
+    outside["motion"] = "../outside/%04d.flo";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+    EXPECT_EQ(post("/api/jobs", {{"kind", "fluid-simulate"},
+                                 {"scene", "volcano"},
+                                 {"last", 1},
+                                 {"alpha", "a%d.png"},
+                                 {"motion", "m%d.flo"}})
+                  ->status,
+              400);
 }
 
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.

@@ -502,7 +502,7 @@ for (const jobForm of document.querySelectorAll('.job-form')) {
     }
     try {
       const { id } = await api('POST', '/api/jobs', body);
-      followJob(id, body.output);
+      followJob(id, body.output || body.alpha);
     } catch (err) { fail(err); }
   });
 }
