@@ -18,6 +18,7 @@
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/npr/npr.hpp"
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/sketch/svg.hpp"
 #include "exemplar/stylit/stylit.hpp"
@@ -356,6 +357,7 @@ struct StudioServer::Impl {
     Result<JobWork> animate_work(const json& body, const JobPaths& paths);
     Result<JobWork> fluid_simulate_work(const json& body, const JobPaths& paths);
     Result<JobWork> fluid_work(const json& body, const JobPaths& paths);
+    Result<JobWork> npr_work(const json& body, const JobPaths& paths);
     static Status check_job_keys(const json& body, const JobPaths& paths,
                                  std::initializer_list<std::string_view> known, const char* kind);
 };
@@ -1079,6 +1081,147 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
     });
 }
 
+namespace {
+
+// Buffer `name` of a render frame folder as `exemplar npr` looks for it: NAME.exr (linear
+// light) or NAME.png (sRGB-encoded values); "" when neither is there.
+std::string render_buffer_file(const std::filesystem::path& folder, const std::string& name) {
+    for (const char* extension : {".exr", ".png"}) {
+        const std::filesystem::path path = folder / (name + extension);
+        if (std::filesystem::is_regular_file(path)) return path.string();
+    }
+    return "";
+}
+
+Status missing_buffer(const std::string& folder, const std::string& name) {
+    return invalid_argument("frames: " + folder + ": missing buffer '" + name + "' (" + name +
+                            ".png or " + name + ".exr)");
+}
+
+}  // namespace
+
+// An npr job (image-space stippling and hatching, what `exemplar npr` does without --paper and
+// --bidirectional): the frame folders `frames` (a pattern of `exemplar render --frames` folders)
+// first..last styled with `pattern` in order, each frame continuing from the one before; each
+// output is written atomically to `output` (a pattern) with its synthesis state beside it
+// (OUT.state.exr, as the command writes it, so the command can continue the range), and a
+// finished frame just before the range hands its state over, as the command does.
+Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& paths) {
+    npr::NprOptions npr_options;
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
+            key == "seed") {
+            continue;
+        }
+        if (key == "style" || key == "tone" || key == "orientation") {
+            if (!value.is_string()) return invalid_argument(key + ": must be a string");
+            const std::string text = value.get<std::string>();
+            if (key == "style") {
+                auto style = npr::parse_style(text);
+                if (!style.ok()) return style.status();
+                npr_options.style = *style;
+            } else {
+                (key == "tone" ? npr_options.tone : npr_options.orientation) = text;
+            }
+            continue;
+        }
+        if (key == "lines" || key == "tone-correction") {
+            if (!value.is_boolean()) return invalid_argument(key + ": must be true or false");
+            (key == "lines" ? npr_options.lines : npr_options.tone_correction) = value.get<bool>();
+            continue;
+        }
+        if (key == "paper-grain" || key == "erosion") {
+            return invalid_argument(key +
+                                    ": belongs to the paper layer, which is exemplar npr's "
+                                    "(--paper) for now");
+        }
+        const auto set = set_table_key(npr_options, npr::npr_option_specs(), key, value);
+        if (!set) return invalid_argument(key + ": unknown option of an npr job");
+        EXEMPLAR_RETURN_IF_ERROR(*set);
+    }
+    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!seed.ok()) return seed.status();
+    npr_options.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(npr::validate(npr_options));
+    const FrameFiles& folders = paths.patterns.at("frames");
+    const FrameFiles& outputs = paths.patterns.at("output");
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+    for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
+        if (!std::filesystem::is_directory(folders.absolute[k])) {
+            return invalid_argument("frames: " + folders.relative[k] +
+                                    ": no such frame folder (from exemplar render --frames)");
+        }
+    }
+    auto pattern_image = load_image(paths.at("pattern").string());
+    if (!pattern_image.ok())
+        return invalid_argument("pattern: " + pattern_image.status().message());
+    auto pattern = npr::prepare_pattern(*pattern_image, npr_options, RunContext(options.threads));
+    if (!pattern.ok()) return invalid_argument("pattern: " + pattern.status().message());
+    // The state of a finished frame just before the range.
+    std::optional<std::string> before;
+    if (folders.first > 0) {
+        auto name =
+            video::format_frame_path(body.value("output", std::string()), folders.first - 1);
+        if (name.ok()) {
+            auto path = workspace.resolve(*name + ".state.exr");
+            if (path.ok() && std::filesystem::is_regular_file(*path)) before = path->string();
+        }
+    }
+    // Every buffer the frames read is there before anything runs.
+    for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
+        for (const npr::BufferNeed& need : npr::needed_buffers(npr_options, k > 0 || before)) {
+            const std::filesystem::path folder = folders.absolute[k];
+            if (render_buffer_file(folder, need.name).empty())
+                return missing_buffer(folders.relative[k], need.name);
+        }
+    }
+    return JobWork([pattern = std::move(*pattern), npr_options, folders, outputs, before](
+                       const RunContext& context, const OutputSink& wrote) -> Status {
+        std::optional<npr::FrameState> previous;
+        if (before) {
+            auto packed = load_image(*before);
+            if (!packed.ok()) return packed.status();
+            auto state = npr::unpack_state(pattern, *packed);
+            if (!state.ok()) return state.status();
+            previous = std::move(*state);
+        }
+        const auto count = folders.absolute.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            const int n = folders.first + static_cast<int>(k);
+            npr::NprFrame frame;
+            for (const npr::BufferNeed& need :
+                 npr::needed_buffers(npr_options, previous.has_value())) {
+                const std::string file = render_buffer_file(folders.absolute[k], need.name);
+                if (file.empty()) return missing_buffer(folders.relative[k], need.name);
+                auto buffer = load_image(file);
+                if (!buffer.ok()) return buffer.status();
+                frame[need.role] = std::move(*buffer);
+                if (need.role == npr::BufferRole::Tone) frame.tone_linear = file.ends_with(".exr");
+            }
+            RunContext frame_context = context;
+            frame_context.progress = [&](const ProgressEvent& event) {
+                ProgressEvent overall = event;
+                overall.fraction = (static_cast<double>(k) + event.fraction) / count;
+                context.report(overall);
+            };
+            auto styled = npr::stylize_frame(pattern, frame, previous ? &*previous : nullptr, n,
+                                             npr_options, frame_context);
+            if (!styled.ok()) {
+                return Status(styled.status().code(),
+                              folders.relative[k] + ": " + styled.status().message());
+            }
+            SaveOptions state_options;
+            state_options.format = PixelFormat::Float;
+            EXEMPLAR_RETURN_IF_ERROR(save_image(npr::pack_state(styled->state),
+                                                outputs.absolute[k] + ".state.exr", state_options));
+            EXEMPLAR_RETURN_IF_ERROR(save_image(styled->image, outputs.absolute[k]));
+            wrote(n, outputs.relative[k]);
+            previous = std::move(styled->state);
+        }
+        return Status::ok();
+    });
+}
+
 void StudioServer::Impl::add_job_routes() {
     http->route("POST", "/api/jobs", [this](const Request& req, Response& res) {
         const std::string id = client_id(req, res);
@@ -1096,20 +1239,22 @@ void StudioServer::Impl::add_job_routes() {
         using Patterns = std::vector<const char*>;
         const std::map<std::string, Patterns> patterns = {{"animate", {"frames", "output"}},
                                                           {"fluid-simulate", {"alpha", "motion"}},
-                                                          {"fluid", {"alpha", "motion", "output"}}};
+                                                          {"fluid", {"alpha", "motion", "output"}},
+                                                          {"npr", {"frames", "output"}}};
         const std::map<std::string, Kind> kinds = {
             {"stylize", {{"style", "source", "target", "output"}, {}, &Impl::stylize_work}},
             {"noisy", {{"exemplar", "reference", "output"}, {}, &Impl::noisy_work}},
             {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
             {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
             {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
-            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}}};
+            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}},
+            {"npr", {{"pattern"}, {}, &Impl::npr_work}}};
         const auto found = kinds.find(kind);
         if (found == kinds.end()) {
             return fail(res, 400,
                         "kind: \"" + kind +
                             "\" is invalid (must be stylize, noisy, stylit, animate, "
-                            "fluid-simulate or fluid)");
+                            "fluid-simulate, fluid or npr)");
         }
         // Every path is checked before anything is read: a refusal is 403.
         JobPaths paths;

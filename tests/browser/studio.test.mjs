@@ -2,7 +2,8 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame, three animate frames and fluid targets and frames, run StyLit and paint over its
+// cancel it, run a noisy frame, three animate frames, fluid targets and frames and three npr
+// frames, run StyLit and paint over its
 // exemplar (the result follows),
 // then stop the server with SIGINT while a job runs.
 //
@@ -379,6 +380,28 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     }
     await page.screenshot({ path: path.join(artifacts, 'jobs-fluid.png') });
 
+    // NPR: three frames of Spot zooming (exemplar render, 96x72, into the workspace) stippled
+    // from the fifth form; `exemplar npr`'s bytes.
+    const render = spawnSync(exemplarCli, ['render', '--scene', path.join(source, 'examples/render/spot-zoom.json'),
+      '--width', '96', '--height', '72', '--spp', '1', '--frames', '0-2', '-o', path.join(workspace, 'render', 'frame_%04d'),
+      '-j', '2', '-q']);
+    assert.equal(render.status, 0, `exemplar render: ${render.stderr}`);
+    await page.setInputFiles('#upload', path.join(source, 'examples/npr/stipple.png'));
+    await page.waitForSelector('#file-list a:text("stipple.png")', { state: 'attached' });
+    await page.selectOption('#npr-form select[name=pattern]', 'stipple.png');
+    await page.fill('#npr-form input[name=last]', '2');
+    await page.click('#npr-form button[type=submit]');
+    await jobDone('outputs/npr/%04d.png');
+    fs.rmSync(path.join(artifacts, 'npr-cli'), { recursive: true, force: true });
+    const nprCli = spawnSync(exemplarCli, ['npr', '--pattern', path.join(workspace, 'stipple.png'),
+      '--frames', path.join(workspace, 'render', 'frame_%04d'), '--first', '0', '--last', '2',
+      '-o', path.join(artifacts, 'npr-cli', '%04d.png'), '-j', '2', '-q']);
+    assert.equal(nprCli.status, 0, `exemplar npr: ${nprCli.stderr}`);
+    for (const f of ['0000.png', '0001.png', '0002.png']) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'npr', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'npr-cli', f))), `npr frame ${f} differs from the command's`);
+    }
+
     // StyLit: the bundled painting and buffers (examples/stylit) uploaded and run; the image
     // shown is the server's, and the server's is `exemplar stylit`'s byte for byte. Then a stroke
     // painted over the exemplar with the mouse runs it again by itself (live re-run).
@@ -434,7 +457,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.click('nav button[data-tab=jobs]');
     await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
     await page.click('#job-form button[type=submit]');
-    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 6 &&
+    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 7 &&
       document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
     studio.child.kill('SIGINT');
     const exit = await studio.exited;

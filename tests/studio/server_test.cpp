@@ -22,6 +22,7 @@
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/npr/npr.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/feature_fill.hpp"
@@ -941,6 +942,94 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
                                  {"motion", "m%d.flo"}})
                   ->status,
               400);
+}
+
+TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
+    // Three render frame folders of 64 x 48: a tone ramp moving right, no lines, the motion.
+    for (int n = 0; n < 3; ++n) {
+        const fs::path folder = base_ / "ws" / "render" / *video::format_frame_path("f%d", n);
+        fs::create_directories(folder);
+        Image tone(64, 48, 1), lines(64, 48, 1), flow(64, 48, 2), disocclusion(64, 48, 1);
+        for (int y = 0; y < 48; ++y) {
+            for (int x = 0; x < 64; ++x) {
+                tone.at(x, y, 0) = static_cast<float>((x + 3 * n) % 64) / 64.0f;
+                flow.at(x, y, 0) = -3.0f;
+                disocclusion.at(x, y, 0) = x < 3 ? 1.0f : 0.0f;
+            }
+        }
+        ASSERT_TRUE(save_image(tone, (folder / "direct_diffuse.png").string()).is_ok());
+        ASSERT_TRUE(save_image(lines, (folder / "lines.png").string()).is_ok());
+        ASSERT_TRUE(save_image(disocclusion, (folder / "disocclusion.png").string()).is_ok());
+        ASSERT_TRUE(save_flow(flow, (folder / "backward_flow.exr").string()).is_ok());
+    }
+    Image dots(64, 64, 1);
+    const Image tex = texture(64, 64);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 64; ++x) dots.at(x, y, 0) = tex.at(x, y, 2);
+    }
+    ASSERT_TRUE(save_image(dots, (base_ / "ws" / "dots.png").string()).is_ok());
+    start();
+    const json good = {{"kind", "npr"},
+                       {"pattern", "dots.png"},
+                       {"frames", "render/f%d"},
+                       {"last", 2},
+                       {"output", "outputs/npr/%d.png"},
+                       {"levels", 2},
+                       {"patch-size", 8},
+                       {"seed", 3}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "npr" / "2.png.state.exr"));
+    // The library's frames, each continuing from the one before.
+    npr::NprOptions options;
+    options.levels = 2;
+    options.patch_size = 8;
+    options.seed = 3;
+    auto pattern = npr::prepare_pattern(*load_image((base_ / "ws" / "dots.png").string()), options,
+                                        RunContext(1));
+    ASSERT_TRUE(pattern.ok()) << pattern.status().message();
+    std::optional<npr::FrameState> previous;
+    for (int n = 0; n < 3; ++n) {
+        const fs::path folder = base_ / "ws" / "render" / *video::format_frame_path("f%d", n);
+        npr::NprFrame frame;
+        for (const npr::BufferNeed& need : npr::needed_buffers(options, previous.has_value())) {
+            const bool exr = need.name == "backward_flow";
+            auto buffer = load_image((folder / (need.name + (exr ? ".exr" : ".png"))).string());
+            ASSERT_TRUE(buffer.ok()) << need.name;
+            frame[need.role] = *buffer;
+        }
+        auto styled = npr::stylize_frame(*pattern, frame, previous ? &*previous : nullptr, n,
+                                         options, RunContext(1));
+        ASSERT_TRUE(styled.ok()) << styled.status().message();
+        const fs::path mine = base_ / *video::format_frame_path("npr%d.png", n);
+        ASSERT_TRUE(save_image(styled->image, mine.string()).is_ok());
+        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / "npr" /
+                               *video::format_frame_path("%d.png", n)) == file_bytes(mine))
+            << "frame " << n;
+        previous = styled->state;
+    }
+    // Bad parameters: one line naming the parameter (400).
+    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
+             {"last", 3, "frames: render/f3"},
+             {"levels", 9, "levels: "},
+             {"style", "crosshatch", "crosshatch"},
+             {"lines", "yes", "lines: "},
+             {"paper-grain", 0.2, "paper-grain: "},
+             {"wobble", 1, "wobble: "},
+             {"tone", "sunlight", "sunlight"},
+             {"pattern", "nope.png", "pattern: "}}) {
+        json bad = good;
+        bad[key] = value;
+        auto refused = post("/api/jobs", bad);
+        ASSERT_TRUE(refused);
+        ASSERT_EQ(refused->status, 400) << key << ": " << refused->body;
+        const std::string message = body_of(refused)["error"];
+        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
 }
 
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
