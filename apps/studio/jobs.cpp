@@ -1,5 +1,6 @@
 #include "jobs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -61,6 +62,7 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
                                                const std::string& output, JobWork work) {
     std::lock_guard lock(mutex_);
     if (shut_down_) return unsupported("the studio is shutting down");
+    prune();
     if (running(client) >= max_per_client_) {
         return unsupported("too many jobs: " + std::to_string(max_per_client_) +
                            " are running for this client (cancel one or wait)");
@@ -101,6 +103,25 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
         job->changed.notify_all();
     });
     return job;
+}
+
+void JobManager::prune() {
+    std::vector<std::string> finished;  // ids, oldest first (ids are increasing numbers)
+    for (const auto& [id, job] : jobs_) {
+        std::lock_guard job_lock(job->mutex);
+        if (job->state != JobState::Running) finished.push_back(id);
+    }
+    std::sort(finished.begin(), finished.end(), [](const std::string& a, const std::string& b) {
+        return std::stoull(a) < std::stoull(b);
+    });
+    if (finished.size() <= kept_finished_) return;
+    finished.resize(finished.size() - kept_finished_);
+    for (const std::string& id : finished) {
+        const auto job = jobs_.at(id);
+        // The thread has recorded its end and only returns now.
+        if (job->thread.joinable()) job->thread.join();
+        jobs_.erase(id);
+    }
 }
 
 std::shared_ptr<Job> JobManager::find(const std::string& id) const {

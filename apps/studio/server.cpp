@@ -228,6 +228,7 @@ json sketch_state(const SketchSession& sketch) {
 // The tool state of one client (one browser tab).
 struct ClientState {
     std::mutex mutex;
+    std::uint64_t used = 0;  ///< When it was last asked for (the server's request count).
     SketchSession sketch;
     std::optional<PaintSession> paint;
     std::optional<BrushSession> brush;
@@ -237,7 +238,9 @@ struct ClientState {
 
 struct StudioServer::Impl {
     Impl(const StudioOptions& o, Workspace w)
-        : options(o), workspace(std::move(w)), jobs(o.max_jobs_per_client, o.threads) {}
+        : options(o),
+          workspace(std::move(w)),
+          jobs(o.max_jobs_per_client, o.threads, o.max_finished_jobs) {}
 
     StudioOptions options;
     Workspace workspace;
@@ -272,12 +275,22 @@ struct StudioServer::Impl {
         return id;
     }
 
+    /// The client's state, made on its first request. Beyond options.max_clients the client
+    /// unused longest is forgotten (a request of it still running keeps its state until done).
     std::shared_ptr<ClientState> client(const std::string& id) {
         std::lock_guard lock(clients_mutex);
+        if (!clients.contains(id) && clients.size() >= options.max_clients) {
+            const auto oldest = std::min_element(
+                clients.begin(), clients.end(),
+                [](const auto& a, const auto& b) { return a.second->used < b.second->used; });
+            clients.erase(oldest);
+        }
         auto& state = clients[id];
         if (!state) state = std::make_shared<ClientState>();
+        state->used = ++client_requests;
         return state;
     }
+    std::uint64_t client_requests = 0;  ///< Under clients_mutex.
 
     // Runs `handler(state)` under the client's lock.
     template <typename Handler>
@@ -1344,6 +1357,9 @@ Result<std::unique_ptr<StudioServer>> StudioServer::create(const StudioOptions& 
     if (options.max_jobs_per_client < 1 || options.max_jobs_per_client > 16) {
         return invalid_argument("max-jobs: " + std::to_string(options.max_jobs_per_client) +
                                 " is invalid (must be 1..16)");
+    }
+    if (options.max_finished_jobs < 1 || options.max_clients < 1) {
+        return invalid_argument("max_finished_jobs and max_clients: must be at least 1");
     }
     if (options.port < 0 || options.port > 65535) {
         return invalid_argument("port: " + std::to_string(options.port) +

@@ -218,6 +218,17 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     assert.ok(vsCanvas.mean < 1 && vsCanvas.far < 0.002,
       `the canvas shows other pixels than the server painted: ${JSON.stringify(vsCanvas)}`);
 
+    // Escape while drawing drops the stroke: nothing is sent, the preview is cleared.
+    const overlayBox = await overlay.boundingBox();
+    await page.mouse.move(overlayBox.x + 30, overlayBox.y + 200);
+    await page.mouse.down();
+    await page.mouse.move(overlayBox.x + 200, overlayBox.y + 220, { steps: 6 });
+    await page.keyboard.press('Escape');
+    await page.mouse.up();
+    assert.equal(await page.evaluate(() => window.studio.paintSent), PAINT_STROKES.length);
+    assert.equal(await page.evaluate(() => document.getElementById('paint-overlay').getContext('2d')
+      .getImageData(100, 210, 1, 1).data[3]), 0, 'the dropped stroke\'s preview is still shown');
+
     // Undo and redo a stroke: the canvas changes and comes back.
     await page.click('#paint-undo');
     await page.waitForFunction(() => document.getElementById('paint-canvas').getContext('2d')

@@ -1032,6 +1032,42 @@ TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
     }
 }
 
+TEST_F(StudioTest, FinishedJobsAndIdleClientsBeyondTheBoundsAreForgotten) {
+    StudioOptions options;
+    options.max_finished_jobs = 2;
+    options.max_clients = 2;
+    start(options);
+    const json noisy = {{"kind", "noisy"},
+                        {"exemplar", "tex.png"},
+                        {"reference", "tex.png"},
+                        {"output", "o.png"},
+                        {"noise", 4}};
+    std::vector<std::string> ids;
+    for (int k = 0; k < 4; ++k) {
+        auto job = post("/api/jobs", noisy);
+        ASSERT_EQ(job->status, 202) << job->body;
+        ids.push_back(body_of(job)["id"]);
+        EXPECT_EQ(follow(server_->port(), ids.back())["state"], "done");
+    }
+    // Starting the fourth forgot the first: two finished ones are kept besides it.
+    const json list = body_of(client_->Get("/api/jobs"));
+    ASSERT_EQ(list["jobs"].size(), 3u) << list.dump();
+    for (const json& job : list["jobs"]) EXPECT_NE(job["id"], ids[0]);
+    EXPECT_EQ(client_->Get(("/api/jobs/" + ids[0] + "/events").c_str())->status, 404);
+    EXPECT_EQ(client_->Get(("/api/jobs/" + ids[1] + "/events").c_str())->status, 200);
+
+    // tab1 paints; tab2 and tab3 come after it: tab1's painting is forgotten, tab3's sketch kept.
+    ASSERT_EQ(
+        post("/api/paint/start", {{"exemplar", "tex.png"}, {"width", 32}, {"height", 32}})->status,
+        200);
+    for (const char* tab : {"tab2", "tab3"}) {
+        httplib::Client other("127.0.0.1", server_->port());
+        other.set_default_headers({{"X-Studio-Client", tab}});
+        EXPECT_EQ(other.Get("/api/sketch")->status, 200);
+    }
+    EXPECT_EQ(post("/api/paint/stroke", {{"points", {{4, 4}, {20, 20}}}})->status, 409);
+}
+
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
 json long_job(const std::string& output) {
     return {{"kind", "stylize"},

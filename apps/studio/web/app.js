@@ -7,7 +7,7 @@ const client = sessionStorage.getItem('studio-client') ||
 sessionStorage.setItem('studio-client', client);
 
 // What the browser test reads: timings and counts of the last answers.
-const studio = { client, lastPaintMs: null, lastSketchMs: null, paintStrokes: 0, sketch: null };
+const studio = { client, lastPaintMs: null, lastSketchMs: null, paintSent: 0, paintStrokes: 0, sketch: null };
 window.studio = studio;
 
 const $ = (id) => document.getElementById(id);
@@ -39,9 +39,15 @@ for (const button of document.querySelectorAll('nav button')) {
   });
 }
 
-// Pointer strokes on an element, in its own pixel coordinates.
+// Pointer strokes on an element, in its own pixel coordinates. Escape while drawing drops the
+// stroke: its preview is cleared (onMove with no points) and nothing is sent.
 function strokes(element, onMove, onUp) {
   let points = null;
+  document.addEventListener('keydown', (e) => {
+    if (e.key !== 'Escape' || !points) return;
+    points = null;
+    onMove([]);
+  });
   const at = (e) => {
     const r = element.getBoundingClientRect();
     return [e.clientX - r.left, e.clientY - r.top];
@@ -159,6 +165,7 @@ strokes(paintOverlay, (points) => {
     $('paint-comb').checked ? 'rgba(40,110,200,0.6)' : 'rgba(200,60,40,0.35)');
 }, async (points) => {
   const started = performance.now();
+  studio.paintSent += 1;
   try {
     const res = await api('POST', '/api/paint/stroke', {
       points, width: Number($('paint-brush').value), comb: $('paint-comb').checked,
