@@ -121,6 +121,24 @@ Result<std::vector<sketch::Vec2>> points_field(const json& body, const char* nam
     return points;
 }
 
+// "quality" (fast, default, best), or nullopt when absent: the caller's own defaults.
+Result<std::optional<Quality>> quality_field(const json& body) {
+    if (!body.contains("quality")) return std::optional<Quality>();
+    auto name = text_field(body, "quality");
+    if (!name.ok()) return name.status();
+    auto quality = parse_quality(*name);
+    if (!quality.ok()) return quality.status();
+    return std::optional<Quality>(*quality);
+}
+
+// "seed" (default 1) into `seed`.
+Status read_seed(const json& body, std::uint64_t& seed) {
+    auto value = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!value.ok()) return value.status();
+    seed = static_cast<std::uint64_t>(*value);
+    return Status::ok();
+}
+
 // A list of workspace paths: one string or an array of 1..64 strings.
 Result<std::vector<std::string>> path_list_field(const json& body, const char* name) {
     const auto it = body.find(name);
@@ -651,9 +669,8 @@ void StudioServer::Impl::add_fill_route() {
                 continue;
             }
             if (key == "seed") {
-                auto seed = number_field(*body, "seed", 1.0, 0.0, 1e15);
-                if (!seed.ok()) return fail(res, seed.status());
-                fill_options.seed = static_cast<std::uint64_t>(*seed);
+                const Status seed = read_seed(*body, fill_options.seed);
+                if (!seed.is_ok()) return fail(res, seed);
                 continue;
             }
             const auto set =
@@ -707,9 +724,7 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPath
     auto quality = parse_quality(body.value("quality", std::string("default")));
     if (!quality.ok()) return quality.status();
     SynthesisOptions synthesis = SynthesisOptions::preset(*quality);
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    synthesis.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, synthesis.seed));
     EXEMPLAR_RETURN_IF_ERROR(validate_input(input, synthesis));
     return JobWork([input = std::move(input), synthesis, path = paths.at("output").string()](
                        const RunContext& context, const OutputSink&) mutable -> Status {
@@ -740,9 +755,7 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
         if (!set) return invalid_argument(key + ": unknown option of a noisy job");
         EXEMPLAR_RETURN_IF_ERROR(*set);
     }
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    noisy_options.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, noisy_options.seed));
     auto frame = number_field(body, "frame", 0.0, 0.0, 1e9);
     if (!frame.ok()) return frame.status();
     if (*frame != std::floor(*frame)) return invalid_argument("frame: must be an integer");
@@ -773,13 +786,9 @@ Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths
         body, paths, {"preset", "layers", "quality", "usage", "seed", "guidance-weight", "preview"},
         "a stylit job"));
     StylitOptions stylit;
-    if (body.contains("quality")) {
-        auto name = text_field(body, "quality");
-        if (!name.ok()) return name.status();
-        auto quality = parse_quality(*name);
-        if (!quality.ok()) return quality.status();
-        stylit.synthesis = SynthesisOptions::preset(*quality);
-    }
+    auto quality = quality_field(body);
+    if (!quality.ok()) return quality.status();
+    if (*quality) stylit.synthesis = SynthesisOptions::preset(**quality);
     if (body.contains("usage")) {
         auto usage = text_field(body, "usage");
         if (!usage.ok()) return usage.status();
@@ -787,9 +796,7 @@ Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths
         if (!strategy.ok()) return invalid_argument("usage: " + strategy.status().message());
         stylit.synthesis.usage = *strategy;
     }
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    stylit.synthesis.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, stylit.synthesis.seed));
     auto weight = number_field(body, "guidance-weight", 2.0, 0.0, 100.0);
     if (!weight.ok()) return weight.status();
     stylit.guidance_weight = static_cast<float>(*weight);
@@ -860,16 +867,10 @@ Result<JobWork> StudioServer::Impl::animate_work(const json& body, const JobPath
                                             {"first", "last", "quality", "seed", "levels",
                                              "input-weight", "output-weight", "temporal-weight"},
                                             "an animate job"));
-    if (body.contains("quality")) {
-        auto name = text_field(body, "quality");
-        if (!name.ok()) return name.status();
-        auto quality = parse_quality(*name);
-        if (!quality.ok()) return quality.status();
-        animate_options.synthesis = animate::animate_synthesis_options(*quality);
-    }
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    animate_options.synthesis.seed = static_cast<std::uint64_t>(*seed);
+    auto quality = quality_field(body);
+    if (!quality.ok()) return quality.status();
+    if (*quality) animate_options.synthesis = animate::animate_synthesis_options(**quality);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, animate_options.synthesis.seed));
     const std::pair<const char*, float*> weights[] = {
         {"input-weight", &animate_options.input_weight},
         {"output-weight", &animate_options.output_weight},
@@ -1006,9 +1007,7 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
         if (!set) return invalid_argument(key + ": unknown option of a fluid job");
         EXEMPLAR_RETURN_IF_ERROR(*set);
     }
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    fluid_options.synthesis.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, fluid_options.synthesis.seed));
     EXEMPLAR_RETURN_IF_ERROR(fluid::validate(fluid_options));
     auto exemplar = load_image(paths.at("exemplar").string());
     if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
@@ -1152,9 +1151,7 @@ Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& p
         if (!set) return invalid_argument(key + ": unknown option of an npr job");
         EXEMPLAR_RETURN_IF_ERROR(*set);
     }
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    npr_options.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, npr_options.seed));
     EXEMPLAR_RETURN_IF_ERROR(npr::validate(npr_options));
     const FrameFiles& folders = paths.patterns.at("frames");
     const FrameFiles& outputs = paths.patterns.at("output");

@@ -113,6 +113,23 @@ protected:
     }
     static json body_of(const httplib::Result& r) { return json::parse(r->body); }
 
+    /// (key, bad value, a word the message must hold) of a request.
+    using Refusals = std::vector<std::tuple<std::string, json, std::string>>;
+    /// Posts `good` to `path` with each key set to its bad value in turn: every one is a 400
+    /// whose one-line message holds the word (the parameter's name, mostly).
+    void expect_refused(const std::string& path, const json& good, const Refusals& refusals) {
+        for (const auto& [key, value, word] : refusals) {
+            json bad = good;
+            bad[key] = value;
+            auto refused = post(path, bad);
+            ASSERT_TRUE(refused);
+            ASSERT_EQ(refused->status, 400) << key << ": " << refused->body;
+            const std::string message = body_of(refused)["error"];
+            EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        }
+    }
+
     fs::path base_;
     std::unique_ptr<StudioServer> server_;
     std::thread serving_;
@@ -529,23 +546,14 @@ TEST_F(StudioTest, BrushFillsARegionAsExemplarFillDoes) {
     auto redone = post("/api/brush/redo", json::object());
     EXPECT_EQ(static_cast<unsigned char>(redone->body[(50 * 120 + 60) * 4 + 3]), 255);
     // Bad parameters: one line naming the parameter.
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"target", {{1, 1}, {2, 2}}, "target: "},
-             {"source", "all", "source: "},
-             {"patch-size", 4, "patch-size: "},
-             {"rotations", "many", "rotations: "},
-             {"usage", "sometimes", "usage: "},
-             {"wobble", 1, "wobble: "},
-             {"target", {{-50, -50}, {-40, -50}, {-40, -40}}, "target"}}) {
-        json bad = fill;
-        bad[key] = value;
-        auto refused = post("/api/brush/fill", bad);
-        ASSERT_TRUE(refused);
-        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/brush/fill", fill,
+                   {{"target", {{1, 1}, {2, 2}}, "target: "},
+                    {"source", "all", "source: "},
+                    {"patch-size", 4, "patch-size: "},
+                    {"rotations", "many", "rotations: "},
+                    {"usage", "sometimes", "usage: "},
+                    {"wobble", 1, "wobble: "},
+                    {"target", {{-50, -50}, {-40, -50}, {-40, -40}}, "target"}});
     httplib::Client other("127.0.0.1", server_->port());
     other.set_default_headers({{"X-Studio-Client", "tab2"}});
     EXPECT_EQ(other.Post("/api/brush/fill", fill.dump(), "application/json")->status, 409);
@@ -617,23 +625,14 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
                        {"reference", "tex.png"},
                        {"output", "o.png"},
                        {"noise", 4}};
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"noise", -1, "noise: "},
-             {"patch-size", 4, "patch-size: "},
-             {"filter", "gauss", "gauss"},
-             {"frame", 1.5, "frame: "},
-             {"wobble", 1, "wobble: "},
-             {"output", "o.txt", "output: "},
-             {"reference", "nope.png", "reference: "}}) {
-        json bad = good;
-        bad[key] = value;
-        auto refused = post("/api/jobs", bad);
-        ASSERT_TRUE(refused);
-        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/jobs", good,
+                   {{"noise", -1, "noise: "},
+                    {"patch-size", 4, "patch-size: "},
+                    {"filter", "gauss", "gauss"},
+                    {"frame", 1.5, "frame: "},
+                    {"wobble", 1, "wobble: "},
+                    {"output", "o.txt", "output: "},
+                    {"reference", "nope.png", "reference: "}});
     json no_noise = good;
     no_noise.erase("noise");
     EXPECT_EQ(post("/api/jobs", no_noise)->status, 400);
@@ -710,28 +709,18 @@ TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
     EXPECT_EQ(half->width(), 28);
     // Bad parameters are refused at once with one line naming the parameter; paths outside the
     // workspace with 403.
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"guidance-weight", 101, "guidance-weight: "},
-             {"usage", "sometimes", "usage: "},
-             {"quality", "superb", "superb"},
-             {"preview", "yes", "preview: "},
-             {"preset", "maya", "preset: "},
-             {"wobble", 1, "wobble: "},
-             {"output", "o.txt", "output: "},
-             {"exemplar", "nope.png", "exemplar: "},
-             {"source", json::array(), "source: "},
-             {"source", {"stylit/source_0.png"}, "source has 1"},
-             {"target", {"stylit/target_0.png", "tex.png"}, "target"}}) {
-        json bad = good;
-        bad[key] = value;
-        bad["output"] = key == "output" ? value : json("o.png");
-        auto refused = post("/api/jobs", bad);
-        ASSERT_TRUE(refused);
-        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/jobs", good,
+                   {{"guidance-weight", 101, "guidance-weight: "},
+                    {"usage", "sometimes", "usage: "},
+                    {"quality", "superb", "superb"},
+                    {"preview", "yes", "preview: "},
+                    {"preset", "maya", "preset: "},
+                    {"wobble", 1, "wobble: "},
+                    {"output", "o.txt", "output: "},
+                    {"exemplar", "nope.png", "exemplar: "},
+                    {"source", json::array(), "source: "},
+                    {"source", {"stylit/source_0.png"}, "source has 1"},
+                    {"target", {"stylit/target_0.png", "tex.png"}, "target"}});
     json outside = good;
     outside["target"] = {"stylit/target_0.png", "../outside/secret.txt"};
     EXPECT_EQ(post("/api/jobs", outside)->status, 403);
@@ -802,27 +791,18 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
             << "frame " << t + 4;
     }
     // Bad parameters: one line naming the parameter (400); paths outside the workspace: 403.
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"last", 3, "last: "},
-             {"last", 2000, "last: "},
-             {"first", 4.5, "first: "},
-             {"frames", "frames/f.png", "frames: "},
-             {"frames", "frames/g%d.png", "frames: frames/g4.png"},
-             {"levels", 0, "levels: "},
-             {"temporal-weight", -1, "temporal-weight: "},
-             {"quality", "superb", "superb"},
-             {"wobble", 1, "wobble: "},
-             {"output", "outputs/%d.txt", "output: "},
-             {"style-input", "nope.png", "style-input: "}}) {
-        json bad = good;
-        bad[key] = value;
-        auto refused = post("/api/jobs", bad);
-        ASSERT_TRUE(refused);
-        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/jobs", good,
+                   {{"last", 3, "last: "},
+                    {"last", 2000, "last: "},
+                    {"first", 4.5, "first: "},
+                    {"frames", "frames/f.png", "frames: "},
+                    {"frames", "frames/g%d.png", "frames: frames/g4.png"},
+                    {"levels", 0, "levels: "},
+                    {"temporal-weight", -1, "temporal-weight: "},
+                    {"quality", "superb", "superb"},
+                    {"wobble", 1, "wobble: "},
+                    {"output", "outputs/%d.txt", "output: "},
+                    {"style-input", "nope.png", "style-input: "}});
     json outside = good;
     outside["output"] = "../outside/%04d.png";
     EXPECT_EQ(post("/api/jobs", outside)->status, 403);
@@ -915,23 +895,14 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
         previous_motion = *load_flow(sim("motion/%04d.flo"));
     }
     // Bad parameters: one line naming the parameter (400); outside the workspace: 403.
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"last", 9, "alpha: sim/alpha/0004.png"},
-             {"patch-size", 4, "patch-size: "},
-             {"usage", "sometimes", "usage: "},
-             {"rotations", 1, "rotations: "},
-             {"wobble", 1, "wobble: "},
-             {"exemplar", "tex.png", "exemplar: "},
-             {"output", "outputs/%d.txt", "output: "}}) {
-        json bad = good;
-        bad[key] = value;
-        auto refused = post("/api/jobs", bad);
-        ASSERT_TRUE(refused);
-        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/jobs", good,
+                   {{"last", 9, "alpha: sim/alpha/0004.png"},
+                    {"patch-size", 4, "patch-size: "},
+                    {"usage", "sometimes", "usage: "},
+                    {"rotations", 1, "rotations: "},
+                    {"wobble", 1, "wobble: "},
+                    {"exemplar", "tex.png", "exemplar: "},
+                    {"output", "outputs/%d.txt", "output: "}});
     json outside = good;
     outside["motion"] = "../outside/%04d.flo";
     EXPECT_EQ(post("/api/jobs", outside)->status, 403);
@@ -1012,24 +983,15 @@ TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
         previous = styled->state;
     }
     // Bad parameters: one line naming the parameter (400).
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"last", 3, "frames: render/f3"},
-             {"levels", 9, "levels: "},
-             {"style", "crosshatch", "crosshatch"},
-             {"lines", "yes", "lines: "},
-             {"paper-grain", 0.2, "paper-grain: "},
-             {"wobble", 1, "wobble: "},
-             {"tone", "sunlight", "sunlight"},
-             {"pattern", "nope.png", "pattern: "}}) {
-        json bad = good;
-        bad[key] = value;
-        auto refused = post("/api/jobs", bad);
-        ASSERT_TRUE(refused);
-        ASSERT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/jobs", good,
+                   {{"last", 3, "frames: render/f3"},
+                    {"levels", 9, "levels: "},
+                    {"style", "crosshatch", "crosshatch"},
+                    {"lines", "yes", "lines: "},
+                    {"paper-grain", 0.2, "paper-grain: "},
+                    {"wobble", 1, "wobble: "},
+                    {"tone", "sunlight", "sunlight"},
+                    {"pattern", "nope.png", "pattern: "}});
 }
 
 TEST_F(StudioTest, FinishedJobsAndIdleClientsBeyondTheBoundsAreForgotten) {
