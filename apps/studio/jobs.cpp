@@ -1,5 +1,6 @@
 #include "jobs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -43,8 +44,8 @@ const char* to_string(JobState state) {
 std::string Job::summary() const {
     std::lock_guard lock(mutex);
     return json{
-        {"id", id},         {"kind", kind},  {"state", to_string(state)}, {"fraction", fraction},
-        {"output", output}, {"error", error}}
+        {"id", id},         {"kind", kind},   {"state", to_string(state)}, {"fraction", fraction},
+        {"output", output}, {"error", error}, {"outputs", outputs}}
         .dump();
 }
 
@@ -61,6 +62,7 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
                                                const std::string& output, JobWork work) {
     std::lock_guard lock(mutex_);
     if (shut_down_) return unsupported("the studio is shutting down");
+    prune();
     if (running(client) >= max_per_client_) {
         return unsupported("too many jobs: " + std::to_string(max_per_client_) +
                            " are running for this client (cancel one or wait)");
@@ -77,10 +79,17 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
         RunContext context(threads);
         context.cancel = &job->cancel;
         context.progress = [&job](const ProgressEvent& event) { record_progress(*job, event); };
-        const Status status = work(context);
+        const OutputSink wrote = [&job](int frame, const std::string& path) {
+            std::lock_guard frame_lock(job->mutex);
+            job->outputs.push_back(path);
+            job->events.push_back(sse("frame", {{"frame", frame}, {"path", path}}));
+            job->changed.notify_all();
+        };
+        const Status status = work(context, wrote);
         std::lock_guard job_lock(job->mutex);
         json end;
         if (status.is_ok()) {
+            if (job->outputs.empty()) job->outputs.push_back(job->output);
             job->state = JobState::Done;
             job->fraction = 1.0;
             end = {{"state", "done"}, {"output", job->output}};
@@ -96,6 +105,25 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
     return job;
 }
 
+void JobManager::prune() {
+    std::vector<std::string> finished;  // ids, oldest first (ids are increasing numbers)
+    for (const auto& [id, job] : jobs_) {
+        std::lock_guard job_lock(job->mutex);
+        if (job->state != JobState::Running) finished.push_back(id);
+    }
+    std::sort(finished.begin(), finished.end(), [](const std::string& a, const std::string& b) {
+        return std::stoull(a) < std::stoull(b);
+    });
+    if (finished.size() <= kept_finished_) return;
+    finished.resize(finished.size() - kept_finished_);
+    for (const std::string& id : finished) {
+        const auto job = jobs_.at(id);
+        // The thread has recorded its end and only returns now.
+        if (job->thread.joinable()) job->thread.join();
+        jobs_.erase(id);
+    }
+}
+
 std::shared_ptr<Job> JobManager::find(const std::string& id) const {
     std::lock_guard lock(mutex_);
     const auto it = jobs_.find(id);
@@ -107,6 +135,24 @@ std::vector<std::shared_ptr<Job>> JobManager::list() const {
     std::vector<std::shared_ptr<Job>> out;
     for (const auto& [id, job] : jobs_) out.push_back(job);
     return out;
+}
+
+void JobManager::supersede(const std::string& client, const std::string& kind) {
+    std::vector<std::shared_ptr<Job>> superseded;
+    {
+        std::lock_guard lock(mutex_);
+        for (const auto& [id, job] : jobs_) {
+            std::lock_guard job_lock(job->mutex);
+            if (job->client == client && job->kind == kind && job->state == JobState::Running) {
+                superseded.push_back(job);
+            }
+        }
+    }
+    for (const auto& job : superseded) job->cancel.cancel();
+    for (const auto& job : superseded) {
+        std::unique_lock lock(job->mutex);
+        job->changed.wait(lock, [&] { return job->state != JobState::Running; });
+    }
 }
 
 void JobManager::shutdown() {

@@ -30,6 +30,8 @@ struct Job {
     JobState state = JobState::Running;
     double fraction = 0.0;
     std::string error;
+    /// Files the job has finished (workspace paths), in the order written: the frames of a range.
+    std::vector<std::string> outputs;
     /// Server-sent events ("event: ...\ndata: ...\n\n"), in order; the last is `end`.
     std::vector<std::string> events;
     std::thread thread;
@@ -38,32 +40,48 @@ struct Job {
     std::string summary() const;
 };
 
+/// What a job's work reports when a file of it is finished (written atomically): the frame
+/// number and the file's workspace path. It adds a `frame` event and lists the file.
+using OutputSink = std::function<void(int frame, const std::string& path)>;
+
 /// The work of a job: one library call and its atomic writes. It returns the call's status.
-using JobWork = std::function<Status(const RunContext&)>;
+using JobWork = std::function<Status(const RunContext&, const OutputSink&)>;
 
 class JobManager {
 public:
-    /// `max_per_client` running jobs per client at most; `threads` for each call's RunContext.
-    JobManager(int max_per_client, int threads)
-        : max_per_client_(max_per_client), threads_(threads) {}
+    /// Finished jobs kept for listings and late event streams by default; older ones are
+    /// forgotten (their threads joined) as new jobs start, so memory stays bounded.
+    static constexpr std::size_t kKeptFinished = 64;
+
+    /// `max_per_client` running jobs per client at most; `threads` for each call's RunContext;
+    /// at most `kept_finished` finished jobs remembered.
+    JobManager(int max_per_client, int threads, std::size_t kept_finished = kKeptFinished)
+        : max_per_client_(max_per_client), threads_(threads), kept_finished_(kept_finished) {}
     ~JobManager() { shutdown(); }
     JobManager(const JobManager&) = delete;
     JobManager& operator=(const JobManager&) = delete;
 
     /// Starts `work` on a new thread. Fails (Unsupported, "too many jobs") when the client
-    /// already runs `max_per_client` jobs, or after shutdown.
+    /// already runs `max_per_client` jobs, or after shutdown. Forgets the oldest finished jobs
+    /// beyond the bound first (a stream still following one keeps it alive until it ends).
     Result<std::shared_ptr<Job>> start(const std::string& client, const std::string& kind,
                                        const std::string& output, JobWork work);
     std::shared_ptr<Job> find(const std::string& id) const;
     std::vector<std::shared_ptr<Job>> list() const;
+    /// Cancels `client`'s running jobs of `kind` and waits until they have ended: a tool that
+    /// runs again on every change (StyLit) keeps one run, the latest.
+    void supersede(const std::string& client, const std::string& kind);
     /// Cancels every job, joins their threads and refuses new ones.
     void shutdown();
 
 private:
     int running(const std::string& client) const;
+    /// Joins and drops the oldest finished jobs beyond kept_finished_ (under mutex_).
+    void prune();
 
     const int max_per_client_;
     const int threads_;
+    const std::size_t kept_finished_;
     mutable std::mutex mutex_;
     std::map<std::string, std::shared_ptr<Job>> jobs_;
     std::size_t next_id_ = 1;

@@ -12,11 +12,19 @@
 #include <optional>
 
 #include "assets.hpp"
+#include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/fluid/simulate.hpp"
+#include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/npr/npr.hpp"
+#include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/sketch/svg.hpp"
+#include "exemplar/stylit/stylit.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "exemplar/version.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 #include "http_server.hpp"
 #include "jobs.hpp"
 #include "sessions.hpp"
@@ -93,20 +101,58 @@ Result<double> number_field(const json& body, const char* name, std::optional<do
     return it->get<double>();
 }
 
-Result<std::vector<sketch::Vec2>> points_field(const json& body) {
-    const auto it = body.find("points");
-    if (it == body.end() || !it->is_array() || it->empty() || it->size() > kMaxPoints) {
-        return invalid_argument("points: must be an array of 1..10000 [x, y] pairs");
+// An array of `min_points`..10000 [x, y] pairs under `name`.
+Result<std::vector<sketch::Vec2>> points_field(const json& body, const char* name = "points",
+                                               std::size_t min_points = 1) {
+    const auto it = body.find(name);
+    if (it == body.end() || !it->is_array() || it->size() < min_points || it->size() > kMaxPoints) {
+        return invalid_argument(std::string(name) + ": must be an array of " +
+                                std::to_string(min_points) + "..10000 [x, y] pairs");
     }
     std::vector<sketch::Vec2> points;
     for (const json& p : *it) {
         if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number() ||
             !std::isfinite(p[0].get<double>()) || !std::isfinite(p[1].get<double>())) {
-            return invalid_argument("points: every point must be [x, y] with finite numbers");
+            return invalid_argument(std::string(name) +
+                                    ": every point must be [x, y] with finite numbers");
         }
         points.push_back({p[0].get<double>(), p[1].get<double>()});
     }
     return points;
+}
+
+// "quality" (fast, default, best), or nullopt when absent: the caller's own defaults.
+Result<std::optional<Quality>> quality_field(const json& body) {
+    if (!body.contains("quality")) return std::optional<Quality>();
+    auto name = text_field(body, "quality");
+    if (!name.ok()) return name.status();
+    auto quality = parse_quality(*name);
+    if (!quality.ok()) return quality.status();
+    return std::optional<Quality>(*quality);
+}
+
+// "seed" (default 1) into `seed`.
+Status read_seed(const json& body, std::uint64_t& seed) {
+    auto value = number_field(body, "seed", 1.0, 0.0, 1e15);
+    if (!value.ok()) return value.status();
+    seed = static_cast<std::uint64_t>(*value);
+    return Status::ok();
+}
+
+// A list of workspace paths: one string or an array of 1..64 strings.
+Result<std::vector<std::string>> path_list_field(const json& body, const char* name) {
+    const auto it = body.find(name);
+    if (it != body.end() && it->is_string())
+        return std::vector<std::string>{it->get<std::string>()};
+    const std::string refusal = std::string(name) + ": missing (a path or an array of 1..64 paths)";
+    if (it == body.end() || !it->is_array() || it->empty() || it->size() > 64)
+        return invalid_argument(refusal);
+    std::vector<std::string> paths;
+    for (const json& p : *it) {
+        if (!p.is_string()) return invalid_argument(refusal);
+        paths.push_back(p.get<std::string>());
+    }
+    return paths;
 }
 
 // A brush stroke: "points", "width" (default 40 px), "comb" (default false).
@@ -123,6 +169,30 @@ Result<paint::Stroke> stroke_field(const json& body) {
     const auto comb = body.find("comb");
     stroke.comb = comb != body.end() && comb->is_boolean() && comb->get<bool>();
     return stroke;
+}
+
+// Sets the option `key` of a module's option table (the CLI's flag names) from a JSON number
+// with the module's own checks; nullopt when the table has no such key.
+template <class Options, class Spec>
+std::optional<Status> set_table_key(Options& options, std::span<const Spec> specs,
+                                    const std::string& key, const json& value) {
+    for (const Spec& spec : specs) {
+        if (spec.name != key) continue;
+        if (!value.is_number()) return invalid_argument(key + ": must be a number");
+        return set_option(options, spec, value.get<double>());
+    }
+    return std::nullopt;
+}
+
+// A region drawn as a polygon (canvas pixels) under `name`: its region image, `width` × `height`.
+Result<Image> region_field(const json& body, const char* name, int width, int height) {
+    auto points = points_field(body, name, 3);
+    if (!points.ok()) return points.status();
+    std::vector<paint::StrokePoint> polygon;
+    for (const sketch::Vec2& p : *points) {
+        polygon.push_back({static_cast<float>(p.x), static_cast<float>(p.y)});
+    }
+    return paint::polygon_mask(std::span(&polygon, 1), width, height);
 }
 
 std::string content_type_of(const std::string& path) {
@@ -176,6 +246,7 @@ json sketch_state(const SketchSession& sketch) {
 // The tool state of one client (one browser tab).
 struct ClientState {
     std::mutex mutex;
+    std::uint64_t used = 0;  ///< When it was last asked for (the server's request count).
     SketchSession sketch;
     std::optional<PaintSession> paint;
     std::optional<BrushSession> brush;
@@ -185,7 +256,9 @@ struct ClientState {
 
 struct StudioServer::Impl {
     Impl(const StudioOptions& o, Workspace w)
-        : options(o), workspace(std::move(w)), jobs(o.max_jobs_per_client, o.threads) {}
+        : options(o),
+          workspace(std::move(w)),
+          jobs(o.max_jobs_per_client, o.threads, o.max_finished_jobs) {}
 
     StudioOptions options;
     Workspace workspace;
@@ -220,12 +293,22 @@ struct StudioServer::Impl {
         return id;
     }
 
+    /// The client's state, made on its first request. Beyond options.max_clients the client
+    /// unused longest is forgotten (a request of it still running keeps its state until done).
     std::shared_ptr<ClientState> client(const std::string& id) {
         std::lock_guard lock(clients_mutex);
+        if (!clients.contains(id) && clients.size() >= options.max_clients) {
+            const auto oldest = std::min_element(
+                clients.begin(), clients.end(),
+                [](const auto& a, const auto& b) { return a.second->used < b.second->used; });
+            clients.erase(oldest);
+        }
         auto& state = clients[id];
         if (!state) state = std::make_shared<ClientState>();
+        state->used = ++client_requests;
         return state;
     }
+    std::uint64_t client_requests = 0;  ///< Under clients_mutex.
 
     // Runs `handler(state)` under the client's lock.
     template <typename Handler>
@@ -276,14 +359,38 @@ struct StudioServer::Impl {
                                             Response& res) const;
     void add_paint_routes();
     void add_brush_routes();
+    void add_fill_route();
     template <class Session>
     void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
     void add_job_routes();
-    /// A job's files by field (stylize: style, source, target, output; noisy: exemplar,
-    /// reference, output): resolved in the workspace by the route.
-    using JobPaths = std::map<std::string, std::filesystem::path>;
+    /// A job's files by field, resolved in the workspace by the route: one path per field
+    /// (stylize: style, source, target, output; noisy: exemplar, reference, output; stylit:
+    /// exemplar, output) and lists of paths (stylit: source, target).
+    /// The frame files of a range job's pattern (a workspace path with one %d conversion)
+    /// formatted for first..last, each resolved in the workspace.
+    struct FrameFiles {
+        int first = 0;
+        std::vector<std::string> relative;  ///< As the client names them.
+        std::vector<std::string> absolute;  ///< Resolved.
+    };
+    struct JobPaths {
+        std::map<std::string, std::filesystem::path> one;
+        std::map<std::string, std::vector<std::string>> lists;
+        std::map<std::string, FrameFiles> patterns;
+        const std::filesystem::path& at(const std::string& field) const { return one.at(field); }
+        bool contains(const std::string& field) const {
+            return one.contains(field) || lists.contains(field) || patterns.contains(field);
+        }
+    };
     Result<JobWork> stylize_work(const json& body, const JobPaths& paths);
     Result<JobWork> noisy_work(const json& body, const JobPaths& paths);
+    Result<JobWork> stylit_work(const json& body, const JobPaths& paths);
+    Result<JobWork> animate_work(const json& body, const JobPaths& paths);
+    Result<JobWork> fluid_simulate_work(const json& body, const JobPaths& paths);
+    Result<JobWork> fluid_work(const json& body, const JobPaths& paths);
+    Result<JobWork> npr_work(const json& body, const JobPaths& paths);
+    static Status check_job_keys(const json& body, const JobPaths& paths,
+                                 std::initializer_list<std::string_view> known, const char* kind);
 };
 
 void StudioServer::Impl::add_routes() {
@@ -317,6 +424,7 @@ void StudioServer::Impl::add_routes() {
     add_brush_routes();
     add_canvas_routes("paint", &ClientState::paint);
     add_canvas_routes("brush", &ClientState::brush);
+    add_fill_route();
     add_job_routes();
 }
 
@@ -546,6 +654,44 @@ void StudioServer::Impl::add_brush_routes() {
     });
 }
 
+void StudioServer::Impl::add_fill_route() {
+    http->route("POST", "/api/brush/fill", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        paint::FeatureFillOptions fill_options;
+        for (const auto& [key, value] : body->items()) {
+            if (key == "source" || key == "target") continue;
+            if (key == "usage") {
+                auto usage = value.is_string() ? parse_usage_strategy(value.get<std::string>())
+                                               : invalid_argument("must be a string");
+                if (!usage.ok()) return fail(res, 400, "usage: " + usage.status().message());
+                fill_options.usage = *usage;
+                continue;
+            }
+            if (key == "seed") {
+                const Status seed = read_seed(*body, fill_options.seed);
+                if (!seed.is_ok()) return fail(res, seed);
+                continue;
+            }
+            const auto set =
+                set_table_key(fill_options, paint::feature_fill_option_specs(), key, value);
+            if (!set) return fail(res, 400, key + ": unknown option of the fill");
+            if (!set->is_ok()) return fail(res, *set);
+        }
+        with_client(req, res, [&](ClientState& c) {
+            if (!c.brush) return fail(res, 409, "no painting: POST /api/brush/start first");
+            auto source = region_field(*body, "source", c.brush->palette().width(),
+                                       c.brush->palette().height());
+            if (!source.ok()) return fail(res, source.status());
+            auto target = region_field(*body, "target", c.brush->width(), c.brush->height());
+            if (!target.ok()) return fail(res, target.status());
+            auto changed = c.brush->fill(*source, *target, fill_options, interactive_context());
+            if (!changed.ok()) return fail(res, changed.status());
+            answer_rgba(res, c.brush->image(), *changed);
+        });
+    });
+}
+
 namespace {
 
 // A job's output must be an image the atomic writers know.
@@ -578,12 +724,10 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPath
     auto quality = parse_quality(body.value("quality", std::string("default")));
     if (!quality.ok()) return quality.status();
     SynthesisOptions synthesis = SynthesisOptions::preset(*quality);
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    synthesis.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, synthesis.seed));
     EXEMPLAR_RETURN_IF_ERROR(validate_input(input, synthesis));
     return JobWork([input = std::move(input), synthesis, path = paths.at("output").string()](
-                       const RunContext& context) mutable -> Status {
+                       const RunContext& context, const OutputSink&) mutable -> Status {
         auto result = synthesize(std::move(input), synthesis, context);
         if (!result.ok()) return result.status();
         return save_image(result->image, path);
@@ -607,14 +751,11 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
             noisy_options.filter = *filter;
             continue;
         }
-        const noisy::NoisyOptionSpec* spec = noisy::find_noisy_option(key);
-        if (spec == nullptr) return invalid_argument(key + ": unknown option of a noisy job");
-        if (!value.is_number()) return invalid_argument(key + ": must be a number");
-        EXEMPLAR_RETURN_IF_ERROR(noisy::set_option(noisy_options, *spec, value.get<double>()));
+        const auto set = set_table_key(noisy_options, noisy::noisy_option_specs(), key, value);
+        if (!set) return invalid_argument(key + ": unknown option of a noisy job");
+        EXEMPLAR_RETURN_IF_ERROR(*set);
     }
-    auto seed = number_field(body, "seed", 1.0, 0.0, 1e15);
-    if (!seed.ok()) return seed.status();
-    noisy_options.seed = static_cast<std::uint64_t>(*seed);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, noisy_options.seed));
     auto frame = number_field(body, "frame", 0.0, 0.0, 1e9);
     if (!frame.ok()) return frame.status();
     if (*frame != std::floor(*frame)) return invalid_argument("frame: must be an integer");
@@ -627,11 +768,467 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
     input.reference = std::move(*reference);
     EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
     return JobWork([exemplar = std::move(*exemplar), input = std::move(input), noisy_options,
-                    index = static_cast<std::int64_t>(*frame),
-                    path = paths.at("output").string()](const RunContext& context) -> Status {
+                    index = static_cast<std::int64_t>(*frame), path = paths.at("output").string()](
+                       const RunContext& context, const OutputSink&) -> Status {
         auto image = noisy::synthesize_frame(exemplar, input, noisy_options, index, context);
         if (!image.ok()) return image.status();
         return save_image(*image, path);
+    });
+}
+
+// A StyLit job (the call `exemplar stylit` makes): the painting `exemplar` over the target
+// render, guided by both renders' light-path buffers; `source` and `target` are each a list of
+// buffer files in guide order, or one folder of `exemplar render` or one multi-layer EXR (a
+// string) whose files or layers `preset` (or `layers`) names. Every input is loaded and checked
+// here; the work is stylize_render and the atomic write of its image.
+Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths& paths) {
+    EXEMPLAR_RETURN_IF_ERROR(check_job_keys(
+        body, paths, {"preset", "layers", "quality", "usage", "seed", "guidance-weight", "preview"},
+        "a stylit job"));
+    StylitOptions stylit;
+    auto quality = quality_field(body);
+    if (!quality.ok()) return quality.status();
+    if (*quality) stylit.synthesis = SynthesisOptions::preset(**quality);
+    if (body.contains("usage")) {
+        auto usage = text_field(body, "usage");
+        if (!usage.ok()) return usage.status();
+        auto strategy = parse_usage_strategy(*usage);
+        if (!strategy.ok()) return invalid_argument("usage: " + strategy.status().message());
+        stylit.synthesis.usage = *strategy;
+    }
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, stylit.synthesis.seed));
+    auto weight = number_field(body, "guidance-weight", 2.0, 0.0, 100.0);
+    if (!weight.ok()) return weight.status();
+    stylit.guidance_weight = static_cast<float>(*weight);
+    const auto preview = body.find("preview");
+    if (preview != body.end() && !preview->is_boolean())
+        return invalid_argument("preview: must be true or false");
+    stylit.preview = preview != body.end() && preview->get<bool>();
+    Result<LayerPreset> preset = invalid_argument("");
+    if (body.contains("layers")) {
+        auto layers = text_field(body, "layers");
+        if (!layers.ok()) return layers.status();
+        preset = custom_layer_preset(*layers);
+    } else {
+        auto name = body.contains("preset") ? text_field(body, "preset")
+                                            : Result<std::string>(std::string("exemplar"));
+        if (!name.ok()) return name.status();
+        preset = find_layer_preset(*name);
+    }
+    if (!preset.ok()) return invalid_argument("preset: " + preset.status().message());
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
+
+    auto exemplar = load_image(paths.at("exemplar").string());
+    if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
+    auto source = load_lpe_buffers(paths.lists.at("source"), *preset);
+    if (!source.ok()) return invalid_argument("source: " + source.status().message());
+    auto target = load_lpe_buffers(paths.lists.at("target"), *preset);
+    if (!target.ok()) return invalid_argument("target: " + target.status().message());
+    auto input = stylit_input(*exemplar, *source, *target, stylit);
+    if (!input.ok()) return input.status();
+    EXEMPLAR_RETURN_IF_ERROR(validate_input(*input, stylit.synthesis));
+    return JobWork([exemplar = std::move(*exemplar), source = std::move(*source),
+                    target = std::move(*target), stylit, path = paths.at("output").string()](
+                       const RunContext& context, const OutputSink&) -> Status {
+        auto result = stylize_render(exemplar, source, target, stylit, context);
+        if (!result.ok()) return result.status();
+        return save_image(result->synthesis.image, path);
+    });
+}
+
+namespace {
+
+constexpr int kMaxFrames = 1000;
+
+// "first" and "last" of a frame-range job: integers, first <= last, at most kMaxFrames frames.
+Result<std::pair<int, int>> frame_range(const json& body) {
+    auto first = number_field(body, "first", 0.0, 0.0, 1e6);
+    if (!first.ok()) return first.status();
+    auto last = number_field(body, "last", std::nullopt, 0.0, 1e6);
+    if (!last.ok()) return last.status();
+    if (*first != std::floor(*first)) return invalid_argument("first: must be an integer");
+    if (*last != std::floor(*last)) return invalid_argument("last: must be an integer");
+    if (*last < *first || *last - *first >= kMaxFrames) {
+        return invalid_argument("last: " + json(*last).dump() + " is invalid (must be first.." +
+                                "first + " + std::to_string(kMaxFrames - 1) + ")");
+    }
+    return std::pair{static_cast<int>(*first), static_cast<int>(*last)};
+}
+
+}  // namespace
+
+// An animate job (TCIA, the call `exemplar animate` makes for a job whose flows are estimated):
+// the frames `frames` (a pattern) first..last stylized by the pair `style-input` →
+// `style-output`; each output frame is written to `output` (a pattern) as soon as it is final
+// (the library hands them over from the last to the first).
+Result<JobWork> StudioServer::Impl::animate_work(const json& body, const JobPaths& paths) {
+    animate::AnimateOptions animate_options;
+    EXEMPLAR_RETURN_IF_ERROR(check_job_keys(body, paths,
+                                            {"first", "last", "quality", "seed", "levels",
+                                             "input-weight", "output-weight", "temporal-weight"},
+                                            "an animate job"));
+    auto quality = quality_field(body);
+    if (!quality.ok()) return quality.status();
+    if (*quality) animate_options.synthesis = animate::animate_synthesis_options(**quality);
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, animate_options.synthesis.seed));
+    const std::pair<const char*, float*> weights[] = {
+        {"input-weight", &animate_options.input_weight},
+        {"output-weight", &animate_options.output_weight},
+        {"temporal-weight", &animate_options.temporal_weight}};
+    for (const auto& [name, field] : weights) {
+        auto weight = number_field(body, name, *field, 0.0, 100.0);
+        if (!weight.ok()) return weight.status();
+        *field = static_cast<float>(*weight);
+    }
+    auto levels = number_field(body, "levels", animate_options.levels, 1.0, 8.0);
+    if (!levels.ok()) return levels.status();
+    if (*levels != std::floor(*levels)) return invalid_argument("levels: must be an integer");
+    animate_options.levels = static_cast<int>(*levels);
+    animate_options.keep_frames = false;
+
+    const FrameFiles& frames = paths.patterns.at("frames");
+    const FrameFiles& outputs = paths.patterns.at("output");
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+    animate::AnimationInput input;
+    const std::pair<const char*, Image*> styles[] = {{"style-input", &input.style_input},
+                                                     {"style-output", &input.style_output}};
+    for (const auto& [field, image] : styles) {
+        auto loaded = load_image(paths.at(field).string());
+        if (!loaded.ok())
+            return invalid_argument(std::string(field) + ": " + loaded.status().message());
+        *image = std::move(*loaded);
+    }
+    input.frame_count = static_cast<int>(frames.absolute.size());
+    input.frame = [files = frames.absolute](int t) -> Result<Image> {
+        auto frame = load_image(files[static_cast<std::size_t>(t)]);
+        if (!frame.ok()) return invalid_argument("frames: " + frame.status().message());
+        return frame;
+    };
+    for (std::size_t k = 0; k < frames.absolute.size(); ++k) {
+        if (!std::filesystem::is_regular_file(frames.absolute[k]))
+            return invalid_argument("frames: " + frames.relative[k] + ": no such file");
+    }
+    EXEMPLAR_RETURN_IF_ERROR(animate::validate(input, animate_options));
+    return JobWork([input = std::move(input), animate_options, outputs, first = frames.first](
+                       const RunContext& context, const OutputSink& wrote) mutable -> Status {
+        animate_options.on_frame = [&](int t, const Image& image) -> Status {
+            const auto k = static_cast<std::size_t>(t);
+            EXEMPLAR_RETURN_IF_ERROR(save_image(image, outputs.absolute[k]));
+            wrote(first + t, outputs.relative[k]);
+            return Status::ok();
+        };
+        return animate::animate(input, animate_options, context).status();
+    });
+}
+
+// Refuses keys of `body` that are not `kind`, the job's files or one of `known`.
+Status StudioServer::Impl::check_job_keys(const json& body, const JobPaths& paths,
+                                          std::initializer_list<std::string_view> known,
+                                          const char* kind) {
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) ||
+            std::find(known.begin(), known.end(), key) != known.end()) {
+            continue;
+        }
+        return invalid_argument(key + ": unknown option of " + kind);
+    }
+    return Status::ok();
+}
+
+// A fluid-simulate job (`exemplar fluid simulate --scene plume`): the built-in plume in a
+// `width` × `height` domain simulated for frames 0..last; frames first..last are written, the
+// alpha mask to `alpha` and the forward motion to `motion` (patterns; .flo or .exr), each
+// atomically as it comes.
+Result<JobWork> StudioServer::Impl::fluid_simulate_work(const json& body, const JobPaths& paths) {
+    EXEMPLAR_RETURN_IF_ERROR(check_job_keys(
+        body, paths, {"scene", "width", "height", "first", "last"}, "a fluid-simulate job"));
+    const std::string scene_name = body.value("scene", std::string("plume"));
+    if (scene_name != "plume") {
+        return invalid_argument("scene: \"" + scene_name + "\" is invalid (must be plume)");
+    }
+    auto width = number_field(body, "width", 256.0, 8, kMaxCanvas);
+    if (!width.ok()) return width.status();
+    auto height = number_field(body, "height", 256.0, 8, kMaxCanvas);
+    if (!height.ok()) return height.status();
+    const fluid::FluidScene scene =
+        fluid::plume_scene(static_cast<int>(*width), static_cast<int>(*height));
+    EXEMPLAR_RETURN_IF_ERROR(fluid::validate(scene));
+    const FrameFiles& alpha = paths.patterns.at("alpha");
+    const FrameFiles& motion = paths.patterns.at("motion");
+    if (!check_image_output(alpha.absolute.front()).is_ok())
+        return invalid_argument("alpha: must end in .png or .jpg");
+    const std::string motion_type =
+        std::filesystem::path(motion.relative.front()).extension().string();
+    if (motion_type != ".flo" && motion_type != ".exr")
+        return invalid_argument("motion: must end in .flo or .exr");
+    return JobWork(
+        [scene, alpha, motion](const RunContext& context, const OutputSink& wrote) -> Status {
+            const int frames = alpha.first + static_cast<int>(alpha.absolute.size());
+            return fluid::simulate(
+                scene, frames,
+                [&](int frame, const Image& mask, const Image& flow) -> Status {
+                    context.report(
+                        {.stage = "simulate", .fraction = static_cast<double>(frame + 1) / frames});
+                    if (frame < alpha.first) return Status::ok();
+                    const auto k = static_cast<std::size_t>(frame - alpha.first);
+                    EXEMPLAR_RETURN_IF_ERROR(save_flow(flow, motion.absolute[k]));
+                    EXEMPLAR_RETURN_IF_ERROR(save_image(mask, alpha.absolute[k]));
+                    wrote(frame, alpha.relative[k]);
+                    return Status::ok();
+                },
+                context);
+        });
+}
+
+// A fluid job (LazyFluids, what `exemplar fluid` does with a still RGBA exemplar): frames
+// first..last of the target alpha masks `alpha` and motion `motion` (patterns) are synthesized
+// in order, each written atomically to `output` (a pattern) and read back as the next frame's
+// previous output, as the command does, so the frames are its bytes. A frame before `first`
+// whose output and motion exist is the first frame's previous output (a range continued).
+Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths& paths) {
+    fluid::FluidOptions fluid_options;
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
+            key == "seed") {
+            continue;
+        }
+        if (key == "usage") {
+            if (value != "uniform" && value != "none")
+                return invalid_argument("usage: must be uniform or none");
+            fluid_options.uniform_usage = value == "uniform";
+            continue;
+        }
+        if (key == "rotations") {
+            if (!value.is_boolean()) return invalid_argument("rotations: must be true or false");
+            fluid_options.rotations = value.get<bool>();
+            continue;
+        }
+        const auto set = set_table_key(fluid_options, fluid::fluid_option_specs(), key, value);
+        if (!set) return invalid_argument(key + ": unknown option of a fluid job");
+        EXEMPLAR_RETURN_IF_ERROR(*set);
+    }
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, fluid_options.synthesis.seed));
+    EXEMPLAR_RETURN_IF_ERROR(fluid::validate(fluid_options));
+    auto exemplar = load_image(paths.at("exemplar").string());
+    if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
+    if (exemplar->channels() != 4)
+        return invalid_argument("exemplar: needs an alpha channel (RGBA)");
+    const FrameFiles& alpha = paths.patterns.at("alpha");
+    const FrameFiles& motion = paths.patterns.at("motion");
+    const FrameFiles& outputs = paths.patterns.at("output");
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+    // Every alpha mask and the motion between them exist before anything runs.
+    for (std::size_t k = 0; k < alpha.absolute.size(); ++k) {
+        if (!std::filesystem::is_regular_file(alpha.absolute[k]))
+            return invalid_argument("alpha: " + alpha.relative[k] + ": no such file");
+        if (k + 1 < alpha.absolute.size() && !std::filesystem::is_regular_file(motion.absolute[k]))
+            return invalid_argument("motion: " + motion.relative[k] + ": no such file");
+    }
+    // The frame before the range, when it was made: its output and its motion to `first`.
+    std::optional<std::pair<std::string, std::string>> before;
+    if (alpha.first > 0) {
+        auto text = [&](const char* field) { return body.value(field, std::string()); };
+        auto output = video::format_frame_path(text("output"), alpha.first - 1);
+        auto flow = video::format_frame_path(text("motion"), alpha.first - 1);
+        if (output.ok() && flow.ok()) {
+            auto output_path = workspace.resolve(*output);
+            auto flow_path = workspace.resolve(*flow);
+            if (output_path.ok() && flow_path.ok() &&
+                std::filesystem::is_regular_file(*output_path) &&
+                std::filesystem::is_regular_file(*flow_path)) {
+                before.emplace(output_path->string(), flow_path->string());
+            }
+        }
+    }
+    return JobWork([exemplar = std::move(*exemplar), fluid_options, alpha, motion, outputs, before](
+                       const RunContext& context, const OutputSink& wrote) -> Status {
+        std::optional<Image> previous;
+        std::optional<Image> previous_motion;
+        if (before) {
+            auto image = load_image(before->first);
+            if (!image.ok()) return image.status();
+            auto flow = load_flow(before->second);
+            if (!flow.ok()) return flow.status();
+            previous = std::move(*image);
+            previous_motion = std::move(*flow);
+        }
+        const auto count = alpha.absolute.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            if (context.cancelled()) return cancelled();
+            auto mask = load_image(alpha.absolute[k]);
+            if (!mask.ok()) return mask.status();
+            std::optional<Image> own_motion;
+            if (fluid_options.motion_blur > 0.0f && k + 1 < count) {
+                auto flow = load_flow(motion.absolute[k]);
+                if (!flow.ok()) return flow.status();
+                own_motion = std::move(*flow);
+            }
+            fluid::FluidFrameInput input;
+            input.exemplar = &exemplar;
+            input.target_alpha = &*mask;
+            input.previous_output = previous ? &*previous : nullptr;
+            input.previous_motion = previous_motion ? &*previous_motion : nullptr;
+            input.motion = own_motion ? &*own_motion : nullptr;
+            RunContext frame_context = context;
+            frame_context.progress = [&](const ProgressEvent& event) {
+                ProgressEvent overall = event;
+                overall.fraction = (static_cast<double>(k) + event.fraction) / count;
+                context.report(overall);
+            };
+            auto frame = fluid::synthesize_fluid_frame(input, fluid_options, frame_context);
+            if (!frame.ok()) return frame.status();
+            EXEMPLAR_RETURN_IF_ERROR(save_image(frame->rgba, outputs.absolute[k]));
+            wrote(alpha.first + static_cast<int>(k), outputs.relative[k]);
+            // The next frame continues from the file, as `exemplar fluid` does.
+            auto stored = load_image(outputs.absolute[k]);
+            if (!stored.ok()) return stored.status();
+            previous = std::move(*stored);
+            if (k + 1 < count) {
+                auto flow = load_flow(motion.absolute[k]);
+                if (!flow.ok()) return flow.status();
+                previous_motion = std::move(*flow);
+            }
+        }
+        return Status::ok();
+    });
+}
+
+namespace {
+
+// Buffer `name` of a render frame folder as `exemplar npr` looks for it: NAME.exr (linear
+// light) or NAME.png (sRGB-encoded values); "" when neither is there.
+std::string render_buffer_file(const std::filesystem::path& folder, const std::string& name) {
+    for (const char* extension : {".exr", ".png"}) {
+        const std::filesystem::path path = folder / (name + extension);
+        if (std::filesystem::is_regular_file(path)) return path.string();
+    }
+    return "";
+}
+
+Status missing_buffer(const std::string& folder, const std::string& name) {
+    return invalid_argument("frames: " + folder + ": missing buffer '" + name + "' (" + name +
+                            ".png or " + name + ".exr)");
+}
+
+}  // namespace
+
+// An npr job (image-space stippling and hatching, what `exemplar npr` does without --paper and
+// --bidirectional): the frame folders `frames` (a pattern of `exemplar render --frames` folders)
+// first..last styled with `pattern` in order, each frame continuing from the one before; each
+// output is written atomically to `output` (a pattern) with its synthesis state beside it
+// (OUT.state.exr, as the command writes it, so the command can continue the range), and a
+// finished frame just before the range hands its state over, as the command does.
+Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& paths) {
+    npr::NprOptions npr_options;
+    for (const auto& [key, value] : body.items()) {
+        if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
+            key == "seed") {
+            continue;
+        }
+        if (key == "style" || key == "tone" || key == "orientation") {
+            if (!value.is_string()) return invalid_argument(key + ": must be a string");
+            const std::string text = value.get<std::string>();
+            if (key == "style") {
+                auto style = npr::parse_style(text);
+                if (!style.ok()) return style.status();
+                npr_options.style = *style;
+            } else {
+                (key == "tone" ? npr_options.tone : npr_options.orientation) = text;
+            }
+            continue;
+        }
+        if (key == "lines" || key == "tone-correction") {
+            if (!value.is_boolean()) return invalid_argument(key + ": must be true or false");
+            (key == "lines" ? npr_options.lines : npr_options.tone_correction) = value.get<bool>();
+            continue;
+        }
+        if (key == "paper-grain" || key == "erosion") {
+            return invalid_argument(key +
+                                    ": belongs to the paper layer, which is exemplar npr's "
+                                    "(--paper) for now");
+        }
+        const auto set = set_table_key(npr_options, npr::npr_option_specs(), key, value);
+        if (!set) return invalid_argument(key + ": unknown option of an npr job");
+        EXEMPLAR_RETURN_IF_ERROR(*set);
+    }
+    EXEMPLAR_RETURN_IF_ERROR(read_seed(body, npr_options.seed));
+    EXEMPLAR_RETURN_IF_ERROR(npr::validate(npr_options));
+    const FrameFiles& folders = paths.patterns.at("frames");
+    const FrameFiles& outputs = paths.patterns.at("output");
+    EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+    for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
+        if (!std::filesystem::is_directory(folders.absolute[k])) {
+            return invalid_argument("frames: " + folders.relative[k] +
+                                    ": no such frame folder (from exemplar render --frames)");
+        }
+    }
+    auto pattern_image = load_image(paths.at("pattern").string());
+    if (!pattern_image.ok())
+        return invalid_argument("pattern: " + pattern_image.status().message());
+    auto pattern = npr::prepare_pattern(*pattern_image, npr_options, RunContext(options.threads));
+    if (!pattern.ok()) return invalid_argument("pattern: " + pattern.status().message());
+    // The state of a finished frame just before the range.
+    std::optional<std::string> before;
+    if (folders.first > 0) {
+        auto name =
+            video::format_frame_path(body.value("output", std::string()), folders.first - 1);
+        if (name.ok()) {
+            auto path = workspace.resolve(*name + ".state.exr");
+            if (path.ok() && std::filesystem::is_regular_file(*path)) before = path->string();
+        }
+    }
+    // Every buffer the frames read is there before anything runs.
+    for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
+        for (const npr::BufferNeed& need : npr::needed_buffers(npr_options, k > 0 || before)) {
+            const std::filesystem::path folder = folders.absolute[k];
+            if (render_buffer_file(folder, need.name).empty())
+                return missing_buffer(folders.relative[k], need.name);
+        }
+    }
+    return JobWork([pattern = std::move(*pattern), npr_options, folders, outputs, before](
+                       const RunContext& context, const OutputSink& wrote) -> Status {
+        std::optional<npr::FrameState> previous;
+        if (before) {
+            auto packed = load_image(*before);
+            if (!packed.ok()) return packed.status();
+            auto state = npr::unpack_state(pattern, *packed);
+            if (!state.ok()) return state.status();
+            previous = std::move(*state);
+        }
+        const auto count = folders.absolute.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            const int n = folders.first + static_cast<int>(k);
+            npr::NprFrame frame;
+            for (const npr::BufferNeed& need :
+                 npr::needed_buffers(npr_options, previous.has_value())) {
+                const std::string file = render_buffer_file(folders.absolute[k], need.name);
+                if (file.empty()) return missing_buffer(folders.relative[k], need.name);
+                auto buffer = load_image(file);
+                if (!buffer.ok()) return buffer.status();
+                frame[need.role] = std::move(*buffer);
+                if (need.role == npr::BufferRole::Tone) frame.tone_linear = file.ends_with(".exr");
+            }
+            RunContext frame_context = context;
+            frame_context.progress = [&](const ProgressEvent& event) {
+                ProgressEvent overall = event;
+                overall.fraction = (static_cast<double>(k) + event.fraction) / count;
+                context.report(overall);
+            };
+            auto styled = npr::stylize_frame(pattern, frame, previous ? &*previous : nullptr, n,
+                                             npr_options, frame_context);
+            if (!styled.ok()) {
+                return Status(styled.status().code(),
+                              folders.relative[k] + ": " + styled.status().message());
+            }
+            SaveOptions state_options;
+            state_options.format = PixelFormat::Float;
+            EXEMPLAR_RETURN_IF_ERROR(save_image(npr::pack_state(styled->state),
+                                                outputs.absolute[k] + ".state.exr", state_options));
+            EXEMPLAR_RETURN_IF_ERROR(save_image(styled->image, outputs.absolute[k]));
+            wrote(n, outputs.relative[k]);
+            previous = std::move(styled->state);
+        }
+        return Status::ok();
     });
 }
 
@@ -643,25 +1240,79 @@ void StudioServer::Impl::add_job_routes() {
         if (!body) return;
         const std::string kind = body->value("kind", std::string());
         using Fields = std::vector<const char*>;
-        const std::map<std::string, Fields> files = {
-            {"stylize", {"style", "source", "target", "output"}},
-            {"noisy", {"exemplar", "reference", "output"}}};
-        const auto kind_files = files.find(kind);
-        if (kind_files == files.end())
-            return fail(res, 400, "kind: \"" + kind + "\" is invalid (must be stylize or noisy)");
+        struct Kind {
+            Fields files;       ///< One path each.
+            Fields file_lists;  ///< A path or a list of paths each.
+            Result<JobWork> (Impl::*work)(const json&, const JobPaths&);
+        };
+        // Frame patterns (range jobs): "frames", "output" formatted for first..last.
+        using Patterns = std::vector<const char*>;
+        const std::map<std::string, Patterns> patterns = {{"animate", {"frames", "output"}},
+                                                          {"fluid-simulate", {"alpha", "motion"}},
+                                                          {"fluid", {"alpha", "motion", "output"}},
+                                                          {"npr", {"frames", "output"}}};
+        const std::map<std::string, Kind> kinds = {
+            {"stylize", {{"style", "source", "target", "output"}, {}, &Impl::stylize_work}},
+            {"noisy", {{"exemplar", "reference", "output"}, {}, &Impl::noisy_work}},
+            {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
+            {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
+            {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
+            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}},
+            {"npr", {{"pattern"}, {}, &Impl::npr_work}}};
+        const auto found = kinds.find(kind);
+        if (found == kinds.end()) {
+            return fail(res, 400,
+                        "kind: \"" + kind +
+                            "\" is invalid (must be stylize, noisy, stylit, animate, "
+                            "fluid-simulate, fluid or npr)");
+        }
         // Every path is checked before anything is read: a refusal is 403.
         JobPaths paths;
-        for (const char* field : kind_files->second) {
+        const auto resolve = [&](const char* field, const std::string& name) {
+            auto path = workspace.resolve(name);
+            if (!path.ok()) fail(res, 403, std::string(field) + ": " + path.status().message());
+            return path;
+        };
+        for (const char* field : found->second.files) {
             auto name = text_field(*body, field);
             if (!name.ok()) return fail(res, name.status());
-            auto path = workspace.resolve(*name);
-            if (!path.ok())
-                return fail(res, 403, std::string(field) + ": " + path.status().message());
-            paths[field] = *path;
+            auto path = resolve(field, *name);
+            if (!path.ok()) return;
+            paths.one[field] = *path;
         }
-        auto work = kind == "stylize" ? stylize_work(*body, paths) : noisy_work(*body, paths);
+        for (const char* field : found->second.file_lists) {
+            auto names = path_list_field(*body, field);
+            if (!names.ok()) return fail(res, names.status());
+            for (const std::string& name : *names) {
+                auto path = resolve(field, name);
+                if (!path.ok()) return;
+                paths.lists[field].push_back(path->string());
+            }
+        }
+        if (const auto p = patterns.find(kind); p != patterns.end()) {
+            auto range = frame_range(*body);
+            if (!range.ok()) return fail(res, range.status());
+            for (const char* field : p->second) {
+                auto pattern = text_field(*body, field);
+                if (!pattern.ok()) return fail(res, pattern.status());
+                FrameFiles& files = paths.patterns[field];
+                files.first = range->first;
+                for (int n = range->first; n <= range->second; ++n) {
+                    auto name = video::format_frame_path(*pattern, n);
+                    if (!name.ok())
+                        return fail(res, 400, std::string(field) + ": " + name.status().message());
+                    auto path = resolve(field, *name);
+                    if (!path.ok()) return;
+                    files.relative.push_back(*name);
+                    files.absolute.push_back(path->string());
+                }
+            }
+        }
+        auto work = (this->*found->second.work)(*body, paths);
         if (!work.ok()) return fail(res, 400, work.status().message());
         const std::string output = body->value("output", std::string());
+        // A StyLit run replaces the client's previous one (the tool runs again on every change).
+        if (kind == "stylit") jobs.supersede(id, kind);
         auto job = jobs.start(id, kind, output, std::move(*work));
         if (!job.ok()) return fail(res, 429, job.status().message());
         answer(res, 202, {{"id", (*job)->id}});
@@ -703,6 +1354,9 @@ Result<std::unique_ptr<StudioServer>> StudioServer::create(const StudioOptions& 
     if (options.max_jobs_per_client < 1 || options.max_jobs_per_client > 16) {
         return invalid_argument("max-jobs: " + std::to_string(options.max_jobs_per_client) +
                                 " is invalid (must be 1..16)");
+    }
+    if (options.max_finished_jobs < 1 || options.max_clients < 1) {
+        return invalid_argument("max_finished_jobs and max_clients: must be at least 1");
     }
     if (options.port < 0 || options.port > 65535) {
         return invalid_argument("port: " + std::to_string(options.port) +

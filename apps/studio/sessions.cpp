@@ -1,5 +1,6 @@
 #include "sessions.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include "exemplar/paint/directions.hpp"
@@ -81,7 +82,7 @@ Result<BrushSession> BrushSession::start(const Image& palette, const paint::Stro
                                          int threads) {
     auto feature = paint::pick_line_feature(palette, selection, options, snap, threads);
     if (!feature.ok()) return feature.status();
-    return BrushSession(std::move(*feature), State{Image(width, height, 4), 0});
+    return BrushSession(palette, std::move(*feature), State{Image(width, height, 4), 0});
 }
 
 Result<paint::PixelRect> BrushSession::stroke(const paint::Stroke& path,
@@ -94,6 +95,27 @@ Result<paint::PixelRect> BrushSession::stroke(const paint::Stroke& path,
     if (!changed.ok()) return changed.status();
     history_.push(State{paint::composite_over(stroke.layer(), now.image), now.strokes + 1});
     return *changed;
+}
+
+Result<paint::PixelRect> BrushSession::fill(const Image& source_region, const Image& target_region,
+                                            const paint::FeatureFillOptions& options,
+                                            const RunContext& context) {
+    const State& now = history_.current();
+    auto filled = paint::fill_with_palette(palette_, source_region, now.image, target_region,
+                                           options, context);
+    if (!filled.ok()) return filled.status();
+    // The region's bounding box: fill_with_palette keeps every pixel outside it.
+    const Image inside = paint::region_mask(target_region);
+    paint::PixelRect box{width(), height(), 0, 0};
+    for (int y = 0; y < height(); ++y) {
+        for (int x = 0; x < width(); ++x) {
+            if (inside.at(x, y, 0) <= 0.5f) continue;
+            box = {std::min(box.x0, x), std::min(box.y0, y), std::max(box.x1, x + 1),
+                   std::max(box.y1, y + 1)};
+        }
+    }
+    history_.push(State{std::move(*filled), now.strokes});
+    return box;
 }
 
 std::vector<paint::StrokePoint> BrushSession::feature_line() const {

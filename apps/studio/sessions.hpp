@@ -9,6 +9,7 @@
 #include "exemplar/core/run_context.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/paint/feature_brush.hpp"
+#include "exemplar/paint/feature_fill.hpp"
 #include "exemplar/paint/paint.hpp"
 #include "exemplar/paint/strokes.hpp"
 #include "exemplar/sketch/beautify.hpp"
@@ -99,9 +100,11 @@ private:
     History<State> history_;
 };
 
-/// Painting by Feature's line-feature brush: a feature picked once in a palette, then strokes
-/// painted with it one over the other, as `exemplar brush` paints its paths (paint_feature: path
-/// k keyed by k, each layer composited over the ones before). Undo/redo by snapshots.
+/// Painting by Feature's line-feature brush and area fill: a feature picked once in a palette,
+/// then strokes painted with it one over the other, as `exemplar brush` paints its paths
+/// (paint_feature: path k keyed by k, each layer composited over the ones before), and regions
+/// filled with the texture of regions of the palette, as `exemplar fill` fills them with the
+/// painting as its canvas. Undo/redo by snapshots.
 class BrushSession {
 public:
     static constexpr std::size_t kHistory = 16;
@@ -117,11 +120,20 @@ public:
     /// returns the rectangle it changed. The painting is unchanged on error. Only the context's
     /// thread count is used: the library's brush reports no progress and cannot be cancelled.
     Result<paint::PixelRect> stroke(const paint::Stroke& path, const RunContext& context);
+    /// Fills the inside of `target_region` (a region image of the painting's size) with the
+    /// texture of the inside of `source_region` (the palette's size) by the content-aware fill
+    /// (paint::fill_with_palette, the painting as the canvas: what is painted around the region
+    /// is continued into it); returns the bounding box of the region, the only pixels that
+    /// change. The painting is unchanged on error (empty regions, options; Cancelled).
+    Result<paint::PixelRect> fill(const Image& source_region, const Image& target_region,
+                                  const paint::FeatureFillOptions& options,
+                                  const RunContext& context);
     bool undo() { return history_.undo(); }
     bool redo() { return history_.redo(); }
     const Image& image() const { return history_.current().image; }
     int width() const { return image().width(); }
     int height() const { return image().height(); }
+    const Image& palette() const { return palette_; }
     /// The feature's centre line in the palette (after snapping), for display.
     std::vector<paint::StrokePoint> feature_line() const;
 
@@ -130,9 +142,12 @@ private:
         Image image;
         std::uint64_t strokes = 0;  ///< Paths painted: the next one's key (paint_feature's k).
     };
-    BrushSession(paint::LineFeature feature, State blank)
-        : feature_(std::move(feature)), history_(std::move(blank), kHistory) {}
+    BrushSession(Image palette, paint::LineFeature feature, State blank)
+        : palette_(std::move(palette)),
+          feature_(std::move(feature)),
+          history_(std::move(blank), kHistory) {}
 
+    Image palette_;
     paint::LineFeature feature_;
     History<State> history_;
 };

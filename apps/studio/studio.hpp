@@ -25,6 +25,12 @@ struct StudioOptions {
     int max_jobs_per_client = 2;
     /// Threads of each library call (0 = all cores).
     int threads = 0;
+    /// Finished jobs remembered (listings, late event streams); older ones are forgotten as
+    /// new jobs start. Default 64; at least 1.
+    std::size_t max_finished_jobs = 64;
+    /// Clients (browser tabs) whose tool state (sketch, painting, brush) is kept; a new one
+    /// beyond this replaces the one unused longest. Default 32; at least 1.
+    std::size_t max_clients = 32;
 };
 
 /// A bound server; `run` serves until `shutdown`.

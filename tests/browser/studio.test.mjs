@@ -2,7 +2,10 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame, then stop the server with SIGINT while a job runs.
+// cancel it, run a noisy frame, three animate frames, fluid targets and frames and three npr
+// frames, run StyLit and paint over its
+// exemplar (the result follows),
+// then stop the server with SIGINT while a job runs.
 //
 // Run by ctest (Browser.Studio) with EXEMPLAR_CLI set to the built command; by hand:
 //   EXEMPLAR_CLI=build/release/exemplar node --test tests/browser/studio.test.mjs
@@ -10,7 +13,7 @@
 // Timings of the last stroke and suggestion are printed (docs/PERFORMANCE.md), never asserted.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -215,6 +218,17 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     assert.ok(vsCanvas.mean < 1 && vsCanvas.far < 0.002,
       `the canvas shows other pixels than the server painted: ${JSON.stringify(vsCanvas)}`);
 
+    // Escape while drawing drops the stroke: nothing is sent, the preview is cleared.
+    const overlayBox = await overlay.boundingBox();
+    await page.mouse.move(overlayBox.x + 30, overlayBox.y + 200);
+    await page.mouse.down();
+    await page.mouse.move(overlayBox.x + 200, overlayBox.y + 220, { steps: 6 });
+    await page.keyboard.press('Escape');
+    await page.mouse.up();
+    assert.equal(await page.evaluate(() => window.studio.paintSent), PAINT_STROKES.length);
+    assert.equal(await page.evaluate(() => document.getElementById('paint-overlay').getContext('2d')
+      .getImageData(100, 210, 1, 1).data[3]), 0, 'the dropped stroke\'s preview is still shown');
+
     // Undo and redo a stroke: the canvas changes and comes back.
     await page.click('#paint-undo');
     await page.waitForFunction(() => document.getElementById('paint-canvas').getContext('2d')
@@ -244,7 +258,24 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
       return opaque;
     });
     assert.ok(brushed > 5000, `the brush stroke covers only ${brushed} pixels`);
+    // Fill: outline a patch of the painted water in the palette, then a region of the painting;
+    // it is filled (opaque) and undo takes it back.
+    await page.selectOption('#brush-tool', 'fill');
+    await drag(page, page.locator('#brush-palette-overlay'), [[90, 36], [170, 40], [170, 72], [100, 62], [90, 38]], 4);
+    const alphaAt = (x, y) => page.evaluate(([px, py]) => document.getElementById('brush-canvas')
+      .getContext('2d').getImageData(px, py, 1, 1).data[3], [x, y]);
+    assert.equal(await alphaAt(470, 290), 0);
+    await drag(page, page.locator('#brush-overlay'), [[400, 240], [560, 250], [540, 340], [390, 330], [400, 242]], 4);
+    await page.waitForFunction(() => window.studio.brush.fills === 1, null, { timeout: 60000 });
+    assert.equal(await alphaAt(470, 290), 255, 'the region is not filled');
+    const fillStatus = await page.textContent('#status');
     await page.locator('#tab-brush').screenshot({ path: path.join(artifacts, 'brush.png') });
+    await page.click('#brush-undo');
+    await page.waitForFunction(() => document.getElementById('brush-canvas').getContext('2d')
+      .getImageData(470, 290, 1, 1).data[3] === 0);
+    await page.click('#brush-redo');
+    await page.waitForFunction(() => document.getElementById('brush-canvas').getContext('2d')
+      .getImageData(470, 290, 1, 1).data[3] === 255);
 
     // Sketch: a wobbly stroke, suggestions on pen-up, Tab cycles, Enter accepts, undo/redo.
     await page.click('nav button[data-tab=sketch]');
@@ -299,10 +330,145 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.waitForSelector('#job-list li[data-state=done] img', { timeout: 120000 });
     assert.ok(fs.existsSync(path.join(workspace, 'outputs', 'noisy.png')));
 
+    // Animate: three frames of the bundled disc (examples/animate) from the third form; each
+    // frame is linked as it is written, and they are `exemplar animate`'s bytes.
+    const animDir = path.join(source, 'examples/animate');
+    const animFrames = ['0000.png', '0001.png', '0002.png'];
+    await page.setInputFiles('#upload', [...animFrames.map((f) => path.join(animDir, 'frames', f)),
+      path.join(animDir, 'style_input.png'), path.join(animDir, 'style_output.png')]);
+    await page.waitForSelector('#file-list a:text("style_output.png")', { state: 'attached' });
+    await page.selectOption('#animate-form select[name="style-input"]', 'style_input.png');
+    await page.selectOption('#animate-form select[name="style-output"]', 'style_output.png');
+    await page.selectOption('#animate-form select[name=quality]', 'fast');
+    await page.click('#animate-form button[type=submit]');
+    await page.waitForFunction(() => {
+      const li = document.querySelector('#job-list li');
+      return li.textContent.includes('outputs/animate/') && li.dataset.state === 'done' && li.querySelector('img');
+    }, null, { timeout: 120000 });
+    assert.equal(await page.locator('#job-list li:first-child .job-frames a').count(), 3);
+    const animJob = path.join(artifacts, 'animate-job.json');
+    fs.writeFileSync(animJob, JSON.stringify({
+      frames: path.join(workspace, '%04d.png'), first: 0, last: 2, flows: 'estimate', quality: 'fast',
+      style: { input: path.join(workspace, 'style_input.png'), output: path.join(workspace, 'style_output.png') },
+      output: path.join(artifacts, 'animate-cli', '%04d.png'),
+    }));
+    fs.rmSync(path.join(artifacts, 'animate-cli'), { recursive: true, force: true });
+    const animCli = spawnSync(exemplarCli, ['animate', animJob, '-q', '-j', '2']);
+    assert.equal(animCli.status, 0, `exemplar animate: ${animCli.stderr}`);
+    for (const f of animFrames) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'animate', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'animate-cli', f))), `animate frame ${f} differs from the command's`);
+    }
+    await page.screenshot({ path: path.join(artifacts, 'jobs-animate.png') });
+
+    // Fluid: plume targets simulated (48x48, frames 0..3), then the bundled ink over frames
+    // 1..3; the frames are `exemplar fluid`'s bytes on the same targets.
+    await page.setInputFiles('#upload', path.join(source, 'examples/fluid/ink.png'));
+    await page.waitForSelector('#file-list a:text("ink.png")', { state: 'attached' });
+    const jobDone = (text) => page.waitForFunction((t) => {
+      const li = document.querySelector('#job-list li');
+      return li.textContent.includes(t) && li.dataset.state === 'done';
+    }, text, { timeout: 120000 });
+    await page.fill('#simulate-form input[name=width]', '48');
+    await page.fill('#simulate-form input[name=height]', '48');
+    await page.fill('#simulate-form input[name=last]', '3');
+    await page.click('#simulate-form button[type=submit]');
+    await jobDone('sim/alpha/%04d.png');
+    await page.selectOption('#fluid-form select[name=exemplar]', 'ink.png');
+    await page.fill('#fluid-form input[name=first]', '1');
+    await page.fill('#fluid-form input[name=last]', '3');
+    await page.click('#fluid-form button[type=submit]');
+    await jobDone('outputs/fluid/%04d.png');
+    assert.equal(await page.locator('#job-list li:first-child .job-frames a').count(), 3);
+    fs.rmSync(path.join(artifacts, 'fluid-cli'), { recursive: true, force: true });
+    const fluidCli = spawnSync(exemplarCli, ['fluid', '-q', '-j', '2', '--exemplar', path.join(workspace, 'ink.png'),
+      '--alpha', path.join(workspace, 'sim/alpha/%04d.png'), '--motion', path.join(workspace, 'sim/motion/%04d.flo'),
+      '--first', '1', '--last', '3', '--seed', '1', '-o', path.join(artifacts, 'fluid-cli', '%04d.png')]);
+    assert.equal(fluidCli.status, 0, `exemplar fluid: ${fluidCli.stderr}`);
+    for (const f of ['0001.png', '0002.png', '0003.png']) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'fluid', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'fluid-cli', f))), `fluid frame ${f} differs from the command's`);
+    }
+    await page.screenshot({ path: path.join(artifacts, 'jobs-fluid.png') });
+
+    // NPR: three frames of Spot zooming (exemplar render, 96x72, into the workspace) stippled
+    // from the fifth form; `exemplar npr`'s bytes.
+    const render = spawnSync(exemplarCli, ['render', '--scene', path.join(source, 'examples/render/spot-zoom.json'),
+      '--width', '96', '--height', '72', '--spp', '1', '--frames', '0-2', '-o', path.join(workspace, 'render', 'frame_%04d'),
+      '-j', '2', '-q']);
+    assert.equal(render.status, 0, `exemplar render: ${render.stderr}`);
+    await page.setInputFiles('#upload', path.join(source, 'examples/npr/stipple.png'));
+    await page.waitForSelector('#file-list a:text("stipple.png")', { state: 'attached' });
+    await page.selectOption('#npr-form select[name=pattern]', 'stipple.png');
+    await page.fill('#npr-form input[name=last]', '2');
+    await page.click('#npr-form button[type=submit]');
+    await jobDone('outputs/npr/%04d.png');
+    fs.rmSync(path.join(artifacts, 'npr-cli'), { recursive: true, force: true });
+    const nprCli = spawnSync(exemplarCli, ['npr', '--pattern', path.join(workspace, 'stipple.png'),
+      '--frames', path.join(workspace, 'render', 'frame_%04d'), '--first', '0', '--last', '2',
+      '-o', path.join(artifacts, 'npr-cli', '%04d.png'), '-j', '2', '-q']);
+    assert.equal(nprCli.status, 0, `exemplar npr: ${nprCli.stderr}`);
+    for (const f of ['0000.png', '0001.png', '0002.png']) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'npr', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'npr-cli', f))), `npr frame ${f} differs from the command's`);
+    }
+
+    // StyLit: the bundled painting and buffers (examples/stylit) uploaded and run; the image
+    // shown is the server's, and the server's is `exemplar stylit`'s byte for byte. Then a stroke
+    // painted over the exemplar with the mouse runs it again by itself (live re-run).
+    const stylitDir = path.join(source, 'examples/stylit');
+    const buffers = (render) => ['fullgi', 'dirdif', 'dirspc', 'indirb'].map((b) => `${render}_${b}.png`);
+    await page.setInputFiles('#upload',
+      ['source_style.png', ...buffers('source'), ...buffers('target')].map((f) => path.join(stylitDir, f)));
+    await page.waitForSelector('#file-list a:text("target_indirb.png")', { state: 'attached' });
+    await page.click('nav button[data-tab=stylit]');
+    await page.uncheck('#stylit-live');
+    await page.selectOption('#stylit-exemplar', 'source_style.png');
+    await page.waitForFunction(() => window.studio.stylit.shown === 'source_style.png');
+    await page.click('#stylit-run');
+    await page.waitForFunction(() => window.studio.stylit.done === 1, null, { timeout: 120000 });
+    const stylitOutput = path.join(workspace, 'outputs', 'stylit.png');
+    const cliStylit = (exemplar, output) => {
+      const run = spawnSync(exemplarCli, ['stylit', '-q', '-j', '2', '--seed', '1', '--exemplar', exemplar,
+        '--source', ...buffers('source').map((f) => path.join(workspace, f)),
+        '--target', ...buffers('target').map((f) => path.join(workspace, f)), '-o', output]);
+      assert.equal(run.status, 0, `exemplar stylit: ${run.stderr}`);
+      return fs.readFileSync(output);
+    };
+    const firstStylit = fs.readFileSync(stylitOutput);
+    assert.ok(firstStylit.equals(cliStylit(path.join(workspace, 'source_style.png'), path.join(artifacts, 'stylit-cli.png'))),
+      'the studio\'s StyLit image differs from exemplar stylit\'s');
+    const [stylitServer] = await pixelsOf(page, ['/api/files/outputs/stylit.png']);
+    const stylitShown = await page.evaluate(() => {
+      const c = document.getElementById('stylit-result');
+      return { width: c.width, height: c.height,
+        data: Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data) };
+    });
+    const shownVsServer = difference(stylitServer, stylitShown);
+    assert.ok(shownVsServer.mean < 1 && shownVsServer.far < 0.002,
+      `the StyLit result shown is not the server's: ${JSON.stringify(shownVsServer)}`);
+    await page.check('#stylit-live');
+    await page.evaluate(() => {
+      document.getElementById('stylit-colour').value = '#1e50c8';
+      const size = document.getElementById('stylit-brush');
+      size.value = '30';
+      size.dispatchEvent(new Event('input'));
+    });
+    await drag(page, page.locator('#stylit-overlay'), [[120, 330], [300, 300], [480, 340]], 8);
+    await page.waitForFunction(() => window.studio.stylit.done === 2, null, { timeout: 120000 });
+    await page.locator('#tab-stylit').screenshot({ path: path.join(artifacts, 'stylit.png') });
+    const paintedExemplar = path.join(workspace, 'outputs', 'stylit_exemplar.png');
+    assert.ok(fs.existsSync(paintedExemplar), 'the painted exemplar was not saved');
+    const secondStylit = fs.readFileSync(stylitOutput);
+    assert.ok(!secondStylit.equals(firstStylit), 'painting the exemplar did not change the result');
+    assert.ok(secondStylit.equals(cliStylit(paintedExemplar, path.join(artifacts, 'stylit-painted-cli.png'))),
+      'the re-run differs from exemplar stylit on the painted exemplar');
+
     // Shutdown: another job running, then SIGINT: exit 0, nothing half-written.
+    await page.click('nav button[data-tab=jobs]');
     await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
     await page.click('#job-form button[type=submit]');
-    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 3 &&
+    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 7 &&
       document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
     studio.child.kill('SIGINT');
     const exit = await studio.exited;
@@ -313,7 +479,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
 
     console.log(`studio timings: paint stroke pen-up to canvas ${paintMs.map((t) => t.toFixed(0)).join(', ')} ms ` +
       `(strokes of ${PAINT_STROKES.map((s) => s.width).join(', ')} px on ${CANVAS.width}x${CANVAS.height}); ` +
-      `sketch suggestions ${sketchMs.toFixed(0)} ms; painting vs reference ${JSON.stringify(vsReference)}; ` +
+      `sketch suggestions ${sketchMs.toFixed(0)} ms; ${fillStatus} (160x100 px region); painting vs reference ${JSON.stringify(vsReference)}; ` +
       `screenshots in ${artifacts}`);
   } finally {
     await browser.close();

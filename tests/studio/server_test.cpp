@@ -16,11 +16,20 @@
 #include <tuple>
 #include <vector>
 
+#include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/lazy_fluids.hpp"
+#include "exemplar/fluid/simulate.hpp"
+#include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/npr/npr.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
+#include "exemplar/paint/feature_fill.hpp"
 #include "exemplar/paint/paint.hpp"
+#include "exemplar/paint/vectorize_style.hpp"
+#include "exemplar/stylit/stylit.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 #include "studio.hpp"
 
 namespace exemplar::studio {
@@ -103,6 +112,23 @@ protected:
         return client_->Post(path.c_str(), body.dump(), "application/json");
     }
     static json body_of(const httplib::Result& r) { return json::parse(r->body); }
+
+    /// (key, bad value, a word the message must hold) of a request.
+    using Refusals = std::vector<std::tuple<std::string, json, std::string>>;
+    /// Posts `good` to `path` with each key set to its bad value in turn: every one is a 400
+    /// whose one-line message holds the word (the parameter's name, mostly).
+    void expect_refused(const std::string& path, const json& good, const Refusals& refusals) {
+        for (const auto& [key, value, word] : refusals) {
+            json bad = good;
+            bad[key] = value;
+            auto refused = post(path, bad);
+            ASSERT_TRUE(refused);
+            ASSERT_EQ(refused->status, 400) << key << ": " << refused->body;
+            const std::string message = body_of(refused)["error"];
+            EXPECT_NE(message.find(word), std::string::npos) << key << ": " << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        }
+    }
 
     fs::path base_;
     std::unique_ptr<StudioServer> server_;
@@ -438,6 +464,7 @@ json follow(int port, const std::string& id, const std::function<void(int)>& on_
     events.set_read_timeout(120, 0);
     std::string buffer;
     json end;
+    json frames = json::array();
     int progress = 0;
     auto got = events.Get(
         ("/api/jobs/" + id + "/events").c_str(), [&](const char* data, std::size_t length) {
@@ -446,18 +473,90 @@ json follow(int port, const std::string& id, const std::function<void(int)>& on_
                 const std::string event = buffer.substr(0, cut);
                 buffer.erase(0, cut + 2);
                 const std::size_t data_at = event.find("data: ");
-                if (event.starts_with("event: progress")) {
+                if (event.starts_with("event: frame")) {
+                    frames.push_back(json::parse(event.substr(data_at + 6)));
+                } else if (event.starts_with("event: progress")) {
                     ++progress;
                     if (on_progress) on_progress(progress);
                 } else if (event.starts_with("event: end")) {
                     end = json::parse(event.substr(data_at + 6));
                     end["progress_events"] = progress;
+                    end["frames"] = frames;
                 }
             }
             return true;
         });
     EXPECT_TRUE(got);
     return end;
+}
+
+// The region image of one polygon, as the fill endpoint makes it.
+Image region_of(std::vector<paint::StrokePoint> polygon, int width, int height) {
+    return paint::polygon_mask(std::span(&polygon, 1), width, height);
+}
+
+TEST_F(StudioTest, BrushFillsARegionAsExemplarFillDoes) {
+    ASSERT_TRUE(save_image(band_palette(), (base_ / "ws" / "band.png").string()).is_ok());
+    start();
+    const json selection = {{"points", {{8, 32}, {100, 32}, {192, 32}}}, {"width", 14}};
+    ASSERT_EQ(
+        post("/api/brush/start",
+             {{"palette", "band.png"}, {"feature", selection}, {"width", 120}, {"height", 90}})
+            ->status,
+        200);
+    // A source region over the band in the palette, a target region on the canvas.
+    const json fill = {{"source", {{20, 10}, {140, 14}, {150, 56}, {24, 50}}},
+                       {"target", {{30, 20}, {100, 24}, {90, 80}, {20, 70}}},
+                       {"rotations", 3},
+                       {"seed", 4}};
+    auto filled = post("/api/brush/fill", fill);
+    ASSERT_TRUE(filled);
+    ASSERT_EQ(filled->status, 200) << filled->body;
+    EXPECT_EQ(filled->get_header_value("X-Rect"), "20,20,100,80");
+
+    // `exemplar fill`'s library call with the blank painting as the canvas: the same pixels.
+    auto palette = load_image((base_ / "ws" / "band.png").string());
+    ASSERT_TRUE(palette.ok());
+    paint::FeatureFillOptions options;
+    options.rotations = 3;
+    options.seed = 4;
+    auto expected = paint::fill_with_palette(
+        *palette, region_of({{20, 10}, {140, 14}, {150, 56}, {24, 50}}, 200, 64), Image(120, 90, 4),
+        region_of({{30, 20}, {100, 24}, {90, 80}, {20, 70}}, 120, 90), options, RunContext(1));
+    ASSERT_TRUE(expected.ok()) << expected.status().message();
+    ASSERT_EQ(filled->body.size(), std::size_t{80} * 60 * 4);
+    int differing = 0, opaque = 0;
+    for (int y = 20; y < 80; ++y) {
+        for (int x = 20; x < 100; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const auto want = static_cast<unsigned char>(
+                    std::lround(std::clamp(expected->at(x, y, c), 0.0f, 1.0f) * 255.0f));
+                const auto got =
+                    static_cast<unsigned char>(filled->body[((y - 20) * 80 + (x - 20)) * 4 + c]);
+                differing += got != want;
+            }
+            opaque += expected->at(x, y, 3) > 0.99f;
+        }
+    }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(opaque, 2500);
+    // Undo takes the fill back, redo brings it again.
+    auto undone = post("/api/brush/undo", json::object());
+    EXPECT_EQ(static_cast<unsigned char>(undone->body[(50 * 120 + 60) * 4 + 3]), 0);
+    auto redone = post("/api/brush/redo", json::object());
+    EXPECT_EQ(static_cast<unsigned char>(redone->body[(50 * 120 + 60) * 4 + 3]), 255);
+    // Bad parameters: one line naming the parameter.
+    expect_refused("/api/brush/fill", fill,
+                   {{"target", {{1, 1}, {2, 2}}, "target: "},
+                    {"source", "all", "source: "},
+                    {"patch-size", 4, "patch-size: "},
+                    {"rotations", "many", "rotations: "},
+                    {"usage", "sometimes", "usage: "},
+                    {"wobble", 1, "wobble: "},
+                    {"target", {{-50, -50}, {-40, -50}, {-40, -40}}, "target"}});
+    httplib::Client other("127.0.0.1", server_->port());
+    other.set_default_headers({{"X-Studio-Client", "tab2"}});
+    EXPECT_EQ(other.Post("/api/brush/fill", fill.dump(), "application/json")->status, 409);
 }
 
 TEST_F(StudioTest, JobsReportProgressAndWriteTheirOutput) {
@@ -526,27 +625,409 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
                        {"reference", "tex.png"},
                        {"output", "o.png"},
                        {"noise", 4}};
-    for (const auto& [key, value, word] : std::vector<std::tuple<std::string, json, std::string>>{
-             {"noise", -1, "noise: "},
-             {"patch-size", 4, "patch-size: "},
-             {"filter", "gauss", "gauss"},
-             {"frame", 1.5, "frame: "},
-             {"wobble", 1, "wobble: "},
-             {"output", "o.txt", "output: "},
-             {"reference", "nope.png", "reference: "}}) {
-        json bad = good;
-        bad[key] = value;
-        auto refused = post("/api/jobs", bad);
-        ASSERT_TRUE(refused);
-        EXPECT_EQ(refused->status, 400) << key << ": " << refused->body;
-        const std::string message = body_of(refused)["error"];
-        EXPECT_NE(message.find(word), std::string::npos) << message;
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
+    expect_refused("/api/jobs", good,
+                   {{"noise", -1, "noise: "},
+                    {"patch-size", 4, "patch-size: "},
+                    {"filter", "gauss", "gauss"},
+                    {"frame", 1.5, "frame: "},
+                    {"wobble", 1, "wobble: "},
+                    {"output", "o.txt", "output: "},
+                    {"reference", "nope.png", "reference: "}});
     json no_noise = good;
     no_noise.erase("noise");
     EXPECT_EQ(post("/api/jobs", no_noise)->status, 400);
     EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
+}
+
+// Light-path buffers of a small render: smooth shading that differs per buffer and per render.
+Image buffer_of(int width, int height, int buffer, int render) {
+    Image image(width, height, 3);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const float u = static_cast<float>(x + 3 * render) / static_cast<float>(width);
+                const float v = static_cast<float>(y) / static_cast<float>(height);
+                image.at(x, y, c) = 0.5f + 0.45f * std::sin(3.0f * u * (buffer + 1) + 2.0f * v +
+                                                            static_cast<float>(c + buffer));
+            }
+        }
+    }
+    return image;
+}
+
+TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
+    // Two buffers per render: the exemplar render 64 x 48 (tex.png is its painting), the target
+    // 56 x 40, in the workspace's stylit/ folder.
+    fs::create_directories(base_ / "ws" / "stylit");
+    std::vector<LpeBuffer> source, target;
+    for (int b = 0; b < 2; ++b) {
+        for (int render = 0; render < 2; ++render) {
+            const std::string name =
+                (render == 0 ? "source_" : "target_") + std::to_string(b) + ".png";
+            const Image image = render == 0 ? buffer_of(64, 48, b, 0) : buffer_of(56, 40, b, 1);
+            ASSERT_TRUE(save_image(image, (base_ / "ws" / "stylit" / name).string()).is_ok());
+            auto loaded = load_image((base_ / "ws" / "stylit" / name).string());
+            ASSERT_TRUE(loaded.ok());
+            (render == 0 ? source : target).push_back({name, name, std::move(*loaded)});
+        }
+    }
+    start();
+    const json good = {{"kind", "stylit"},
+                       {"exemplar", "tex.png"},
+                       {"source", {"stylit/source_0.png", "stylit/source_1.png"}},
+                       {"target", {"stylit/target_0.png", "stylit/target_1.png"}},
+                       {"output", "outputs/stylit.png"},
+                       {"quality", "fast"},
+                       {"seed", 3},
+                       {"guidance-weight", 4}};
+    auto job = post("/api/jobs", good);
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    EXPECT_EQ(end["state"], "done") << end.dump();
+    EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the engine's";
+    // The same bytes as the library's call and atomic writer.
+    auto painting = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(painting.ok());
+    StylitOptions options;
+    options.synthesis = SynthesisOptions::preset(Quality::Fast);
+    options.synthesis.seed = 3;
+    options.guidance_weight = 4.0f;
+    auto result = stylize_render(*painting, source, target, options, RunContext(1));
+    ASSERT_TRUE(result.ok()) << result.status().message();
+    ASSERT_TRUE(save_image(result->synthesis.image, (base_ / "library.png").string()).is_ok());
+    EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "stylit.png"),
+              file_bytes(base_ / "library.png"));
+    // Preview: half size.
+    json preview = good;
+    preview["preview"] = true;
+    preview["output"] = "outputs/preview.png";
+    const json preview_end = follow(server_->port(), body_of(post("/api/jobs", preview))["id"]);
+    EXPECT_EQ(preview_end["state"], "done") << preview_end.dump();
+    auto half = load_image((base_ / "ws" / "outputs" / "preview.png").string());
+    ASSERT_TRUE(half.ok());
+    EXPECT_EQ(half->width(), 28);
+    // Bad parameters are refused at once with one line naming the parameter; paths outside the
+    // workspace with 403.
+    expect_refused("/api/jobs", good,
+                   {{"guidance-weight", 101, "guidance-weight: "},
+                    {"usage", "sometimes", "usage: "},
+                    {"quality", "superb", "superb"},
+                    {"preview", "yes", "preview: "},
+                    {"preset", "maya", "preset: "},
+                    {"wobble", 1, "wobble: "},
+                    {"output", "o.txt", "output: "},
+                    {"exemplar", "nope.png", "exemplar: "},
+                    {"source", json::array(), "source: "},
+                    {"source", {"stylit/source_0.png"}, "source has 1"},
+                    {"target", {"stylit/target_0.png", "tex.png"}, "target"}});
+    json outside = good;
+    outside["target"] = {"stylit/target_0.png", "../outside/secret.txt"};
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
+}
+
+TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
+    // Three frames of a texture moving right by 2 px a frame, a grey style pair.
+    fs::create_directories(base_ / "ws" / "frames");
+    const auto frame_path = [&](int n) {
+        return base_ / "ws" / "frames" / *video::format_frame_path("f%d.png", n);
+    };
+    const Image tex = texture(72, 40);
+    for (int t = 0; t < 3; ++t) {
+        Image frame(48, 32, 1);
+        for (int y = 0; y < 32; ++y) {
+            for (int x = 0; x < 48; ++x) frame.at(x, y, 0) = tex.at(x + 10 - 2 * t, y + 4, 2);
+        }
+        ASSERT_TRUE(save_image(frame, frame_path(t + 4).string()).is_ok());
+    }
+    Image style_input(40, 32, 1);
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 40; ++x) style_input.at(x, y, 0) = tex.at(x, y, 1);
+    }
+    ASSERT_TRUE(save_image(style_input, (base_ / "ws" / "si.png").string()).is_ok());
+    start();
+    const json good = {{"kind", "animate"},
+                       {"frames", "frames/f%d.png"},
+                       {"first", 4},
+                       {"last", 6},
+                       {"style-input", "si.png"},
+                       {"style-output", "tex.png"},
+                       {"quality", "fast"},
+                       {"seed", 9},
+                       {"levels", 2},
+                       {"output", "outputs/anim/%03d.png"}};
+    ASSERT_TRUE(save_image(texture(40, 32), (base_ / "ws" / "tex.png").string()).is_ok());
+    auto job = post("/api/jobs", good);
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    EXPECT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u) << end.dump();
+    EXPECT_EQ(end["frames"][0]["frame"], 6) << "the library hands frames over last first";
+    EXPECT_EQ(end["frames"][0]["path"], "outputs/anim/006.png");
+    auto list = body_of(client_->Get("/api/jobs"));
+    EXPECT_EQ(list["jobs"][0]["outputs"].size(), 3u) << list.dump();
+
+    // The library's call on the same frames: the same bytes, frame by frame.
+    animate::AnimationInput input;
+    input.style_input = *load_image((base_ / "ws" / "si.png").string());
+    input.style_output = *load_image((base_ / "ws" / "tex.png").string());
+    input.frame_count = 3;
+    input.frame = [&](int t) { return load_image(frame_path(t + 4).string()); };
+    animate::AnimateOptions options;
+    options.synthesis = animate::animate_synthesis_options(Quality::Fast);
+    options.synthesis.seed = 9;
+    options.levels = 2;
+    auto expected = animate::animate(input, options, RunContext(1));
+    ASSERT_TRUE(expected.ok()) << expected.status().message();
+    for (int t = 0; t < 3; ++t) {
+        const fs::path mine = base_ / *video::format_frame_path("library%d.png", t);
+        ASSERT_TRUE(
+            save_image(expected->frames[static_cast<std::size_t>(t)], mine.string()).is_ok());
+        EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "anim" /
+                             *video::format_frame_path("%03d.png", t + 4)),
+                  file_bytes(mine))
+            << "frame " << t + 4;
+    }
+    // Bad parameters: one line naming the parameter (400); paths outside the workspace: 403.
+    expect_refused("/api/jobs", good,
+                   {{"last", 3, "last: "},
+                    {"last", 2000, "last: "},
+                    {"first", 4.5, "first: "},
+                    {"frames", "frames/f.png", "frames: "},
+                    {"frames", "frames/g%d.png", "frames: frames/g4.png"},
+                    {"levels", 0, "levels: "},
+                    {"temporal-weight", -1, "temporal-weight: "},
+                    {"quality", "superb", "superb"},
+                    {"wobble", 1, "wobble: "},
+                    {"output", "outputs/%d.txt", "output: "},
+                    {"style-input", "nope.png", "style-input: "}});
+    json outside = good;
+    outside["output"] = "../outside/%04d.png";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+}
+
+TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
+    // An RGBA exemplar: the texture inside a soft disc.
+    Image ink = texture(40, 40);
+    Image exemplar(40, 40, 4);
+    for (int y = 0; y < 40; ++y) {
+        for (int x = 0; x < 40; ++x) {
+            for (int c = 0; c < 3; ++c) exemplar.at(x, y, c) = ink.at(x, y, c);
+            const float r =
+                std::hypot(static_cast<float>(x) - 19.5f, static_cast<float>(y) - 19.5f);
+            exemplar.at(x, y, 3) = std::clamp((17.0f - r) / 4.0f, 0.0f, 1.0f);
+        }
+    }
+    ASSERT_TRUE(save_image(exemplar, (base_ / "ws" / "ink.png").string()).is_ok());
+    start();
+    // Targets: the built-in plume, 48 x 48, frames 0..3 (warm-up: the first frames are thin).
+    auto simulated = post("/api/jobs", {{"kind", "fluid-simulate"},
+                                        {"width", 48},
+                                        {"height", 48},
+                                        {"last", 3},
+                                        {"alpha", "sim/alpha/%04d.png"},
+                                        {"motion", "sim/motion/%04d.flo"}});
+    ASSERT_EQ(simulated->status, 202) << simulated->body;
+    const json sim_end = follow(server_->port(), body_of(simulated)["id"]);
+    ASSERT_EQ(sim_end["state"], "done") << sim_end.dump();
+    EXPECT_EQ(sim_end["frames"].size(), 4u);
+    ASSERT_TRUE(fluid::simulate(
+                    fluid::plume_scene(48, 48), 4,
+                    [&](int frame, const Image& alpha, const Image& motion) -> Status {
+                        const fs::path mine = base_ / *video::format_frame_path("a%d.png", frame);
+                        EXEMPLAR_RETURN_IF_ERROR(save_image(alpha, mine.string()));
+                        EXPECT_EQ(file_bytes(base_ / "ws" / "sim" / "alpha" /
+                                             *video::format_frame_path("%04d.png", frame)),
+                                  file_bytes(mine));
+                        EXPECT_EQ(file_bytes(base_ / "ws" / "sim" / "motion" /
+                                             *video::format_frame_path("%04d.flo", frame))
+                                      .size(),
+                                  std::size_t{48} * 48 * 8 + 12);
+                        (void)motion;
+                        return Status::ok();
+                    },
+                    RunContext(1))
+                    .is_ok());
+
+    // Transfer frames 1..3; frame 1 continues from nothing (no output 0 yet).
+    const json good = {{"kind", "fluid"},
+                       {"exemplar", "ink.png"},
+                       {"alpha", "sim/alpha/%04d.png"},
+                       {"motion", "sim/motion/%04d.flo"},
+                       {"first", 1},
+                       {"last", 3},
+                       {"output", "outputs/fluid/%04d.png"},
+                       {"seed", 5},
+                       {"patch-size", 3}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+    EXPECT_EQ(end["frames"][0]["path"], "outputs/fluid/0001.png");
+    // The library's frames, each continuing from the previous one read back from its file.
+    const Image stored_exemplar = *load_image((base_ / "ws" / "ink.png").string());
+    fluid::FluidOptions options;
+    options.synthesis.seed = 5;
+    options.patch_size = 3;
+    std::optional<Image> previous, previous_motion;
+    for (int n = 1; n <= 3; ++n) {
+        const auto sim = [&](const char* pattern) {
+            return (base_ / "ws" / "sim" / *video::format_frame_path(pattern, n)).string();
+        };
+        auto alpha = load_image(sim("alpha/%04d.png"));
+        ASSERT_TRUE(alpha.ok());
+        fluid::FluidFrameInput input;
+        input.exemplar = &stored_exemplar;
+        input.target_alpha = &*alpha;
+        input.previous_output = previous ? &*previous : nullptr;
+        input.previous_motion = previous_motion ? &*previous_motion : nullptr;
+        auto frame = fluid::synthesize_fluid_frame(input, options, RunContext(1));
+        ASSERT_TRUE(frame.ok()) << frame.status().message();
+        const fs::path mine = base_ / *video::format_frame_path("fluid%d.png", n);
+        ASSERT_TRUE(save_image(frame->rgba, mine.string()).is_ok());
+        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / "fluid" /
+                               *video::format_frame_path("%04d.png", n)) == file_bytes(mine))
+            << "frame " << n;
+        previous = *load_image(mine.string());
+        previous_motion = *load_flow(sim("motion/%04d.flo"));
+    }
+    // Bad parameters: one line naming the parameter (400); outside the workspace: 403.
+    expect_refused("/api/jobs", good,
+                   {{"last", 9, "alpha: sim/alpha/0004.png"},
+                    {"patch-size", 4, "patch-size: "},
+                    {"usage", "sometimes", "usage: "},
+                    {"rotations", 1, "rotations: "},
+                    {"wobble", 1, "wobble: "},
+                    {"exemplar", "tex.png", "exemplar: "},
+                    {"output", "outputs/%d.txt", "output: "}});
+    json outside = good;
+    outside["motion"] = "../outside/%04d.flo";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+    EXPECT_EQ(post("/api/jobs", {{"kind", "fluid-simulate"},
+                                 {"scene", "volcano"},
+                                 {"last", 1},
+                                 {"alpha", "a%d.png"},
+                                 {"motion", "m%d.flo"}})
+                  ->status,
+              400);
+}
+
+TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
+    // Three render frame folders of 64 x 48: a tone ramp moving right, no lines, the motion.
+    for (int n = 0; n < 3; ++n) {
+        const fs::path folder = base_ / "ws" / "render" / *video::format_frame_path("f%d", n);
+        fs::create_directories(folder);
+        Image tone(64, 48, 1), lines(64, 48, 1), flow(64, 48, 2), disocclusion(64, 48, 1);
+        for (int y = 0; y < 48; ++y) {
+            for (int x = 0; x < 64; ++x) {
+                tone.at(x, y, 0) = static_cast<float>((x + 3 * n) % 64) / 64.0f;
+                flow.at(x, y, 0) = -3.0f;
+                disocclusion.at(x, y, 0) = x < 3 ? 1.0f : 0.0f;
+            }
+        }
+        ASSERT_TRUE(save_image(tone, (folder / "direct_diffuse.png").string()).is_ok());
+        ASSERT_TRUE(save_image(lines, (folder / "lines.png").string()).is_ok());
+        ASSERT_TRUE(save_image(disocclusion, (folder / "disocclusion.png").string()).is_ok());
+        ASSERT_TRUE(save_flow(flow, (folder / "backward_flow.exr").string()).is_ok());
+    }
+    Image dots(64, 64, 1);
+    const Image tex = texture(64, 64);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 64; ++x) dots.at(x, y, 0) = tex.at(x, y, 2);
+    }
+    ASSERT_TRUE(save_image(dots, (base_ / "ws" / "dots.png").string()).is_ok());
+    start();
+    const json good = {{"kind", "npr"},
+                       {"pattern", "dots.png"},
+                       {"frames", "render/f%d"},
+                       {"last", 2},
+                       {"output", "outputs/npr/%d.png"},
+                       {"levels", 2},
+                       {"patch-size", 8},
+                       {"seed", 3}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "npr" / "2.png.state.exr"));
+    // The library's frames, each continuing from the one before.
+    npr::NprOptions options;
+    options.levels = 2;
+    options.patch_size = 8;
+    options.seed = 3;
+    auto pattern = npr::prepare_pattern(*load_image((base_ / "ws" / "dots.png").string()), options,
+                                        RunContext(1));
+    ASSERT_TRUE(pattern.ok()) << pattern.status().message();
+    std::optional<npr::FrameState> previous;
+    for (int n = 0; n < 3; ++n) {
+        const fs::path folder = base_ / "ws" / "render" / *video::format_frame_path("f%d", n);
+        npr::NprFrame frame;
+        for (const npr::BufferNeed& need : npr::needed_buffers(options, previous.has_value())) {
+            const bool exr = need.name == "backward_flow";
+            auto buffer = load_image((folder / (need.name + (exr ? ".exr" : ".png"))).string());
+            ASSERT_TRUE(buffer.ok()) << need.name;
+            frame[need.role] = *buffer;
+        }
+        auto styled = npr::stylize_frame(*pattern, frame, previous ? &*previous : nullptr, n,
+                                         options, RunContext(1));
+        ASSERT_TRUE(styled.ok()) << styled.status().message();
+        const fs::path mine = base_ / *video::format_frame_path("npr%d.png", n);
+        ASSERT_TRUE(save_image(styled->image, mine.string()).is_ok());
+        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / "npr" /
+                               *video::format_frame_path("%d.png", n)) == file_bytes(mine))
+            << "frame " << n;
+        previous = styled->state;
+    }
+    // Bad parameters: one line naming the parameter (400).
+    expect_refused("/api/jobs", good,
+                   {{"last", 3, "frames: render/f3"},
+                    {"levels", 9, "levels: "},
+                    {"style", "crosshatch", "crosshatch"},
+                    {"lines", "yes", "lines: "},
+                    {"paper-grain", 0.2, "paper-grain: "},
+                    {"wobble", 1, "wobble: "},
+                    {"tone", "sunlight", "sunlight"},
+                    {"pattern", "nope.png", "pattern: "}});
+}
+
+TEST_F(StudioTest, FinishedJobsAndIdleClientsBeyondTheBoundsAreForgotten) {
+    StudioOptions options;
+    options.max_finished_jobs = 2;
+    options.max_clients = 2;
+    start(options);
+    const json noisy = {{"kind", "noisy"},
+                        {"exemplar", "tex.png"},
+                        {"reference", "tex.png"},
+                        {"output", "o.png"},
+                        {"noise", 4}};
+    std::vector<std::string> ids;
+    for (int k = 0; k < 4; ++k) {
+        auto job = post("/api/jobs", noisy);
+        ASSERT_EQ(job->status, 202) << job->body;
+        ids.push_back(body_of(job)["id"]);
+        EXPECT_EQ(follow(server_->port(), ids.back())["state"], "done");
+    }
+    // Starting the fourth forgot the first: two finished ones are kept besides it.
+    const json list = body_of(client_->Get("/api/jobs"));
+    ASSERT_EQ(list["jobs"].size(), 3u) << list.dump();
+    for (const json& job : list["jobs"]) EXPECT_NE(job["id"], ids[0]);
+    EXPECT_EQ(client_->Get(("/api/jobs/" + ids[0] + "/events").c_str())->status, 404);
+    EXPECT_EQ(client_->Get(("/api/jobs/" + ids[1] + "/events").c_str())->status, 200);
+
+    // tab1 paints; tab2 and tab3 come after it: tab1's painting is forgotten, tab3's sketch kept.
+    ASSERT_EQ(
+        post("/api/paint/start", {{"exemplar", "tex.png"}, {"width", 32}, {"height", 32}})->status,
+        200);
+    for (const char* tab : {"tab2", "tab3"}) {
+        httplib::Client other("127.0.0.1", server_->port());
+        other.set_default_headers({{"X-Studio-Client", tab}});
+        EXPECT_EQ(other.Get("/api/sketch")->status, 200);
+    }
+    EXPECT_EQ(post("/api/paint/stroke", {{"points", {{4, 4}, {20, 20}}}})->status, 409);
 }
 
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
@@ -606,6 +1087,54 @@ TEST_F(StudioJobTest, CancelStopsANoisyJobAndWritesNothing) {
                                  {"noise", 16},
                                  {"warm-search-iterations", 0}},
                                 "outputs/noisy.png");
+}
+
+TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {
+    // The texture-by-numbers target as a still animation of four frames, at the best quality.
+    for (int n = 0; n < 4; ++n) {
+        fs::copy_file(base_ / "ws" / "texbynum" / "target_segment.png",
+                      base_ / "ws" / "texbynum" / *video::format_frame_path("frame%d.png", n));
+    }
+    start();
+    cancel_after_first_progress({{"kind", "animate"},
+                                 {"frames", "texbynum/frame%d.png"},
+                                 {"last", 3},
+                                 {"style-input", "texbynum/source_segment.png"},
+                                 {"style-output", "texbynum/source_photo.png"},
+                                 {"output", "outputs/%d.png"},
+                                 {"quality", "best"}},
+                                "outputs/0.png");
+}
+
+TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {
+    // The texture-by-numbers images as a one-buffer render pair, at the best quality: long enough
+    // to be running when the next run arrives.
+    start();
+    const json first = {{"kind", "stylit"},
+                        {"exemplar", "texbynum/source_photo.png"},
+                        {"source", "texbynum/source_segment.png"},
+                        {"target", "texbynum/target_segment.png"},
+                        {"output", "outputs/first.png"},
+                        {"quality", "best"}};
+    json second = first;
+    second["output"] = "outputs/second.png";
+    second["quality"] = "fast";
+    auto posted = post("/api/jobs", first);
+    ASSERT_EQ(posted->status, 202) << posted->body;
+    httplib::Client other_request("127.0.0.1", server_->port());
+    other_request.set_default_headers({{"X-Studio-Client", "tab1"}});
+    std::string second_id;
+    const json end = follow(server_->port(), body_of(posted)["id"], [&](int progress) {
+        if (progress != 2) return;
+        auto replaced = other_request.Post("/api/jobs", second.dump(), "application/json");
+        ASSERT_EQ(replaced->status, 202) << replaced->body;
+        second_id = body_of(replaced)["id"];
+    });
+    EXPECT_EQ(end["state"], "cancelled") << end.dump();
+    ASSERT_FALSE(second_id.empty());
+    EXPECT_EQ(follow(server_->port(), second_id)["state"], "done");
+    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "first.png"));
+    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "second.png"));
 }
 
 TEST_F(StudioJobTest, JobsPerClientAreBoundedAndShutdownCancelsThem) {

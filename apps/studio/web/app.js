@@ -7,7 +7,7 @@ const client = sessionStorage.getItem('studio-client') ||
 sessionStorage.setItem('studio-client', client);
 
 // What the browser test reads: timings and counts of the last answers.
-const studio = { client, lastPaintMs: null, lastSketchMs: null, paintStrokes: 0, sketch: null };
+const studio = { client, lastPaintMs: null, lastSketchMs: null, paintSent: 0, paintStrokes: 0, sketch: null };
 window.studio = studio;
 
 const $ = (id) => document.getElementById(id);
@@ -39,9 +39,15 @@ for (const button of document.querySelectorAll('nav button')) {
   });
 }
 
-// Pointer strokes on an element, in its own pixel coordinates.
+// Pointer strokes on an element, in its own pixel coordinates. Escape while drawing drops the
+// stroke: its preview is cleared (onMove with no points) and nothing is sent.
 function strokes(element, onMove, onUp) {
   let points = null;
+  document.addEventListener('keydown', (e) => {
+    if (e.key !== 'Escape' || !points) return;
+    points = null;
+    onMove([]);
+  });
   const at = (e) => {
     const r = element.getBoundingClientRect();
     return [e.clientX - r.left, e.clientY - r.top];
@@ -85,6 +91,7 @@ async function refreshFiles() {
     if (images.includes(keep)) select.value = keep;
   }
   if ($('brush-palette').value !== brush.shown) await showPalette();
+  if ($('stylit-exemplar').value !== stylit.shown) await showStylitExemplar();
   return files;
 }
 
@@ -123,6 +130,13 @@ async function putRgba(res, context = paintContext) {
 // A stroke's preview on an overlay while it is drawn.
 function drawPreview(context, points, width, colour) {
   context.clearRect(0, 0, context.canvas.width, context.canvas.height);
+  drawLine(context, points, width, colour);
+}
+
+// A round-capped polyline (a dot for one point).
+function drawLine(context, points, width, colour) {
+  if (!points.length) return;
+  if (points.length === 1) points = [points[0], [points[0][0] + 0.01, points[0][1]]];
   context.strokeStyle = colour;
   context.lineWidth = width;
   context.lineCap = context.lineJoin = 'round';
@@ -151,6 +165,7 @@ strokes(paintOverlay, (points) => {
     $('paint-comb').checked ? 'rgba(40,110,200,0.6)' : 'rgba(200,60,40,0.35)');
 }, async (points) => {
   const started = performance.now();
+  studio.paintSent += 1;
   try {
     const res = await api('POST', '/api/paint/stroke', {
       points, width: Number($('paint-brush').value), comb: $('paint-comb').checked,
@@ -181,7 +196,7 @@ canvasButtons('paint', paintContext);
 
 // Brush: Painting by Feature's line-feature brush. A rough line drawn on the palette picks the
 // feature (snapped to its edge by the server); strokes below are painted with it.
-const brush = { selection: null, strokes: 0, shown: null };
+const brush = { selection: null, fillSource: null, strokes: 0, fills: 0, shown: null };
 studio.brush = brush;
 const paletteCanvas = $('brush-palette-canvas');
 const paletteOverlay = $('brush-palette-overlay').getContext('2d');
@@ -200,9 +215,28 @@ async function showPalette() {
 }
 $('brush-palette').addEventListener('change', () => showPalette().catch(fail));
 $('brush-size').addEventListener('input', (e) => { $('brush-size-value').value = e.target.value; });
+const filling = () => $('brush-tool').value === 'fill';
+// A region outlined with the pointer, shown closed and filled.
+function drawLasso(context, points, colour) {
+  context.clearRect(0, 0, context.canvas.width, context.canvas.height);
+  context.fillStyle = colour;
+  context.beginPath();
+  points.forEach(([x, y], i) => (i ? context.lineTo(x, y) : context.moveTo(x, y)));
+  context.closePath();
+  context.fill();
+}
+$('brush-tool').addEventListener('change', () => {
+  $('brush-hint').textContent = filling()
+    ? 'Outline a region of the palette, then outline a region of the painting: it is filled with that texture.'
+    : 'Draw along a line in the palette to pick it, then paint with it below.';
+});
 strokes(paletteOverlay.canvas, (points) => {
-  drawPreview(paletteOverlay, points, Number($('brush-feature-width').value), 'rgba(230,140,20,0.45)');
-}, (points) => { brush.selection = points; });
+  if (filling()) drawLasso(paletteOverlay, points, 'rgba(40,150,90,0.4)');
+  else drawPreview(paletteOverlay, points, Number($('brush-feature-width').value), 'rgba(230,140,20,0.45)');
+}, (points) => {
+  if (filling()) brush.fillSource = points;
+  else brush.selection = points;
+});
 $('brush-start').addEventListener('click', async () => {
   try {
     if (!brush.selection) throw new Error('draw along a line in the palette first');
@@ -219,14 +253,23 @@ $('brush-start').addEventListener('click', async () => {
   } catch (e) { fail(e); }
 });
 strokes(brushOverlay.canvas, (points) => {
-  drawPreview(brushOverlay, points, Number($('brush-size').value), 'rgba(200,60,40,0.3)');
+  if (filling()) drawLasso(brushOverlay, points, 'rgba(40,150,90,0.3)');
+  else drawPreview(brushOverlay, points, Number($('brush-size').value), 'rgba(200,60,40,0.3)');
 }, async (points) => {
   const started = performance.now();
   try {
-    await putRgba(await api('POST', '/api/brush/stroke', { points, width: Number($('brush-size').value) }, true),
-      brushContext);
-    brush.strokes += 1;
-    say(`brush stroke ${brush.strokes}: ${(performance.now() - started).toFixed(0)} ms`);
+    if (filling()) {
+      if (!brush.fillSource) throw new Error('outline a region of the palette first');
+      await putRgba(await api('POST', '/api/brush/fill',
+        { source: brush.fillSource, target: points, seed: Number($('brush-seed').value) }, true), brushContext);
+      brush.fills += 1;
+      say(`fill ${brush.fills}: ${(performance.now() - started).toFixed(0)} ms`);
+    } else {
+      await putRgba(await api('POST', '/api/brush/stroke', { points, width: Number($('brush-size').value) }, true),
+        brushContext);
+      brush.strokes += 1;
+      say(`brush stroke ${brush.strokes}: ${(performance.now() - started).toFixed(0)} ms`);
+    }
   } catch (e) { fail(e); }
   brushOverlay.clearRect(0, 0, brushOverlay.canvas.width, brushOverlay.canvas.height);
 });
@@ -308,6 +351,20 @@ for (const action of ['undo', 'redo', 'reset']) {
   });
 }
 
+// A job's server-sent events: `onProgress({fraction, stage, ...})`, `onFrame({frame, path})` for
+// each finished frame of a range, then `onEnd({state, output, error})`. Returns the EventSource
+// (closing it stops following, not the job).
+function watchJob(id, onProgress, onEnd, onFrame = () => {}) {
+  const events = new EventSource(`/api/jobs/${id}/events`);
+  events.addEventListener('progress', (e) => onProgress(JSON.parse(e.data)));
+  events.addEventListener('frame', (e) => onFrame(JSON.parse(e.data)));
+  events.addEventListener('end', (e) => {
+    events.close();
+    onEnd(JSON.parse(e.data));
+  });
+  return events;
+}
+
 // Jobs: start, follow the server-sent progress, cancel, show and download the output.
 function followJob(id, output) {
   const li = document.createElement('li');
@@ -322,33 +379,126 @@ function followJob(id, output) {
   cancel.textContent = 'Cancel';
   cancel.className = 'job-cancel';
   cancel.addEventListener('click', () => api('POST', `/api/jobs/${id}/cancel`, {}).catch(fail));
-  li.append(`job ${id} → ${output} `, bar, ' ', label, ' ', cancel);
+  const frames = document.createElement('span');
+  frames.className = 'job-frames';
+  const frameFiles = [];
+  li.append(`job ${id} → ${output} `, bar, ' ', label, ' ', cancel, frames);
   $('job-list').prepend(li);
-  const events = new EventSource(`/api/jobs/${id}/events`);
-  events.addEventListener('progress', (e) => {
-    const p = JSON.parse(e.data);
+  const download = (path, text) => {
+    const a = document.createElement('a');
+    a.href = `/api/files/${encodeURI(path)}?download=1`;
+    a.textContent = text;
+    return a;
+  };
+  watchJob(id, (p) => {
     bar.value = p.fraction;
     label.textContent = `${p.stage} ${(100 * p.fraction).toFixed(0)}%`;
-  });
-  events.addEventListener('end', (e) => {
-    events.close();
-    const end = JSON.parse(e.data);
+  }, (end) => {
     li.dataset.state = end.state;
     label.textContent = end.state + (end.error ? `: ${end.error}` : '');
     cancel.remove();
     if (end.state === 'done') {
       bar.value = 1;
-      const url = `/api/files/${encodeURI(end.output)}`;
-      const a = document.createElement('a');
-      a.href = `${url}?download=1`;
-      a.textContent = ' download';
+      // A range shows its first frame; every frame is linked as it is written.
+      const shown = frameFiles.length ? frameFiles.sort()[0] : end.output;
       const img = document.createElement('img');
-      img.src = `${url}?t=${Date.now()}`;
-      li.append(a, img);
-      refreshFiles().catch(fail);
+      img.src = `/api/files/${encodeURI(shown)}?t=${Date.now()}`;
+      if (!frameFiles.length) li.append(download(end.output, ' download'));
+      li.append(img);
     }
+    if (end.state === 'done' || frameFiles.length) refreshFiles().catch(fail);
+  }, (f) => {
+    frameFiles.push(f.path);
+    frames.append(' ', download(f.path, `${f.frame}`));
   });
 }
+// StyLit: the exemplar painting (loaded, then painted over with the mouse) stylizes the target
+// render through both renders' light-path buffers. Every change (a stroke's pen-up, another
+// exemplar, buffers or seed) runs it again after a short pause; the server cancels the run
+// before (docs/studio.md).
+const stylit = { runs: 0, done: 0, painted: false, shown: null, timer: null, events: null, id: null };
+studio.stylit = stylit;
+const stylitCanvas = $('stylit-canvas');
+const stylitOverlay = $('stylit-overlay').getContext('2d');
+const stylitResult = $('stylit-result');
+
+// Draws a workspace image into `canvas`, resized to it, without colour conversion.
+async function showImage(canvas, name) {
+  const blob = await (await fetch(`/api/files/${encodeURI(name)}?t=${Date.now()}`)).blob();
+  const bitmap = await createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+  canvas.width = bitmap.width;
+  canvas.height = bitmap.height;
+  canvas.getContext('2d').drawImage(bitmap, 0, 0);
+}
+
+async function showStylitExemplar() {
+  const name = $('stylit-exemplar').value;
+  if (!name || name === stylit.shown) return;
+  await showImage(stylitCanvas, name);
+  stylitOverlay.canvas.width = stylitCanvas.width;
+  stylitOverlay.canvas.height = stylitCanvas.height;
+  stylit.shown = name;
+  stylit.painted = false;
+}
+
+function stylitLater() {
+  if (!$('stylit-live').checked) return;
+  clearTimeout(stylit.timer);
+  stylit.timer = setTimeout(() => runStylit().catch(fail), 400);
+}
+
+async function runStylit() {
+  clearTimeout(stylit.timer);
+  await showStylitExemplar();
+  let exemplar = $('stylit-exemplar').value;
+  if (stylit.painted) {
+    // The painted exemplar goes to the workspace first: the job reads files only.
+    exemplar = $('stylit-painting').value;
+    const png = await new Promise((resolve) => stylitCanvas.toBlob(resolve, 'image/png'));
+    await api('PUT', `/api/files/${encodeURI(exemplar)}`, png);
+  }
+  const list = (id) => $(id).value.trim().split(/[\s,]+/).filter((p) => p);
+  const body = {
+    kind: 'stylit', exemplar, source: list('stylit-source'), target: list('stylit-target'),
+    output: $('stylit-output').value, seed: Number($('stylit-seed').value),
+    preview: $('stylit-preview').checked,
+  };
+  if (stylit.events) stylit.events.close();
+  const { id } = await api('POST', '/api/jobs', body);
+  stylit.runs += 1;
+  stylit.id = id;
+  const started = performance.now();
+  $('stylit-state').textContent = 'running';
+  stylit.events = watchJob(id, (p) => {
+    $('stylit-progress').value = p.fraction;
+  }, async (end) => {
+    if (stylit.id !== id) return;
+    $('stylit-state').textContent = end.state + (end.error ? `: ${end.error}` : '');
+    if (end.state !== 'done') return;
+    $('stylit-progress').value = 1;
+    await showImage(stylitResult, end.output);
+    stylit.done += 1;
+    stylit.exemplar = exemplar;
+    say(`stylit run ${stylit.done}: ${(performance.now() - started).toFixed(0)} ms`);
+  });
+}
+
+$('stylit-brush').addEventListener('input', (e) => { $('stylit-brush-value').value = e.target.value; });
+$('stylit-exemplar').addEventListener('change', () => showStylitExemplar().then(stylitLater).catch(fail));
+for (const id of ['stylit-source', 'stylit-target', 'stylit-seed', 'stylit-preview']) {
+  $(id).addEventListener('change', stylitLater);
+}
+$('stylit-run').addEventListener('click', () => runStylit().catch(fail));
+strokes(stylitOverlay.canvas, (points) => {
+  drawPreview(stylitOverlay, points, Number($('stylit-brush').value), $('stylit-colour').value);
+}, (points) => {
+  // The stroke goes into the exemplar itself, as the preview showed it.
+  stylitOverlay.clearRect(0, 0, stylitOverlay.canvas.width, stylitOverlay.canvas.height);
+  drawLine(stylitCanvas.getContext('2d'), points, Number($('stylit-brush').value), $('stylit-colour').value);
+  stylit.painted = true;
+  stylitLater();
+});
+
 // Each job form names its kind; number fields are sent as JSON numbers.
 for (const jobForm of document.querySelectorAll('.job-form')) {
   jobForm.addEventListener('submit', async (e) => {
@@ -359,7 +509,7 @@ for (const jobForm of document.querySelectorAll('.job-form')) {
     }
     try {
       const { id } = await api('POST', '/api/jobs', body);
-      followJob(id, body.output);
+      followJob(id, body.output || body.alpha);
     } catch (err) { fail(err); }
   });
 }
