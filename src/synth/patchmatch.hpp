@@ -76,16 +76,12 @@ inline constexpr int kMaxWindows = 32;
 inline void prefetch_patch(const FeatureImage& features, int radius, int x, int y) {
     constexpr int kRows = 2;
     const int x0 = std::max(0, x - radius);
-    const std::size_t row_bytes = features.row_bytes();
-    const std::size_t patch_bytes =
-        static_cast<std::size_t>(2 * radius + 1) * static_cast<std::size_t>(features.stride());
+    const int x1 = std::min(features.width() - 1, x + radius);
     for (int k = 0; k < kRows; ++k) {
         const int row = std::clamp(y - radius + k, 0, features.height() - 1);
-        const std::uint8_t* p = features.pixel(x0, row);
-        __builtin_prefetch(p);
-        // The row's last byte: a row of a patch may straddle a cache line (or the image's end,
-        // past which the features have slack).
-        __builtin_prefetch(p + std::min(patch_bytes, row_bytes) - 1);
+        // A patch row may straddle cache lines: its first and its last byte.
+        __builtin_prefetch(features.pixel(x0, row));
+        __builtin_prefetch(features.pixel(x1, row) + features.stride() - 1);
     }
 }
 
