@@ -84,6 +84,23 @@ void BM_PatchDistanceWeightMap(benchmark::State& state) {
 }
 BENCHMARK(BM_PatchDistanceWeightMap)->Arg(0)->Arg(1);
 
+// Patches over the border (target column 0, the column random search clamps to), where the
+// production kernel takes the gathered path: range(0) 0 = the reference's loop, 1 = production.
+void BM_PatchDistanceBorder(benchmark::State& state) {
+    set_simd_enabled(true);
+    const Level& L = setup(128).L;
+    const bool fast = state.range(0) != 0;
+    state.SetLabel(fast ? "gathered path" : "reference loop");
+    int i = 0;
+    for (auto _ : state) {
+        const int ty = 10 + i % 100, sy = 40 + i % 50;
+        benchmark::DoNotOptimize(fast ? patch_distance(L, 0, ty, 30, sy, 0)
+                                      : patch_distance_reference(L, 0, ty, 30, sy, 0));
+        ++i;
+    }
+}
+BENCHMARK(BM_PatchDistanceBorder)->Arg(0)->Arg(1);
+
 void BM_PatchMatchIteration(benchmark::State& state) {
     set_simd_enabled(true);
     const int size = static_cast<int>(state.range(1));

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 namespace exemplar::synth {
 
@@ -132,6 +133,111 @@ bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, f
     return true;
 }
 
+// `sum` plus the P pixel sums of a row of terms (kF per pixel), in general_distance's order: each
+// pixel's channels in turn, then the pixels, each times its fall-off weight (nullptr: flat).
+// One instantiation per channel count, so the additions are unrolled.
+template <int kF>
+float add_row_of(const float* terms, int P, const float* falloff, float sum) {
+    for (int i = 0; i < P; ++i, terms += kF) {
+        float px = 0.0f;
+        for (int ch = 0; ch < kF; ++ch) px += terms[ch];
+        sum += falloff != nullptr ? falloff[i] * px : px;
+    }
+    return sum;
+}
+using RowAdder = float (*)(const float*, int, const float*, float);
+template <std::size_t... F>
+constexpr std::array<RowAdder, sizeof...(F)> row_adders(std::index_sequence<F...>) {
+    return {&add_row_of<static_cast<int>(F)>...};
+}
+// For 0..16 feature channels (the gathered path's limit).
+constexpr auto kRowAdders = row_adders(std::make_index_sequence<17>());
+
+// Every case of general_distance (clamped borders, rotation, weight maps, fall-off) with its
+// arithmetic: each term w·d·d rounded as there, the terms added in its order (a pixel's channels,
+// then the row's pixels) and the same exit after a row, so the value is general_distance<true>'s
+// to the bit (the search chooses as it did with that loop). Faster because a row's terms come
+// from one SIMD kernel over contiguous runs of bytes (ssd_terms): the target's and source's rows
+// are read in place where no pixel of the row is clamped or rotated, else gathered first. Only
+// the additions stay a serial chain. Returns false (nothing computed) when a row does not fit
+// the blocks.
+bool gathered_distance(const Level& L, int tx, int ty, int sx, int sy, float angle, float bound,
+                       float& sum) {
+    constexpr int kMaxRowBytes = 15 * 16;
+    // Pixels (at most 16 channels) are gathered 16 bytes or floats at a time: a fixed-size copy
+    // instead of a call; the images and weights have the slack, the next pixel overwrites the rest.
+    constexpr std::size_t kCopy = 16;
+    const int r = L.radius;
+    const int P = L.patch_size;
+    const int F = L.feature_channels();
+    const int row_bytes = P * F;
+    const bool weighted = !L.target_weights.empty();
+    if (F >= static_cast<int>(kRowAdders.size()) || row_bytes > kMaxRowBytes ||
+        (weighted && L.target_pixel_weight.empty())) {
+        return false;
+    }
+    const bool rotate = angle != 0.0f;
+    const float c = rotate ? std::cos(angle) : 1.0f;
+    const float s = rotate ? std::sin(angle) : 0.0f;
+    const bool falloff = !L.pixel_weight.empty();
+    const auto nf = static_cast<std::size_t>(F);
+    const bool target_runs = tx >= r && tx < L.tw - r;
+    const bool source_runs = !rotate && sx >= r && sx < L.sw - r;
+    // The blocks have ssd_terms' slack: zeros past the gathered row.
+    alignas(64) std::uint8_t target_block[kMaxRowBytes + kSsdSlack + kCopy];
+    alignas(64) std::uint8_t source_block[kMaxRowBytes + kSsdSlack + kCopy];
+    alignas(64) float weight_block[kMaxRowBytes + kSsdSlack + kCopy];
+    alignas(64) float terms[kMaxRowBytes + kSsdSlack];
+    if (!target_runs) {
+        std::memset(target_block + row_bytes, 0, kSsdSlack);
+        if (weighted) std::memset(weight_block + row_bytes, 0, kSsdSlack * sizeof(float));
+    }
+    if (!source_runs) std::memset(source_block + row_bytes, 0, kSsdSlack);
+    const RowAdder add_row = kRowAdders[static_cast<std::size_t>(F)];
+    sum = 0.0f;
+    for (int dy = -r; dy <= r; ++dy) {
+        const int y = std::clamp(ty + dy, 0, L.th - 1);
+        const std::uint8_t* t = target_block;
+        const std::uint8_t* src = source_block;
+        // Without weight maps a row's weights are the channel weights tiled over its pixels;
+        // with them, channel_weight[c] * target_weights(c) per pixel, general_distance's product.
+        const float* w = L.row_weight.data();
+        if (target_runs) {
+            t = L.target_features.pixel(tx - r, y);
+            if (weighted) w = L.target_pixel_weight.data() + L.target_index(tx - r, y) * nf;
+        } else {
+            for (int dx = -r, i = 0; dx <= r; ++dx, ++i) {
+                const int x = std::clamp(tx + dx, 0, L.tw - 1);
+                const auto at = static_cast<std::size_t>(i) * nf;
+                std::memcpy(target_block + at, L.target_features.pixel(x, y), kCopy);
+                if (weighted) {
+                    std::memcpy(weight_block + at,
+                                L.target_pixel_weight.data() + L.target_index(x, y) * nf,
+                                kCopy * sizeof(float));
+                }
+            }
+            if (weighted) w = weight_block;
+        }
+        if (source_runs) {
+            src = L.source_features.pixel(sx - r, std::clamp(sy + dy, 0, L.sh - 1));
+        } else {
+            for (int dx = -r, i = 0; dx <= r; ++dx, ++i) {
+                const RotatedOffset o =
+                    rotate ? rotate_offset(dx, dy, c, s) : RotatedOffset{dx, dy};
+                std::memcpy(source_block + static_cast<std::size_t>(i) * nf,
+                            L.source_features.pixel(std::clamp(sx + o.dx, 0, L.sw - 1),
+                                                    std::clamp(sy + o.dy, 0, L.sh - 1)),
+                            kCopy);
+            }
+        }
+        ssd_terms(t, src, w, row_bytes, terms);
+        const float* row_falloff = falloff ? L.pixel_weight.data() + (dy + r) * P : nullptr;
+        sum = add_row(terms, P, row_falloff, sum);
+        if (sum > bound) return true;
+    }
+    return true;
+}
+
 }  // namespace
 
 float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, float angle) {
@@ -145,6 +251,7 @@ float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, flo
         rotated_interior_distance(L, tx, ty, sx, sy, angle, bound, sum)) {
         return sum;
     }
+    if (gathered_distance(L, tx, ty, sx, sy, angle, bound, sum)) return sum;
     return general_distance<true>(L, tx, ty, sx, sy, angle, bound);
 }
 

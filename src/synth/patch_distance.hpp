@@ -38,7 +38,10 @@ void rotated_offsets(const Level& L, float angle_rad, int* offsets);
 /// The simple reference: every pixel and channel, no early termination. Test oracle.
 float patch_distance_reference(const Level& level, int tx, int ty, int sx, int sy, float angle_rad);
 
-/// Every case of patch_distance (clamped borders, rotation, weight maps, fall-off).
+/// Every case of patch_distance (clamped borders, rotation, weight maps, fall-off). Bit for bit
+/// the reference's value (its summation order; above `bound`, some value > bound), except rotated
+/// patches inside both images without weight maps or fall-off (a SIMD gather: the reference's
+/// value up to summation order).
 float patch_distance_general(const Level& level, int tx, int ty, int sx, int sy, float angle_rad,
                              float bound);
 

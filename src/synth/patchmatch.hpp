@@ -23,6 +23,7 @@
 // by (key, iteration, pixel). Hence the result does not depend on the number of threads.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -82,6 +83,23 @@ inline RotatedOffset rotated_step(const Level& L, float angle_rad, int dx, int d
     return rotated_step(angle_rad, dx, dy);
 }
 
+/// Random-search windows per query at most: one per halving of the database's larger side.
+inline constexpr int kMaxWindows = 32;
+
+/// Asks the caches for the first rows of the patch centred at (x, y) of `features` (clamped to
+/// the image), the rows a patch distance reads before it can stop early. No effect on results.
+inline void prefetch_patch(const FeatureImage& features, int radius, int x, int y) {
+    constexpr int kRows = 2;
+    const int x0 = std::max(0, x - radius);
+    const int x1 = std::min(features.width() - 1, x + radius);
+    for (int k = 0; k < kRows; ++k) {
+        const int row = std::clamp(y - radius + k, 0, features.height() - 1);
+        // A patch row may straddle cache lines: its first and its last byte.
+        __builtin_prefetch(features.pixel(x0, row));
+        __builtin_prefetch(features.pixel(x1, row) + features.stride() - 1);
+    }
+}
+
 /// Evaluates the cost of every active entry (entries whose position is no longer valid are
 /// replaced by a random valid one). Call after the problem's costs changed. With
 /// `only_invalid`, valid entries keep their stored cost (for when only validity changed).
@@ -134,6 +152,9 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
     const int bands = (h + kBandRows - 1) / kBandRows;
     // The one row each band reads across its border, as it was at the start of the iteration.
     std::vector<Match> border(static_cast<std::size_t>(bands) * static_cast<std::size_t>(w));
+    const int max_x = P.db_width() - 1;
+    const int max_y = P.db_height() - 1;
+    const int max_radius = std::max(P.db_width(), P.db_height());
     for (int iter = 0; iter < iterations; ++iter) {
         const bool forward_scan = iter % 2 == 0;
         const int step = forward_scan ? 1 : -1;
@@ -146,6 +167,7 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
         parallel_for(0, bands, threads, [&](int band) {
             const int y0 = band * kBandRows;
             const int y1 = std::min(h, y0 + kBandRows);
+            std::array<int, kMaxWindows> window_dx{}, window_dy{};
             for (int yi = 0; yi < y1 - y0; ++yi) {
                 const int y = forward_scan ? y0 + yi : y1 - 1 - yi;
                 for (int xi = 0; xi < w; ++xi) {
@@ -198,17 +220,29 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
                         if (c.x >= 0) try_candidate(c.x, c.y);
                     }
 
-                    // Random search in shrinking windows around the best match.
+                    // Random search in shrinking windows around the best match. The windows'
+                    // offsets do not depend on the best match, so they are drawn first (the
+                    // generator's stream as before) and the candidates' patches are requested
+                    // from memory together before any is costed: most lie far from the queries
+                    // around, and one at a time each waited for its cache misses.
                     KeyedRng rng(key, static_cast<std::uint64_t>(iter), qi);
                     const bool far = far_exploration(x, y, iter, key);
-                    for (int radius = std::max(P.db_width(), P.db_height()); radius >= 1;
-                         radius /= 2) {
+                    int windows = 0;
+                    for (int radius = max_radius; radius >= 1; radius /= 2) {
                         if (radius > kNearRadius && !far) continue;
-                        const int cx =
-                            std::clamp(best.x + rng.range(-radius, radius), 0, P.db_width() - 1);
-                        const int cy =
-                            std::clamp(best.y + rng.range(-radius, radius), 0, P.db_height() - 1);
-                        try_candidate(cx, cy);
+                        const auto i = static_cast<std::size_t>(windows++);
+                        window_dx[i] = rng.range(-radius, radius);
+                        window_dy[i] = rng.range(-radius, radius);
+                    }
+                    for (int i = 0; i < windows; ++i) {
+                        const auto ui = static_cast<std::size_t>(i);
+                        P.prefetch(std::clamp(best.x + window_dx[ui], 0, max_x),
+                                   std::clamp(best.y + window_dy[ui], 0, max_y));
+                    }
+                    for (int i = 0; i < windows; ++i) {
+                        const auto ui = static_cast<std::size_t>(i);
+                        try_candidate(std::clamp(best.x + window_dx[ui], 0, max_x),
+                                      std::clamp(best.y + window_dy[ui], 0, max_y));
                     }
                     // One candidate drawn from everything this query may use.
                     int rx = 0, ry = 0;
@@ -250,6 +284,7 @@ struct ForwardProblem {
         return L.compatible(qi, sx, sy) && (allowed == nullptr || allowed[L.source_index(sx, sy)]);
     }
     float angle(std::size_t qi, int sx, int sy) const { return L.angle_for(qi, sx, sy); }
+    void prefetch(int sx, int sy) const { prefetch_patch(L.source_features, L.radius, sx, sy); }
     float cost(int tx, int ty, int sx, int sy, float angle_rad, float bound) const {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
@@ -303,6 +338,7 @@ struct ReverseProblem {
         return -L.angle_for(L.target_index(tx, ty), static_cast<int>(si % L.sw),
                             static_cast<int>(si / L.sw));
     }
+    void prefetch(int tx, int ty) const { prefetch_patch(L.target_features, L.radius, tx, ty); }
     float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {
         return patch_distance(L, tx, ty, sx, sy, -angle_rad, bound);
     }

@@ -27,7 +27,14 @@ using SsdRowsFn = float (*)(const std::uint8_t* a, std::size_t a_stride, const s
                             std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
                             float bound);
 
+/// The signature of the ssd_terms kernels.
+using SsdTermsFn = void (*)(const std::uint8_t* a, const std::uint8_t* b, const float* w, int n,
+                            float* out);
+
 namespace detail {
+/// The kernel ssd_terms calls (resolved with the ssd_rows kernel).
+extern std::atomic<SsdTermsFn> g_terms_kernel;
+SsdTermsFn resolve_terms_kernel();
 /// The kernel ssd_rows calls: resolved once (the SIMD target for this CPU, or the scalar
 /// reference while SIMD is disabled) instead of dispatching on every call, which the search
 /// makes tens of millions of times.
@@ -46,6 +53,21 @@ inline float ssd_rows(const std::uint8_t* a, std::size_t a_stride, const std::ui
     if (kernel == nullptr) kernel = detail::resolve_ssd_kernel();
     return kernel(a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
 }
+
+/// The terms of a weighted SSD, each rounded as the scalar expression rounds it:
+/// out[i] = (w[i] * d) * d with d = a[i] - b[i] as a float, for i < n (two multiplications, never
+/// fused), so that adding them in any fixed order gives that order's scalar sum to the bit. May
+/// read kSsdSlack bytes/floats past a + n, b + n and w + n and write as many past out + n.
+inline void ssd_terms(const std::uint8_t* a, const std::uint8_t* b, const float* w, int n,
+                      float* out) {
+    SsdTermsFn kernel = detail::g_terms_kernel.load(std::memory_order_relaxed);
+    if (kernel == nullptr) kernel = detail::resolve_terms_kernel();
+    kernel(a, b, w, n, out);
+}
+
+/// The scalar reference of ssd_terms (same contract; reads and writes nothing past n).
+void ssd_terms_scalar(const std::uint8_t* a, const std::uint8_t* b, const float* w, int n,
+                      float* out);
 
 /// The scalar reference of ssd_rows (same contract; reads nothing past a row).
 float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,

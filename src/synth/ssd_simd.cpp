@@ -63,6 +63,19 @@ float SsdRows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b
     return SsdRowsT(df, a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
 }
 
+// Two roundings per term, (w * d) * d, as the scalar expression: Mul, never MulAdd.
+void SsdTerms(const std::uint8_t* a, const std::uint8_t* b, const float* w, int n, float* out) {
+    const hn::ScalableTag<float> df;
+    const hn::RebindToSigned<decltype(df)> di;
+    const hn::Rebind<std::uint8_t, decltype(df)> d8;
+    const int lanes = static_cast<int>(hn::Lanes(df));
+    for (int i = 0; i < n; i += lanes) {
+        const auto d = hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, a + i)),
+                                                 hn::PromoteTo(di, hn::LoadU(d8, b + i))));
+        hn::StoreU(hn::Mul(hn::Mul(hn::LoadU(df, w + i), d), d), df, out + i);
+    }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace exemplar::synth
 HWY_AFTER_NAMESPACE();
@@ -71,6 +84,7 @@ HWY_AFTER_NAMESPACE();
 namespace exemplar::synth {
 
 HWY_EXPORT(SsdRows);
+HWY_EXPORT(SsdTerms);
 
 namespace {
 std::atomic<bool> g_simd{true};
@@ -79,17 +93,26 @@ std::atomic<bool> g_simd{true};
 namespace detail {
 
 std::atomic<SsdRowsFn> g_ssd_kernel{nullptr};
+std::atomic<SsdTermsFn> g_terms_kernel{nullptr};
 
 SsdRowsFn resolve_ssd_kernel() {
     SsdRowsFn kernel = &ssd_rows_scalar;
+    SsdTermsFn terms = &ssd_terms_scalar;
     if (g_simd.load(std::memory_order_relaxed)) {
-        // The entry HWY_DYNAMIC_DISPATCH would call, once the target has been chosen.
+        // The entries HWY_DYNAMIC_DISPATCH would call, once the target has been chosen.
         hwy::ChosenTarget& chosen = hwy::GetChosenTarget();
         if (!chosen.IsInitialized()) chosen.Update(hwy::SupportedTargets());
         kernel = HWY_DISPATCH_TABLE(SsdRows)[chosen.GetIndex()];
+        terms = HWY_DISPATCH_TABLE(SsdTerms)[chosen.GetIndex()];
     }
+    g_terms_kernel.store(terms, std::memory_order_relaxed);
     g_ssd_kernel.store(kernel, std::memory_order_relaxed);
     return kernel;
+}
+
+SsdTermsFn resolve_terms_kernel() {
+    resolve_ssd_kernel();
+    return g_terms_kernel.load(std::memory_order_relaxed);
 }
 
 }  // namespace detail
@@ -109,6 +132,14 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
         if (sum > bound) return sum;
     }
     return sum;
+}
+
+void ssd_terms_scalar(const std::uint8_t* a, const std::uint8_t* b, const float* w, int n,
+                      float* out) {
+    for (int i = 0; i < n; ++i) {
+        const auto d = static_cast<float>(static_cast<int>(a[i]) - static_cast<int>(b[i]));
+        out[i] = w[i] * d * d;
+    }
 }
 
 void set_simd_enabled(bool enabled) {

@@ -4,6 +4,7 @@
 #include <hwy/targets.h>
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "level_builder.hpp"
@@ -159,6 +160,51 @@ TEST(PatchDistance, OrientationStepsRoundAnglesAndUseTheirTables) {
     }
 }
 
+// Patches over a border, rotated ones with weight maps or fall-off and every weighted one take the
+// gathered path: the reference's arithmetic in its order, so its value to the bit (the search
+// chooses as it did with the reference's loop), and with a bound the same early exit.
+TEST(PatchDistance, GatheredPathEqualsReferenceExactly) {
+    struct Config {
+        bool weight_map;
+        float falloff;
+        bool rotated;
+        int guide_channels;
+    };
+    // With the SIMD terms kernel and with its scalar reference.
+    for (bool simd : {true, false}) {
+        set_simd_enabled(simd);
+        for (const Config& config : {Config{false, 0.0f, false, 2}, Config{true, 0.0f, false, 2},
+                                     Config{false, 1.5f, false, 2}, Config{true, 1.5f, true, 2},
+                                     Config{true, 0.0f, true, 9}, Config{false, 0.0f, false, 13}}) {
+            for (int patch : {3, 5, 7}) {
+                const Level L = make_level(patch, config.weight_map, config.falloff, config.rotated,
+                                           config.guide_channels);
+                for (int ty = 0; ty < L.th; ++ty) {
+                    for (int tx = 0; tx < L.tw; ++tx) {
+                        for (const auto& [sx, sy] :
+                             {std::pair{12, 11}, {0, 0}, {29, 25}, {1, 13}}) {
+                            const float angle = L.angle_for(L.target_index(tx, ty), sx, sy);
+                            const float ref = patch_distance_reference(L, tx, ty, sx, sy, angle);
+                            ASSERT_EQ(
+                                patch_distance_general(L, tx, ty, sx, sy, angle,
+                                                       std::numeric_limits<float>::infinity()),
+                                ref)
+                                << "simd " << simd << " F " << L.feature_channels() << " patch "
+                                << patch << " t " << tx << "," << ty << " s " << sx << "," << sy;
+                            if (ref > 0.0f) {
+                                EXPECT_GT(
+                                    patch_distance_general(L, tx, ty, sx, sy, angle, 0.5f * ref),
+                                    0.5f * ref);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    set_simd_enabled(true);
+}
+
 TEST(PatchDistance, IdenticalPatchesHaveZeroDistanceAndWeightsScale) {
     // Target = source: the distance at the same position is exactly 0.
     SynthesisInput in;
@@ -244,6 +290,26 @@ TEST(SsdRows, SimdMatchesScalarForEveryShape) {
     EXPECT_GT(cut, full * 0.3f);
     EXPECT_LT(cut, full);
     EXPECT_NE(std::string(simd_target_name()), "");
+}
+
+// The terms the gathered path adds in the reference's order: the same floats as the scalar
+// expression (w * d) * d, for any length (whole vectors and a tail).
+TEST(SsdTerms, SimdEqualsScalarExactly) {
+    const std::vector<std::uint8_t> a = random_codes(512, 25), b = random_codes(512, 26);
+    const std::vector<float> w = random_weights(512, 27);
+    ASSERT_TRUE(simd_enabled());
+    for (int n : {1, 3, 6, 15, 16, 17, 30, 45, 75, 240}) {
+        std::vector<float> simd(static_cast<std::size_t>(n) + kSsdSlack, -1.0f);
+        std::vector<float> scalar(static_cast<std::size_t>(n), -1.0f);
+        ssd_terms(a.data() + 5, b.data() + 9, w.data() + 3, n, simd.data());
+        ssd_terms_scalar(a.data() + 5, b.data() + 9, w.data() + 3, n, scalar.data());
+        for (int i = 0; i < n; ++i) {
+            const auto ui = static_cast<std::size_t>(i);
+            ASSERT_EQ(simd[ui], scalar[ui]) << "n=" << n << " i=" << i;
+            const auto d = static_cast<float>(static_cast<int>(a[ui + 5]) - b[ui + 9]);
+            ASSERT_EQ(scalar[ui], w[ui + 3] * d * d);
+        }
+    }
 }
 
 TEST(SsdRows, TailBytesPastTheRowAreIgnored) {
