@@ -226,7 +226,7 @@ def stylize(
           (StyLit as published). Range 0..100 iterations.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
-          neighbour's shifted source where the summed error does not grow, moving to it or
+          neighbour's shifted source where that lowers the summed error, moving to it or
           swapping sources with another stray target so that every count stays K or K + 1:
           larger exemplar pieces; 0 = off (LazyFluids as published). Range 0..100
           iterations.
@@ -441,7 +441,7 @@ def stylit(
           (StyLit as published). Range 0..100 iterations.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
-          neighbour's shifted source where the summed error does not grow, moving to it or
+          neighbour's shifted source where that lowers the summed error, moving to it or
           swapping sources with another stray target so that every count stays K or K + 1:
           larger exemplar pieces; 0 = off (LazyFluids as published). Range 0..100
           iterations.
@@ -705,7 +705,7 @@ def animate(
           (StyLit as published). Range 0..100 iterations.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
-          neighbour's shifted source where the summed error does not grow, moving to it or
+          neighbour's shifted source where that lowers the summed error, moving to it or
           swapping sources with another stray target so that every count stays K or K + 1:
           larger exemplar pieces; 0 = off (LazyFluids as published). Range 0..100
           iterations.

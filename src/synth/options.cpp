@@ -181,7 +181,7 @@ const std::array<OptionSpec, 26> kSpecs{{
      "iterations", 0, 100, &O::coherence_sweeps},
     {"uniform-coherence-sweeps",
      "Uniform usage: sweeps after the assignment in which every stray match takes a neighbour's "
-     "shifted source where the summed error does not grow, moving to it or swapping sources with "
+     "shifted source where that lowers the summed error, moving to it or swapping sources with "
      "another stray target so that every count stays K or K + 1: larger exemplar pieces; "
      "0 = off (LazyFluids as published).",
      "iterations", 0, 100, &O::uniform_coherence_sweeps},

@@ -155,8 +155,8 @@ TEST(LazyFluidsWashOut, UniformUsageKeepsTheTextureOverASixtyFramePlume) {
 // the exemplar's energy in either assignment). With the paper's assignment (coherence-sweeps 0)
 // the texture falls over the frames as the plume outgrows the exemplar and more of its patches
 // are placed singly (measured: 10-frame means 0.83 0.77 0.76 0.75 0.74 0.71, mean 0.76); the
-// default's sweeps let stray matches continue their neighbours' pieces (0.93 0.91 0.93 0.91
-// 0.92 0.94, mean 0.92, no frame below 0.79).
+// default's sweeps let stray matches continue their neighbours' pieces (0.89 0.93 0.96 0.90
+// 0.92 0.92, mean 0.92, no frame below 0.81).
 TEST(LazyFluidsWashOut, CoherentUniformUsageKeepsAPhotosTextureOverASixtyFramePlume) {
     constexpr int kFrames = 60;
     auto exemplar = load_image(EXEMPLAR_TEST_DATA_DIR "/fluid/ink_64.png");
@@ -181,7 +181,7 @@ TEST(LazyFluidsWashOut, CoherentUniformUsageKeepsAPhotosTextureOverASixtyFramePl
     EXPECT_LT(mean(paper.energy, 40, 60), 0.8);
     EXPECT_LT(mean(paper.energy, 40, 60), mean(paper.energy, 0, 10));
     // The default keeps the photo's texture within 10% over the shot, in every 10 frames and
-    // with no trend; no single frame below 0.75 (measured 0.92, 0.91-0.94, lowest 0.79).
+    // with no trend; no single frame below 0.75 (measured 0.92, 0.89-0.96, lowest 0.81).
     EXPECT_NEAR(mean(ours.energy, 0, kFrames), 1.0, 0.1);
     for (int t = 0; t < kFrames; t += 10) {
         EXPECT_NEAR(mean(ours.energy, t, t + 10), 1.0, 0.12) << "frames " << t << ".." << t + 9;
