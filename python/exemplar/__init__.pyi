@@ -104,6 +104,7 @@ def stylize(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
@@ -223,6 +224,12 @@ def stylize(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      uniform_coherence_sweeps (int, default 0)
+          Uniform usage: sweeps after the assignment in which every stray match takes a
+          neighbour's shifted source where that lowers the summed error, moving to it or
+          swapping sources with another stray target so that every count stays K or K + 1:
+          larger exemplar pieces; 0 = off (LazyFluids as published). Range 0..100
+          iterations.
       budget_polish_iterations (int, default 0)
           Error budget and uniform usage: the finest level searches plain nearest neighbours
           from the field the usage laid out, this many iterations instead of
@@ -326,6 +333,7 @@ def stylit(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
@@ -431,6 +439,12 @@ def stylit(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      uniform_coherence_sweeps (int, default 0)
+          Uniform usage: sweeps after the assignment in which every stray match takes a
+          neighbour's shifted source where that lowers the summed error, moving to it or
+          swapping sources with another stray target so that every count stays K or K + 1:
+          larger exemplar pieces; 0 = off (LazyFluids as published). Range 0..100
+          iterations.
       budget_polish_iterations (int, default 0)
           Error budget and uniform usage: the finest level searches plain nearest neighbours
           from the field the usage laid out, this many iterations instead of
@@ -557,6 +571,7 @@ def animate(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
@@ -688,6 +703,12 @@ def animate(
           (continuing fewer than two of its neighbours' source regions) takes a neighbour's
           shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      uniform_coherence_sweeps (int, default 0)
+          Uniform usage: sweeps after the assignment in which every stray match takes a
+          neighbour's shifted source where that lowers the summed error, moving to it or
+          swapping sources with another stray target so that every count stays K or K + 1:
+          larger exemplar pieces; 0 = off (LazyFluids as published). Range 0..100
+          iterations.
       budget_polish_iterations (int, default 0)
           Error budget and uniform usage: the finest level searches plain nearest neighbours
           from the field the usage laid out, this many iterations instead of
@@ -774,6 +795,7 @@ def fluid_frame(
     motion_blur: float = 0.0,
     vote_histogram: float = 2.0,
     vote_coherence: float = 2.0,
+    coherence_sweeps: int = 2,
     usage: str = 'uniform',
     rotations: bool = False,
     seed: int = 1,
@@ -834,6 +856,11 @@ def fluid_frame(
           neighbours map where they do outweigh the scattered matches between them, so the
           exemplar's fine grain is not averaged away (0 = the paper's vote). Ours: 2. Range
           0.0..100.0 px^2.
+      coherence_sweeps (int, default 2)
+          Sweeps in which stray matches of the uniform assignment take a neighbour's shifted
+          exemplar patch (moves and swaps that keep every count K or K + 1): larger coherent
+          pieces of the exemplar, less texture averaged away (0 = the paper's assignment).
+          Ours: 2. Range 0..100.
       usage (str, default 'uniform')
           'uniform' (LazyFluids) or 'none' (plain nearest neighbours, for comparisons).
       rotations (bool, default False)

@@ -147,6 +147,11 @@ std::span<const FluidOptionSpec> fluid_option_specs() {
          "neighbours map where they do outweigh the scattered matches between them, so the "
          "exemplar's fine grain is not averaged away (0 = the paper's vote). Ours: 2",
          "px^2", 0, 100, &O::vote_coherence},
+        {"coherence-sweeps",
+         "Sweeps in which stray matches of the uniform assignment take a neighbour's shifted "
+         "exemplar patch (moves and swaps that keep every count K or K + 1): larger coherent "
+         "pieces of the exemplar, less texture averaged away (0 = the paper's assignment). Ours: 2",
+         "", 0, 100, &O::coherence_sweeps},
     };
     return specs;
 }
@@ -402,6 +407,7 @@ Result<FluidFrameResult> synthesize_fluid_frame(const FluidFrameInput& in,
     synthesis.usage = options.uniform_usage ? UsageStrategy::Uniform : UsageStrategy::None;
     synthesis.vote_histogram = options.vote_histogram;
     synthesis.vote_coherence = options.vote_coherence;
+    synthesis.uniform_coherence_sweeps = options.coherence_sweeps;
 
     auto run = synthesize(std::move(input), synthesis, context);
     if (!run.ok()) return run.status();

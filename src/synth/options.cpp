@@ -111,7 +111,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 25> kSpecs{{
+const std::array<OptionSpec, 26> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -179,6 +179,12 @@ const std::array<OptionSpec, 25> kSpecs{{
      "fewer than two of its neighbours' source regions) takes a neighbour's shifted match where "
      "that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
+    {"uniform-coherence-sweeps",
+     "Uniform usage: sweeps after the assignment in which every stray match takes a neighbour's "
+     "shifted source where that lowers the summed error, moving to it or swapping sources with "
+     "another stray target so that every count stays K or K + 1: larger exemplar pieces; "
+     "0 = off (LazyFluids as published).",
+     "iterations", 0, 100, &O::uniform_coherence_sweeps},
     {"budget-polish-iterations",
      "Error budget and uniform usage: the finest level searches plain nearest neighbours from "
      "the field the usage laid out, this many iterations instead of finest-em-iterations ones: "

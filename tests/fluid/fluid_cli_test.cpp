@@ -261,5 +261,20 @@ TEST_F(FluidCli, VoteWeightsAreFlags) {
     EXPECT_NE(frames("paper"), frames("out"));
 }
 
+// The assignment's coherence sweeps are a flag of the option table too: an integer in range, and
+// 0 (the paper's placement) gives other frames than the default.
+TEST_F(FluidCli, CoherenceSweepsAreAFlag) {
+    expect_bad_option("--coherence-sweeps", "1.5",
+                      "coherence-sweeps: 1.5 is invalid (must be an integer 0..100)");
+    expect_bad_option("--coherence-sweeps", "101",
+                      "coherence-sweeps: 101 is invalid (must be an integer 0..100)");
+
+    std::vector<std::string> scattered = args("scattered/%04d.png");
+    scattered.insert(scattered.end(), {"--coherence-sweeps", "0"});
+    ASSERT_EQ(run(scattered).code, 0);
+    ASSERT_EQ(run(args()).code, 0);
+    EXPECT_NE(frames("scattered"), frames("out"));
+}
+
 }  // namespace
 }  // namespace exemplar::fluid

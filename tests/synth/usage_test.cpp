@@ -260,6 +260,50 @@ TEST(ErrorBudget, CoherenceSweepsMergeOnlyStrayMatches) {
     }
 }
 
+// The uniform usage's coherence sweeps: moves and swaps keep every count at K or K + 1 (also for
+// K = 0 and per label), fewer strays remain, the summed error of the assignment goes down, every
+// stored error is the exact distance, and the result is the same for any thread count.
+TEST(UniformUsage, CoherenceSweepsKeepTheCountsAndMergeStrays) {
+    const struct {
+        int sw, sh, tw, th;
+        bool labels;
+    } cases[] = {{20, 18, 41, 37, false}, {40, 40, 20, 22, false}, {30, 24, 36, 30, true}};
+    for (const auto& c : cases) {
+        UsageFixture plain = make(c.sw, c.sh, c.tw, c.th, UsageStrategy::Uniform, c.labels);
+        search(SearchSetup{plain.L, plain.opt, 9, 2}, plain.nnf);
+        std::vector<Nnf> swept_nnfs;
+        for (const int threads : {1, 2}) {
+            UsageFixture swept = make(c.sw, c.sh, c.tw, c.th, UsageStrategy::Uniform, c.labels);
+            swept.opt.uniform_coherence_sweeps = 2;
+            search(SearchSetup{swept.L, swept.opt, 9, threads}, swept.nnf);
+            expect_uniform(swept);
+            double error_plain = 0.0, error_swept = 0.0;
+            for (std::size_t t = 0; t < swept.nnf.pixel_count(); ++t) {
+                if (!swept.L.target_active[t] || !swept.L.target_inside(t)) continue;
+                error_plain += plain.nnf[t].error;
+                error_swept += swept.nnf[t].error;
+                const Match& m = swept.nnf[t];
+                ASSERT_NEAR(
+                    m.error,
+                    patch_distance_reference(swept.L, static_cast<int>(t % swept.L.tw),
+                                             static_cast<int>(t / swept.L.tw), m.x, m.y, 0.0f),
+                    1e-4f * std::max(1.0f, m.error));
+            }
+            const auto count = [](const std::vector<std::uint8_t>& v) {
+                return std::count(v.begin(), v.end(), 1);
+            };
+            EXPECT_LT(count(strays(swept.L, swept.nnf)), count(strays(plain.L, plain.nnf)))
+                << c.sw << "x" << c.sh << " -> " << c.tw << "x" << c.th;
+            EXPECT_LT(error_swept, error_plain);
+            swept_nnfs.push_back(std::move(swept.nnf));
+        }
+        for (std::size_t t = 0; t < swept_nnfs[0].pixel_count(); ++t) {
+            ASSERT_EQ(swept_nnfs[0][t].x, swept_nnfs[1][t].x) << t;
+            ASSERT_EQ(swept_nnfs[0][t].y, swept_nnfs[1][t].y) << t;
+        }
+    }
+}
+
 TEST(OccurrencePenalty, ReducesMaximalUsage) {
     // A flat target makes plain nearest neighbours pile onto a few source patches.
     auto max_usage = [](UsageStrategy usage, float strength) {

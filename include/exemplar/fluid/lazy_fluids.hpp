@@ -81,6 +81,12 @@ struct FluidOptions {
     /// Ours, not the paper's; default 2 (Brushables' value; docs/fluid.md, "Wash-out");
     /// 0 = the paper's vote.
     float vote_coherence = 2.0f;
+    /// Sweeps in which stray matches of the uniform assignment take a neighbour's shifted exemplar
+    /// patch, moving or swapping so that every count stays K or K + 1
+    /// (SynthesisOptions::uniform_coherence_sweeps), 0..100: the assignment places larger
+    /// coherent pieces of the exemplar instead of scattered patches, which the vote would average
+    /// flat. Ours, not the paper's; default 2 (docs/fluid.md, "Wash-out"); 0 = the paper's.
+    int coherence_sweeps = 2;
     /// Engine options (levels, EM and PatchMatch iterations, seed). patch_size and usage are
     /// set from the fields above.
     SynthesisOptions synthesis;
@@ -98,7 +104,8 @@ struct FluidOptionSpec {
 };
 
 /// The numeric options (patch-size, temporal-weight, boundary-weight, alpha-weight,
-/// blur-radius, boundary-low, boundary-high, motion-blur, vote-histogram, vote-coherence).
+/// blur-radius, boundary-low, boundary-high, motion-blur, vote-histogram, vote-coherence,
+/// coherence-sweeps).
 std::span<const FluidOptionSpec> fluid_option_specs();
 
 /// Sets an option, rejecting values outside its range or non-integral values of integer options

@@ -161,6 +161,13 @@ struct SynthesisOptions {
     /// Closer to the exemplar and more of its grain kept; 0 = off (StyLit as published).
     /// Measurements in docs/PERFORMANCE.md.
     int coherence_sweeps = 2;
+    /// Uniform usage: sweeps after the assignment in which every stray match (as for
+    /// coherence_sweeps) takes a neighbour's shifted source instead where that lowers the summed
+    /// patch error, by moving to it if every source's count stays K or K + 1 (and K > 0, so no
+    /// source goes out of use), or by swapping sources with a stray target that uses it: larger
+    /// coherent pieces of the exemplar, the same counts. 0 = off (default: LazyFluids as
+    /// published; exemplar fluid uses 2).
+    int uniform_coherence_sweeps = 0;
     /// Error budget and uniform usage: the finest level runs this many EM iterations of plain
     /// nearest-neighbour search from the field the usage strategy laid out on the coarser
     /// levels, instead of finest_em_iterations iterations with the strategy. (With the uniform
