@@ -438,9 +438,9 @@ bool stray_match(const Level& L, const Nnf& nnf, int x, int y) {
 // Marks in `stray` the active targets of pieces smaller than half a patch (a piece: the targets
 // connected through neighbours that continue each other's source region). No output patch over
 // such a piece is an exemplar patch, every one straddles its seams; merged into the pieces
-// around it, the mosaic has fewer seams: texbynum's patch fidelity 0.0769 → 0.0687, stylit's
-// 0.0380 → 0.0356, with more texture kept (docs/PERFORMANCE.md, "small pieces"). Sequential
-// (union-find over the scan order), so the same for any thread count; linear in the pixels.
+// around it on the finest level, the mosaic has fewer seams (docs/PERFORMANCE.md, "Small pieces
+// are strays"). Sequential (union-find over the scan order), so the same for any thread count;
+// linear in the pixels.
 void mark_small_pieces(const Level& L, const Nnf& nnf, std::vector<std::uint8_t>& stray) {
     const std::size_t n = L.target_active.size();
     std::vector<std::uint32_t> root(n);
@@ -472,10 +472,10 @@ void mark_small_pieces(const Level& L, const Nnf& nnf, std::vector<std::uint8_t>
 
 // The error budget assigns targets one by one, so neighbours often take unrelated sources and
 // the result is a mosaic of small pieces whose seams no exemplar patch contains. Propagation-only
-// sweeps let each stray match (kStrayBelowAgreeing, or in a piece smaller than half a patch) take
-// a neighbour's shifted match where that is closer, merging the strays into the regions around
-// them (options.coherence_sweeps iterations; the strays are chosen once, before the sweeps).
-// Matches inside larger coherent regions stay, so usage stays controlled.
+// sweeps let each stray match (kStrayBelowAgreeing, or on the finest level in a piece smaller
+// than half a patch) take a neighbour's shifted match where that is closer, merging the strays into
+// the regions around them (options.coherence_sweeps iterations; the strays are chosen once, before
+// the sweeps). Matches inside larger coherent regions stay, so usage stays controlled.
 void merge_stray_matches(const SearchSetup& setup, Nnf& nnf) {
     const Level& L = setup.level;
     std::vector<std::uint8_t> stray(L.target_active.size(), 0);
@@ -485,7 +485,7 @@ void merge_stray_matches(const SearchSetup& setup, Nnf& nnf) {
             stray[t] = L.target_active[t] && stray_match(L, nnf, x, y);
         }
     });
-    mark_small_pieces(L, nnf, stray);
+    if (setup.finest) mark_small_pieces(L, nnf, stray);
     ForwardProblem problem = forward_problem(setup, stray.data(), nullptr, nullptr);
     problem.matched = L.target_active.data();
     run_patchmatch(problem, nnf, setup.options.coherence_sweeps, hash_keys(setup.key, 0xC0),

@@ -256,19 +256,23 @@ std::vector<std::uint8_t> strays(const Level& L, const Nnf& nnf) {
     return out;
 }
 
-// The coherence sweeps after the error budget's assignment: only stray matches (isolated picks,
-// seam pixels, small pieces) change, each to a closer one (with its exact distance), and fewer
-// strays remain; the same for any thread count.
+// The coherence sweeps after the error budget's assignment on the finest level: only stray
+// matches (isolated picks, seam pixels, small pieces) change, each to a closer one (with its exact
+// distance), and fewer strays remain; the same for any thread count.
 TEST(ErrorBudget, CoherenceSweepsMergeOnlyStrayMatches) {
     UsageFixture plain = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, true);
     plain.opt.coherence_sweeps = 0;
-    search(SearchSetup{plain.L, plain.opt, 3, 2}, plain.nnf);
+    SearchSetup plain_setup{plain.L, plain.opt, 3, 2};
+    plain_setup.finest = true;  // small pieces are strays on the finest level
+    search(plain_setup, plain.nnf);
     const std::vector<std::uint8_t> before = strays(plain.L, plain.nnf);
     std::size_t changed = 0, changed_in_small_pieces = 0;
     for (const int threads : {1, 2}) {
         UsageFixture swept = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, true);
         swept.opt.coherence_sweeps = 2;
-        search(SearchSetup{swept.L, swept.opt, 3, threads}, swept.nnf);
+        SearchSetup setup{swept.L, swept.opt, 3, threads};
+        setup.finest = true;
+        search(setup, swept.nnf);
         changed = changed_in_small_pieces = 0;
         for (std::size_t t = 0; t < swept.nnf.pixel_count(); ++t) {
             if (!swept.L.target_active[t]) continue;
