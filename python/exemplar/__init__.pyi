@@ -221,9 +221,10 @@ def stylize(
           rest falls back to forward nearest neighbours (StyLit: 0.95). Range 0.0..1.0.
       coherence_sweeps (int, default 2)
           Error budget: sweeps after the patch assignment in which every stray match
-          (continuing fewer than two of its neighbours' source regions) takes a neighbour's
-          shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
-          (StyLit as published). Range 0..100 iterations.
+          (continuing fewer than two of its neighbours' source regions, or on the finest
+          level in a piece smaller than half a patch) takes a neighbour's shifted match
+          where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or
@@ -436,9 +437,10 @@ def stylit(
           rest falls back to forward nearest neighbours (StyLit: 0.95). Range 0.0..1.0.
       coherence_sweeps (int, default 2)
           Error budget: sweeps after the patch assignment in which every stray match
-          (continuing fewer than two of its neighbours' source regions) takes a neighbour's
-          shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
-          (StyLit as published). Range 0..100 iterations.
+          (continuing fewer than two of its neighbours' source regions, or on the finest
+          level in a piece smaller than half a patch) takes a neighbour's shifted match
+          where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or
@@ -700,9 +702,10 @@ def animate(
           rest falls back to forward nearest neighbours (StyLit: 0.95). Range 0.0..1.0.
       coherence_sweeps (int, default 2)
           Error budget: sweeps after the patch assignment in which every stray match
-          (continuing fewer than two of its neighbours' source regions) takes a neighbour's
-          shifted match where that is closer: fewer seams, closer to the exemplar; 0 = off
-          (StyLit as published). Range 0..100 iterations.
+          (continuing fewer than two of its neighbours' source regions, or on the finest
+          level in a piece smaller than half a patch) takes a neighbour's shifted match
+          where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
+          published). Range 0..100 iterations.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or

@@ -176,8 +176,9 @@ const std::array<OptionSpec, 26> kSpecs{{
      "", 0, 1, &O::budget_coverage},
     {"coherence-sweeps",
      "Error budget: sweeps after the patch assignment in which every stray match (continuing "
-     "fewer than two of its neighbours' source regions) takes a neighbour's shifted match where "
-     "that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as published).",
+     "fewer than two of its neighbours' source regions, or on the finest level in a piece "
+     "smaller than half a patch) takes a neighbour's shifted match where that is closer: fewer "
+     "seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
     {"uniform-coherence-sweeps",
      "Uniform usage: sweeps after the assignment in which every stray match takes a neighbour's "

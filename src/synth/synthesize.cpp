@@ -213,7 +213,8 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        &reverse_field,
                                        it > 0 || warm_start || (polish && L.index > 0),
                                        candidates.empty() ? nullptr : &candidates,
-                                       finest ? options.finest_first_round_iterations : 0};
+                                       finest ? options.finest_first_round_iterations : 0,
+                                       finest};
         synth::search(setup, nnf);
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);

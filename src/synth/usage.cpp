@@ -415,27 +415,67 @@ void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nn
 // (measurements in docs/PERFORMANCE.md).
 constexpr int kStrayBelowAgreeing = 2;
 
+// Whether the active target (x + dx, y + dy) continues the source region of the match at (x, y)
+// (its match is (x, y)'s shifted by the step, rotated with it).
+bool continues(const Level& L, const Nnf& nnf, int x, int y, int dx, int dy) {
+    const int nx = x + dx, ny = y + dy;
+    if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) return false;
+    const std::size_t n = L.target_index(nx, ny);
+    if (!L.target_active[n]) return false;
+    const Match& m = nnf[L.target_index(x, y)];
+    const RotatedOffset o = rotated_step(m.angle_rad, dx, dy);
+    return nnf[n].x == m.x + o.dx && nnf[n].y == m.y + o.dy;
+}
+
 // Whether the match at target (x, y) is a stray (see kStrayBelowAgreeing).
 bool stray_match(const Level& L, const Nnf& nnf, int x, int y) {
     constexpr std::array<std::array<int, 2>, 4> kSteps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
-    const Match& m = nnf[L.target_index(x, y)];
     int agreeing = 0;
-    for (const auto& [dx, dy] : kSteps) {
-        const int nx = x + dx, ny = y + dy;
-        if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) continue;
-        const std::size_t n = L.target_index(nx, ny);
-        if (!L.target_active[n]) continue;
-        const RotatedOffset o = rotated_step(m.angle_rad, dx, dy);
-        if (nnf[n].x == m.x + o.dx && nnf[n].y == m.y + o.dy) ++agreeing;
-    }
+    for (const auto& [dx, dy] : kSteps) agreeing += continues(L, nnf, x, y, dx, dy) ? 1 : 0;
     return agreeing < kStrayBelowAgreeing;
+}
+
+// Marks in `stray` the active targets of pieces smaller than half a patch (a piece: the targets
+// connected through neighbours that continue each other's source region). No output patch over
+// such a piece is an exemplar patch, every one straddles its seams; merged into the pieces
+// around it on the finest level, the mosaic has fewer seams (docs/PERFORMANCE.md, "Small pieces
+// are strays"). Sequential (union-find over the scan order), so the same for any thread count;
+// linear in the pixels.
+void mark_small_pieces(const Level& L, const Nnf& nnf, std::vector<std::uint8_t>& stray) {
+    const std::size_t n = L.target_active.size();
+    std::vector<std::uint32_t> root(n);
+    std::iota(root.begin(), root.end(), 0u);
+    auto find = [&](std::uint32_t a) {
+        while (root[a] != a) a = root[a] = root[root[a]];  // path halving
+        return a;
+    };
+    for (int y = 0; y < L.th; ++y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const auto t = static_cast<std::uint32_t>(L.target_index(x, y));
+            if (!L.target_active[t]) continue;
+            for (const auto& [dx, dy] : {std::array{1, 0}, std::array{0, 1}}) {
+                if (!continues(L, nnf, x, y, dx, dy)) continue;
+                const std::uint32_t a = find(t);
+                const std::uint32_t b =
+                    find(static_cast<std::uint32_t>(L.target_index(x + dx, y + dy)));
+                if (a != b) root[std::max(a, b)] = std::min(a, b);
+            }
+        }
+    }
+    std::vector<std::uint32_t> size(n, 0);
+    for (std::size_t t = 0; t < n; ++t) size[find(static_cast<std::uint32_t>(t))] += 1;
+    const auto small = static_cast<std::uint32_t>((L.patch_size * L.patch_size + 1) / 2);
+    for (std::size_t t = 0; t < n; ++t) {
+        if (L.target_active[t] && size[find(static_cast<std::uint32_t>(t))] < small) stray[t] = 1;
+    }
 }
 
 // The error budget assigns targets one by one, so neighbours often take unrelated sources and
 // the result is a mosaic of small pieces whose seams no exemplar patch contains. Propagation-only
-// sweeps let each stray match take a neighbour's shifted match where that is closer, merging the
-// strays into the regions around them (options.coherence_sweeps iterations; the strays are chosen
-// once, before the sweeps). Matches inside coherent regions stay, so usage stays controlled.
+// sweeps let each stray match (kStrayBelowAgreeing, or on the finest level in a piece smaller
+// than half a patch) take a neighbour's shifted match where that is closer, merging the strays into
+// the regions around them (options.coherence_sweeps iterations; the strays are chosen once, before
+// the sweeps). Matches inside larger coherent regions stay, so usage stays controlled.
 void merge_stray_matches(const SearchSetup& setup, Nnf& nnf) {
     const Level& L = setup.level;
     std::vector<std::uint8_t> stray(L.target_active.size(), 0);
@@ -445,6 +485,7 @@ void merge_stray_matches(const SearchSetup& setup, Nnf& nnf) {
             stray[t] = L.target_active[t] && stray_match(L, nnf, x, y);
         }
     });
+    if (setup.finest) mark_small_pieces(L, nnf, stray);
     ForwardProblem problem = forward_problem(setup, stray.data(), nullptr, nullptr);
     problem.matched = L.target_active.data();
     run_patchmatch(problem, nnf, setup.options.coherence_sweeps, hash_keys(setup.key, 0xC0),

@@ -54,6 +54,10 @@ struct SearchSetup {
     /// the later rounds (options.warm_search_iterations). The engine sets it on the finest level
     /// (options.finest_first_round_iterations).
     int first_round_iterations = 0;
+    /// The search is on the finest level: the error budget's coherence sweeps also merge the
+    /// pieces smaller than half a patch (merging them on the coarse levels lets a region grow
+    /// over another; docs/algorithms.md, Error budget).
+    bool finest = false;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`

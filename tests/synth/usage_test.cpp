@@ -202,47 +202,85 @@ TEST(ErrorBudget, CoversEveryTargetAndPrefersLowErrors) {
     EXPECT_TRUE(covered >= 0.95 || stats.rounds == f.opt.budget_max_rounds) << covered;
 }
 
-// Stray matches: those continuing the source region of fewer than 2 of their 4 neighbours
-// (angle 0 here).
+// Stray matches: those continuing the source region of fewer than 2 of their 4 neighbours, and
+// those of pieces (targets connected through neighbours that continue each other's source
+// region) smaller than half a patch (angle 0 here): 1 for the former, 2 for the latter only.
+// Pieces by flood fill.
 std::vector<std::uint8_t> strays(const Level& L, const Nnf& nnf) {
     std::vector<std::uint8_t> out(nnf.pixel_count(), 0);
+    const std::pair<int, int> steps[] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    auto continues = [&](std::size_t t, int x, int y, int dx, int dy) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) return false;
+        const std::size_t n = L.target_index(nx, ny);
+        return L.target_active[n] && nnf[n].x == nnf[t].x + dx && nnf[n].y == nnf[t].y + dy;
+    };
+    std::vector<int> piece(nnf.pixel_count(), -1);
+    std::vector<std::size_t> piece_size;
     for (int y = 0; y < L.th; ++y) {
         for (int x = 0; x < L.tw; ++x) {
             const std::size_t t = L.target_index(x, y);
             if (!L.target_active[t]) continue;
             int agreeing = 0;
-            for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-                const int nx = x + dx, ny = y + dy;
-                if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) continue;
-                const std::size_t n = L.target_index(nx, ny);
-                if (!L.target_active[n]) continue;
-                agreeing += nnf[n].x == nnf[t].x + dx && nnf[n].y == nnf[t].y + dy ? 1 : 0;
-            }
+            for (const auto& [dx, dy] : steps) agreeing += continues(t, x, y, dx, dy) ? 1 : 0;
             out[t] = agreeing < 2 ? 1 : 0;
+            if (piece[t] >= 0) continue;
+            const int id = static_cast<int>(piece_size.size());
+            std::vector<std::size_t> stack{t};
+            piece[t] = id;
+            std::size_t size = 0;
+            while (!stack.empty()) {
+                const std::size_t p = stack.back();
+                stack.pop_back();
+                ++size;
+                const int px = static_cast<int>(p % L.tw), py = static_cast<int>(p / L.tw);
+                for (const auto& [dx, dy] : steps) {
+                    if (!continues(p, px, py, dx, dy)) continue;
+                    const std::size_t n = L.target_index(px + dx, py + dy);
+                    if (piece[n] < 0) {
+                        piece[n] = id;
+                        stack.push_back(n);
+                    }
+                }
+            }
+            piece_size.push_back(size);
+        }
+    }
+    const std::size_t small = (L.patch_size * L.patch_size + 1) / 2;
+    for (std::size_t t = 0; t < out.size(); ++t) {
+        if (out[t] == 0 && piece[t] >= 0 &&
+            piece_size[static_cast<std::size_t>(piece[t])] < small) {
+            out[t] = 2;
         }
     }
     return out;
 }
 
-// The coherence sweeps after the error budget's assignment: only stray matches change, each to a
-// closer one (with its exact distance), and fewer strays remain; the same for any thread count.
+// The coherence sweeps after the error budget's assignment on the finest level: only stray
+// matches (isolated picks, seam pixels, small pieces) change, each to a closer one (with its exact
+// distance), and fewer strays remain; the same for any thread count.
 TEST(ErrorBudget, CoherenceSweepsMergeOnlyStrayMatches) {
     UsageFixture plain = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, true);
     plain.opt.coherence_sweeps = 0;
-    search(SearchSetup{plain.L, plain.opt, 3, 2}, plain.nnf);
+    SearchSetup plain_setup{plain.L, plain.opt, 3, 2};
+    plain_setup.finest = true;  // small pieces are strays on the finest level
+    search(plain_setup, plain.nnf);
     const std::vector<std::uint8_t> before = strays(plain.L, plain.nnf);
-    std::size_t changed = 0;
+    std::size_t changed = 0, changed_in_small_pieces = 0;
     for (const int threads : {1, 2}) {
         UsageFixture swept = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, true);
         swept.opt.coherence_sweeps = 2;
-        search(SearchSetup{swept.L, swept.opt, 3, threads}, swept.nnf);
-        changed = 0;
+        SearchSetup setup{swept.L, swept.opt, 3, threads};
+        setup.finest = true;
+        search(setup, swept.nnf);
+        changed = changed_in_small_pieces = 0;
         for (std::size_t t = 0; t < swept.nnf.pixel_count(); ++t) {
             if (!swept.L.target_active[t]) continue;
             const Match& a = plain.nnf[t];
             const Match& b = swept.nnf[t];
             if (a.x == b.x && a.y == b.y) continue;
             ++changed;
+            changed_in_small_pieces += before[t] == 2 ? 1 : 0;
             ASSERT_TRUE(before[t]) << "a coherent match changed at " << t;
             ASSERT_LT(b.error, a.error) << t;
             ASSERT_TRUE(swept.L.compatible(t, b.x, b.y)) << t;  // labels kept
@@ -253,9 +291,10 @@ TEST(ErrorBudget, CoherenceSweepsMergeOnlyStrayMatches) {
         }
         const std::vector<std::uint8_t> after = strays(swept.L, swept.nnf);
         const auto count = [](const std::vector<std::uint8_t>& v) {
-            return std::count(v.begin(), v.end(), 1);
+            return v.size() - static_cast<std::size_t>(std::count(v.begin(), v.end(), 0));
         };
         EXPECT_GT(changed, 0u);
+        EXPECT_GT(changed_in_small_pieces, 0u);
         EXPECT_LT(count(after), count(before)) << "threads " << threads;
     }
 }
