@@ -1280,8 +1280,8 @@ void StudioServer::Impl::add_job_routes() {
         if (!work.ok()) return fail(res, 400, work.status().message());
         const std::string output = body->value("output", std::string());
         // A StyLit run replaces the client's previous one (the tool runs again on every change).
-        if (kind == "stylit") jobs.supersede(id, kind);
-        auto job = jobs.start(id, kind, output, std::move(*work));
+        auto job = kind == "stylit" ? jobs.replace(id, kind, output, std::move(*work))
+                                    : jobs.start(id, kind, output, std::move(*work));
         if (!job.ok()) return fail(res, 429, job.status().message());
         answer(res, 202, {{"id", (*job)->id}});
     });

@@ -6,6 +6,7 @@
 #include <httplib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -1030,6 +1031,29 @@ TEST_F(StudioTest, FinishedJobsAndIdleClientsBeyondTheBoundsAreForgotten) {
     EXPECT_EQ(post("/api/paint/stroke", {{"points", {{4, 4}, {20, 20}}}})->status, 409);
 }
 
+TEST_F(StudioTest, JobsAreListedInTheOrderTheyWereStarted) {
+    start();
+    // Eleven small jobs: ids 1..11, so "10" and "11" sort before "2" as strings.
+    for (int k = 1; k <= 11; ++k) {
+        auto job = post("/api/jobs", {{"kind", "fluid-simulate"},
+                                      {"width", 8},
+                                      {"height", 8},
+                                      {"last", 0},
+                                      {"alpha", "sim/a%d.png"},
+                                      {"motion", "sim/m%d.flo"}});
+        ASSERT_EQ(job->status, 202) << job->body;
+        const std::string id = body_of(job)["id"];
+        EXPECT_EQ(id, std::to_string(k));
+        EXPECT_EQ(follow(server_->port(), id)["state"], "done");
+    }
+    const json list = body_of(client_->Get("/api/jobs"));
+    ASSERT_EQ(list["jobs"].size(), 11u) << list.dump();
+    for (int k = 1; k <= 11; ++k) EXPECT_EQ(list["jobs"][k - 1]["id"], std::to_string(k));
+    // Ids are numbers: other spellings of one are no job.
+    EXPECT_EQ(client_->Get("/api/jobs/011/events")->status, 404);
+    EXPECT_EQ(client_->Get("/api/jobs/11/events")->status, 200);
+}
+
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
 json long_job(const std::string& output) {
     return {{"kind", "stylize"},
@@ -1104,6 +1128,51 @@ TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {
                                  {"output", "outputs/%d.png"},
                                  {"quality", "best"}},
                                 "outputs/0.png");
+}
+
+TEST_F(StudioJobTest, StylitRunsPostedAtOnceLeaveOneRunning) {
+    // One job per client at most: two runs started side by side would be refused (429).
+    StudioOptions options;
+    options.max_jobs_per_client = 1;
+    start(options);
+    constexpr int kPosts = 4;
+    std::vector<std::thread> posters;
+    std::vector<int> statuses(kPosts, 0);
+    std::vector<std::string> ids(kPosts);
+    for (int k = 0; k < kPosts; ++k) {
+        posters.emplace_back([&, k] {
+            httplib::Client tab("127.0.0.1", server_->port());
+            tab.set_default_headers({{"X-Studio-Client", "tab1"}});
+            tab.set_read_timeout(120, 0);
+            const json run = {{"kind", "stylit"},
+                              {"exemplar", "texbynum/source_photo.png"},
+                              {"source", "texbynum/source_segment.png"},
+                              {"target", "texbynum/target_segment.png"},
+                              {"output", "outputs/run" + std::to_string(k) + ".png"},
+                              {"quality", "best"}};
+            auto posted = tab.Post("/api/jobs", run.dump(), "application/json");
+            if (!posted) return;
+            statuses[static_cast<std::size_t>(k)] = posted->status;
+            if (posted->status == 202)
+                ids[static_cast<std::size_t>(k)] = json::parse(posted->body)["id"];
+        });
+    }
+    for (std::thread& poster : posters) poster.join();
+    for (int k = 0; k < kPosts; ++k) ASSERT_EQ(statuses[static_cast<std::size_t>(k)], 202) << k;
+    // Each post cancelled the runs before it and waited for them: one is left running.
+    int running = 0;
+    for (const json& job : body_of(client_->Get("/api/jobs"))["jobs"])
+        running += job["state"] == "running" ? 1 : 0;
+    EXPECT_LE(running, 1);
+    // The last one started runs to the end; the others were cancelled.
+    std::sort(ids.begin(), ids.end(), [](const std::string& a, const std::string& b) {
+        return std::stoi(a) < std::stoi(b);
+    });
+    for (int k = 0; k < kPosts; ++k) {
+        const json end = follow(server_->port(), ids[static_cast<std::size_t>(k)]);
+        EXPECT_EQ(end["state"], k + 1 < kPosts ? "cancelled" : "done") << end.dump();
+    }
+    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
 }
 
 TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {
