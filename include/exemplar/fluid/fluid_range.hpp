@@ -35,7 +35,7 @@ struct FluidRange {
     /// (.flo or EXR) and its output (RGBA PNG or EXR). Called for first − 1..last; an error for
     /// first − 1 means that there is no frame before the range.
     std::function<Result<std::string>(int n)> alpha_file, motion_file, output_file;
-    /// EXR layer of the motion files ("" = the first two channels).
+    /// EXR layer of the motion files (load_flow: "" = the file's two channels; "" for .flo).
     std::string motion_layer;
     /// Skip frames whose output exists; the next frame continues from the stored one.
     bool resume = true;
