@@ -1,11 +1,9 @@
 // `exemplar fluid`: LazyFluids (Jamriška et al. 2015) over a range of frames, and
 // `exemplar fluid simulate`: targets from the built-in stable-fluids solver (docs/fluid.md).
 //
-// Frames are solved in order and each is written (atomically) as soon as it is done; only the
-// current and the previous frame are held, so memory does not grow with the range. A frame
-// whose output exists is skipped (resume); the frame after it reads it back as its previous
-// frame. The previous frame is always the one read back from its file, also within one run, so
-// a resumed range gives the same bytes as an uninterrupted one.
+// The frames are the library's range driver's (fluid::synthesize_fluid_range: in order, each
+// written atomically and read back as the next one's previous frame, resume); this file parses
+// the flags, opens the exemplar (a still or a sequence) and the MP4, and prints.
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +14,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "exemplar/fluid/fluid_range.hpp"
 #include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/fluid/simulate.hpp"
 #include "exemplar/io/flow_io.hpp"
@@ -42,11 +41,6 @@ Result<std::string> frame_file(const std::string& flag, const std::string& patte
     auto path = video::format_frame_path(pattern, n);
     if (!path.ok()) return invalid_argument(flag + ": " + path.status().message());
     return path;
-}
-
-bool exists(const std::string& path) {
-    std::error_code ec;
-    return fs::is_regular_file(path, ec);
 }
 
 // The exemplar: a still (RGBA, or RGB with a separate alpha) or a folder of frames.
@@ -465,32 +459,31 @@ Status FluidCommand::run_transfer(const Streams& streams) {
         return invalid_argument("--fps: " + std::to_string(fps_) + " is invalid (must be 0..1000)");
     }
 
-    // Inputs that must exist before any frame is written: every alpha mask of the range, the
-    // motion of every frame followed by another, the exemplar.
+    // Everything is checked before a frame or the MP4 is written: the output pattern, the
+    // targets of every frame, the exemplar.
     auto probe = frame_file("--output", output_, first);
     if (!probe.ok()) return probe.status();
     EXEMPLAR_RETURN_IF_ERROR(check_output_path("--output", *probe));
-    for (int n = first; n <= last; ++n) {
-        auto alpha = frame_file("--alpha", alpha_, n);
-        if (!alpha.ok()) return alpha.status();
-        if (!exists(*alpha)) {
-            return io_error(*alpha + ": no such file (alpha of frame " + std::to_string(n) +
-                            " of " + std::to_string(first) + ".." + std::to_string(last) + ")");
-        }
-        if (n == last) break;
-        auto motion = frame_file("--motion", motion_, n);
-        if (!motion.ok()) return motion.status();
-        if (!exists(*motion)) {
-            return io_error(*motion + ": no such file (motion of frame " + std::to_string(n) +
-                            " to " + std::to_string(n + 1) + ")");
-        }
-    }
+    fluid::FluidRange range;
+    range.first = first;
+    range.last = last;
+    range.alpha_file = [&](int n) { return frame_file("--alpha", alpha_, n); };
+    range.motion_file = [&](int n) { return frame_file("--motion", motion_, n); };
+    range.output_file = [&](int n) { return frame_file("--output", output_, n); };
+    range.motion_layer = motion_layer_;
+    range.resume = resume_;
     auto exemplar = Exemplar::open(exemplar_, exemplar_alpha_);
+    range.exemplar = [&](int n) { return exemplar->frame(n); };
+    EXEMPLAR_RETURN_IF_ERROR(fluid::check_fluid_range(range));
     if (!exemplar.ok()) return exemplar.status();
-    auto first_alpha = load_image(*frame_file("--alpha", alpha_, first));
-    if (!first_alpha.ok()) return first_alpha.status();
-    const int W = first_alpha->width(), H = first_alpha->height();
+    range.exemplar_sequence = exemplar->size() > 1;
+    std::optional<video::Mp4Writer> mp4;
     if (!mp4_.empty()) {
+        auto first_alpha_path = frame_file("--alpha", alpha_, first);
+        if (!first_alpha_path.ok()) return first_alpha_path.status();
+        auto first_alpha = load_image(*first_alpha_path);
+        if (!first_alpha.ok()) return first_alpha.status();
+        const int W = first_alpha->width(), H = first_alpha->height();
         EXEMPLAR_RETURN_IF_ERROR(check_output_path("--mp4", mp4_));
         EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(mp4_));
         if (!video::mp4_writing_supported()) {
@@ -500,119 +493,42 @@ Status FluidCommand::run_transfer(const Streams& streams) {
             return invalid_argument("--mp4: the frames are " + std::to_string(W) + "x" +
                                     std::to_string(H) + " but MP4 needs even sizes");
         }
-    }
-    std::optional<video::Mp4Writer> mp4;
-    if (!mp4_.empty()) {
         auto writer = video::Mp4Writer::open(mp4_, W, H, fps_);
         if (!writer.ok()) return writer.status();
         mp4.emplace(std::move(writer).value());
     }
 
-    // Frames in order.
+    // Frames in order (the library's range driver: resume, continue, atomic frames).
     ProgressBar bar(streams.err, "fluid", !quiet_ && streams.err_is_terminal);
-    RunContext context(threads_);
     const int count = last - first + 1;
-    std::optional<Image> previous;  // frame n-1's output as read back from its file
-    {
-        // A finished frame just before the range hands over to it.
-        auto before = frame_file("--output", output_, first - 1);
-        auto before_motion = frame_file("--motion", motion_, first - 1);
-        if (before.ok() && before_motion.ok() && exists(*before) && exists(*before_motion)) {
-            auto image = load_image(*before);
-            if (!image.ok()) return image.status();
-            previous = std::move(image).value();
-        }
-    }
+    int next = first;  // the frame being synthesized, for the progress bar
     int written = 0;
-    for (int n = first; n <= last; ++n) {
-        if (context.cancelled()) return cancelled();
-        const std::string out_path = *frame_file("--output", output_, n);
-        if (!(resume_ && exists(out_path))) {
-            // Load this frame's inputs and check them against each other.
-            const std::string alpha_path = *frame_file("--alpha", alpha_, n);
-            auto alpha = load_image(alpha_path);
-            if (!alpha.ok()) return alpha.status();
-            if (alpha->width() != W || alpha->height() != H) {
-                return invalid_argument(alpha_path + ": alpha is " + size_str(*alpha) +
-                                        " but frame " + std::to_string(first) + "'s is " +
-                                        std::to_string(W) + "x" + std::to_string(H));
-            }
-            std::optional<Image> previous_motion;
-            if (previous) {
-                const std::string motion_path = *frame_file("--motion", motion_, n - 1);
-                auto motion = load_flow(motion_path, motion_layer_);
-                if (!motion.ok()) return motion.status();
-                if (motion->width() != W || motion->height() != H) {
-                    return invalid_argument(motion_path + ": motion is " + size_str(*motion) +
-                                            " but the alpha masks are " + size_str(*alpha));
-                }
-                if (previous->width() != W || previous->height() != H ||
-                    previous->channels() != 4) {
-                    return invalid_argument(
-                        *frame_file("--output", output_, n - 1) + ": previous output is " +
-                        size_str(*previous) + " with " + std::to_string(previous->channels()) +
-                        " channels but the frames are " + size_str(*alpha) + " RGBA");
-                }
-                previous_motion = std::move(motion).value();
-            }
-            std::optional<Image> motion;
-            if (options.motion_blur > 0.0f && n < last) {
-                const std::string motion_path = *frame_file("--motion", motion_, n);
-                auto m = load_flow(motion_path, motion_layer_);
-                if (!m.ok()) return m.status();
-                if (m->width() != W || m->height() != H) {
-                    return invalid_argument(motion_path + ": motion is " + size_str(*m) +
-                                            " but the alpha masks are " + size_str(*alpha));
-                }
-                motion = std::move(m).value();
-            }
-            auto z = exemplar->frame(n);
-            if (!z.ok()) return z.status();
-            std::optional<Image> z_previous;
-            if (previous && exemplar->size() > 1) {
-                auto zp = exemplar->frame(n - 1);
-                if (!zp.ok()) return zp.status();
-                z_previous = std::move(zp).value();
-            }
-
-            fluid::FluidFrameInput in;
-            in.exemplar = &*z;
-            in.previous_exemplar = z_previous ? &*z_previous : nullptr;
-            in.target_alpha = &*alpha;
-            in.previous_output = previous ? &*previous : nullptr;
-            in.previous_motion = previous_motion ? &*previous_motion : nullptr;
-            in.motion = motion ? &*motion : nullptr;
-            RunContext frame_context = context;
-            frame_context.progress = [&](const ProgressEvent& e) {
-                bar.update((n - first + e.fraction) / count, "frame " + std::to_string(n) + " (" +
-                                                                 std::to_string(n - first + 1) +
-                                                                 "/" + std::to_string(count) + ")");
-            };
-            auto result = fluid::synthesize_fluid_frame(in, options, frame_context);
-            if (!result.ok()) return result.status();
-            EXEMPLAR_RETURN_IF_ERROR(video::write_frame(result->rgba, output_, n));
+    range.on_frame = [&](int n, const Image& stored, bool wrote) -> Status {
+        next = n + 1;
+        if (wrote) {
             ++written;
-            if (!quiet_) streams.out << out_path << '\n';
+            if (!quiet_) streams.out << *frame_file("--output", output_, n) << '\n';
         }
-        // The next frame continues from this one as stored.
-        auto stored = load_image(out_path);
-        if (!stored.ok()) return stored.status();
-        previous = std::move(stored).value();
-        if (mp4) {
-            // Over black: the premultiplied colour.
-            Image rgb(previous->width(), previous->height(), 3);
-            for (int y = 0; y < rgb.height(); ++y) {
-                for (int x = 0; x < rgb.width(); ++x) {
-                    const float a = previous->channels() == 4 ? previous->at(x, y, 3) : 1.0f;
-                    for (int c = 0; c < 3; ++c) {
-                        rgb.at(x, y, c) =
-                            previous->at(x, y, std::min(c, previous->channels() - 1)) * a;
-                    }
+        if (!mp4) return Status::ok();
+        // Over black: the premultiplied colour.
+        Image rgb(stored.width(), stored.height(), 3);
+        for (int y = 0; y < rgb.height(); ++y) {
+            for (int x = 0; x < rgb.width(); ++x) {
+                const float a = stored.channels() == 4 ? stored.at(x, y, 3) : 1.0f;
+                for (int c = 0; c < 3; ++c) {
+                    rgb.at(x, y, c) = stored.at(x, y, std::min(c, stored.channels() - 1)) * a;
                 }
             }
-            EXEMPLAR_RETURN_IF_ERROR(mp4->write(rgb));
         }
-    }
+        return mp4->write(rgb);
+    };
+    RunContext context(threads_);
+    context.progress = [&](const ProgressEvent& e) {
+        bar.update(e.fraction, "frame " + std::to_string(next) + " (" +
+                                   std::to_string(next - first + 1) + "/" + std::to_string(count) +
+                                   ")");
+    };
+    EXEMPLAR_RETURN_IF_ERROR(fluid::synthesize_fluid_range(range, options, context));
     bar.finish();
     return finish_frame_range(streams.out, mp4, mp4_, written, count, quiet_);
 }

@@ -1,6 +1,7 @@
 #include "jobs.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -73,7 +74,7 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
     job->client = client;
     job->output = output;
     job->events.push_back(sse("progress", {{"fraction", 0.0}, {"stage", "start"}}));
-    jobs_[job->id] = job;
+    jobs_[next_id_ - 1] = job;
     // The thread holds its own reference; shutdown joins it.
     job->thread = std::thread([job, work = std::move(work), threads = threads_] {
         RunContext context(threads);
@@ -106,17 +107,14 @@ Result<std::shared_ptr<Job>> JobManager::start(const std::string& client, const 
 }
 
 void JobManager::prune() {
-    std::vector<std::string> finished;  // ids, oldest first (ids are increasing numbers)
+    std::vector<std::size_t> finished;  // ids, oldest first
     for (const auto& [id, job] : jobs_) {
         std::lock_guard job_lock(job->mutex);
         if (job->state != JobState::Running) finished.push_back(id);
     }
-    std::sort(finished.begin(), finished.end(), [](const std::string& a, const std::string& b) {
-        return std::stoull(a) < std::stoull(b);
-    });
     if (finished.size() <= kept_finished_) return;
     finished.resize(finished.size() - kept_finished_);
-    for (const std::string& id : finished) {
+    for (const std::size_t id : finished) {
         const auto job = jobs_.at(id);
         // The thread has recorded its end and only returns now.
         if (job->thread.joinable()) job->thread.join();
@@ -125,8 +123,13 @@ void JobManager::prune() {
 }
 
 std::shared_ptr<Job> JobManager::find(const std::string& id) const {
+    std::size_t number = 0;
+    const auto [end, error] = std::from_chars(id.data(), id.data() + id.size(), number);
+    // One spelling per id ("011" is no job).
+    if (error != std::errc() || end != id.data() + id.size() || std::to_string(number) != id)
+        return nullptr;
     std::lock_guard lock(mutex_);
-    const auto it = jobs_.find(id);
+    const auto it = jobs_.find(number);
     return it == jobs_.end() ? nullptr : it->second;
 }
 
@@ -155,8 +158,16 @@ void JobManager::supersede(const std::string& client, const std::string& kind) {
     }
 }
 
+Result<std::shared_ptr<Job>> JobManager::replace(const std::string& client, const std::string& kind,
+                                                 const std::string& output, JobWork work) {
+    // Without the lock two posts could both cancel the old run and then both start.
+    std::lock_guard lock(replace_mutex_);
+    supersede(client, kind);
+    return start(client, kind, output, std::move(work));
+}
+
 void JobManager::shutdown() {
-    std::map<std::string, std::shared_ptr<Job>> jobs;
+    std::map<std::size_t, std::shared_ptr<Job>> jobs;
     {
         std::lock_guard lock(mutex_);
         shut_down_ = true;

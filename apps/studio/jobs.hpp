@@ -66,16 +66,23 @@ public:
     /// beyond the bound first (a stream still following one keeps it alive until it ends).
     Result<std::shared_ptr<Job>> start(const std::string& client, const std::string& kind,
                                        const std::string& output, JobWork work);
+    /// Cancels `client`'s running jobs of `kind`, waits until they have ended and starts `work`
+    /// as start() does, as one step: of replacements posted at the same moment one runs, the
+    /// last, and the others end cancelled. A tool that runs again on every change (StyLit) keeps
+    /// one run, the latest.
+    Result<std::shared_ptr<Job>> replace(const std::string& client, const std::string& kind,
+                                         const std::string& output, JobWork work);
+    /// The job with id `id`, or null.
     std::shared_ptr<Job> find(const std::string& id) const;
+    /// The jobs remembered, in the order they were started.
     std::vector<std::shared_ptr<Job>> list() const;
-    /// Cancels `client`'s running jobs of `kind` and waits until they have ended: a tool that
-    /// runs again on every change (StyLit) keeps one run, the latest.
-    void supersede(const std::string& client, const std::string& kind);
     /// Cancels every job, joins their threads and refuses new ones.
     void shutdown();
 
 private:
     int running(const std::string& client) const;
+    /// Cancels `client`'s running jobs of `kind` and waits until they have ended.
+    void supersede(const std::string& client, const std::string& kind);
     /// Joins and drops the oldest finished jobs beyond kept_finished_ (under mutex_).
     void prune();
 
@@ -83,7 +90,10 @@ private:
     const int threads_;
     const std::size_t kept_finished_;
     mutable std::mutex mutex_;
-    std::map<std::string, std::shared_ptr<Job>> jobs_;
+    /// Held across replace()'s cancel, wait and start (not mutex_, which listings need meanwhile).
+    std::mutex replace_mutex_;
+    /// By id: numbers in the order of creation.
+    std::map<std::size_t, std::shared_ptr<Job>> jobs_;
     std::size_t next_id_ = 1;
     bool shut_down_ = false;
 };

@@ -13,6 +13,7 @@
 
 #include "assets.hpp"
 #include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/fluid_range.hpp"
 #include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/fluid/simulate.hpp"
 #include "exemplar/io/flow_io.hpp"
@@ -1024,72 +1025,39 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
         if (k + 1 < alpha.absolute.size() && !std::filesystem::is_regular_file(motion.absolute[k]))
             return invalid_argument("motion: " + motion.relative[k] + ": no such file");
     }
-    // The frame before the range, when it was made: its output and its motion to `first`.
-    std::optional<std::pair<std::string, std::string>> before;
-    if (alpha.first > 0) {
-        auto text = [&](const char* field) { return body.value(field, std::string()); };
-        auto output = video::format_frame_path(text("output"), alpha.first - 1);
-        auto flow = video::format_frame_path(text("motion"), alpha.first - 1);
-        if (output.ok() && flow.ok()) {
-            auto output_path = workspace.resolve(*output);
-            auto flow_path = workspace.resolve(*flow);
-            if (output_path.ok() && flow_path.ok() &&
-                std::filesystem::is_regular_file(*output_path) &&
-                std::filesystem::is_regular_file(*flow_path)) {
-                before.emplace(output_path->string(), flow_path->string());
-            }
-        }
-    }
-    return JobWork([exemplar = std::move(*exemplar), fluid_options, alpha, motion, outputs, before](
+    // Frames of the range by number; the frame before it (a range continued) by its name in
+    // the workspace, when it is inside.
+    const auto namer = [&](const char* field, const FrameFiles& files) {
+        return [ws = workspace, files, pattern = body.value(field, std::string()),
+                field](int n) -> Result<std::string> {
+            const int k = n - files.first;
+            if (k >= 0 && k < static_cast<int>(files.absolute.size()))
+                return files.absolute[static_cast<std::size_t>(k)];
+            if (n < 0)
+                return invalid_argument(std::string(field) + ": no frame " + std::to_string(n));
+            auto name = video::format_frame_path(pattern, n);
+            if (!name.ok()) return name.status();
+            auto path = ws.resolve(*name);
+            if (!path.ok()) return path.status();
+            return path->string();
+        };
+    };
+    fluid::FluidRange range;
+    range.first = alpha.first;
+    range.last = alpha.first + static_cast<int>(alpha.absolute.size()) - 1;
+    range.alpha_file = namer("alpha", alpha);
+    range.motion_file = namer("motion", motion);
+    range.output_file = namer("output", outputs);
+    range.resume = false;  // a job runs again with other options: it rewrites its frames
+    return JobWork([exemplar = std::move(*exemplar), fluid_options, range, outputs](
                        const RunContext& context, const OutputSink& wrote) -> Status {
-        std::optional<Image> previous;
-        std::optional<Image> previous_motion;
-        if (before) {
-            auto image = load_image(before->first);
-            if (!image.ok()) return image.status();
-            auto flow = load_flow(before->second);
-            if (!flow.ok()) return flow.status();
-            previous = std::move(*image);
-            previous_motion = std::move(*flow);
-        }
-        const auto count = alpha.absolute.size();
-        for (std::size_t k = 0; k < count; ++k) {
-            if (context.cancelled()) return cancelled();
-            auto mask = load_image(alpha.absolute[k]);
-            if (!mask.ok()) return mask.status();
-            std::optional<Image> own_motion;
-            if (fluid_options.motion_blur > 0.0f && k + 1 < count) {
-                auto flow = load_flow(motion.absolute[k]);
-                if (!flow.ok()) return flow.status();
-                own_motion = std::move(*flow);
-            }
-            fluid::FluidFrameInput input;
-            input.exemplar = &exemplar;
-            input.target_alpha = &*mask;
-            input.previous_output = previous ? &*previous : nullptr;
-            input.previous_motion = previous_motion ? &*previous_motion : nullptr;
-            input.motion = own_motion ? &*own_motion : nullptr;
-            RunContext frame_context = context;
-            frame_context.progress = [&](const ProgressEvent& event) {
-                ProgressEvent overall = event;
-                overall.fraction = (static_cast<double>(k) + event.fraction) / count;
-                context.report(overall);
-            };
-            auto frame = fluid::synthesize_fluid_frame(input, fluid_options, frame_context);
-            if (!frame.ok()) return frame.status();
-            EXEMPLAR_RETURN_IF_ERROR(save_image(frame->rgba, outputs.absolute[k]));
-            wrote(alpha.first + static_cast<int>(k), outputs.relative[k]);
-            // The next frame continues from the file, as `exemplar fluid` does.
-            auto stored = load_image(outputs.absolute[k]);
-            if (!stored.ok()) return stored.status();
-            previous = std::move(*stored);
-            if (k + 1 < count) {
-                auto flow = load_flow(motion.absolute[k]);
-                if (!flow.ok()) return flow.status();
-                previous_motion = std::move(*flow);
-            }
-        }
-        return Status::ok();
+        fluid::FluidRange job_range = range;
+        job_range.exemplar = [&exemplar](int) -> Result<Image> { return exemplar; };
+        job_range.on_frame = [&](int n, const Image&, bool) -> Status {
+            wrote(n, outputs.relative[static_cast<std::size_t>(n - outputs.first)]);
+            return Status::ok();
+        };
+        return fluid::synthesize_fluid_range(job_range, fluid_options, context);
     });
 }
 
@@ -1312,8 +1280,8 @@ void StudioServer::Impl::add_job_routes() {
         if (!work.ok()) return fail(res, 400, work.status().message());
         const std::string output = body->value("output", std::string());
         // A StyLit run replaces the client's previous one (the tool runs again on every change).
-        if (kind == "stylit") jobs.supersede(id, kind);
-        auto job = jobs.start(id, kind, output, std::move(*work));
+        auto job = kind == "stylit" ? jobs.replace(id, kind, output, std::move(*work))
+                                    : jobs.start(id, kind, output, std::move(*work));
         if (!job.ok()) return fail(res, 429, job.status().message());
         answer(res, 202, {{"id", (*job)->id}});
     });

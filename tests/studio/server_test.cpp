@@ -6,6 +6,7 @@
 #include <httplib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -49,6 +50,56 @@ Image texture(int width, int height) {
         }
     }
     return image;
+}
+
+// A size x size RGBA exemplar for LazyFluids: the texture inside a soft disc.
+Image ink_exemplar(int size) {
+    const Image ink = texture(size, size);
+    Image exemplar(size, size, 4);
+    const float centre = 0.5f * static_cast<float>(size - 1);
+    const float radius = 0.425f * static_cast<float>(size);
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            for (int c = 0; c < 3; ++c) exemplar.at(x, y, c) = ink.at(x, y, c);
+            const float r =
+                std::hypot(static_cast<float>(x) - centre, static_cast<float>(y) - centre);
+            exemplar.at(x, y, 3) = std::clamp((radius - r) / 4.0f, 0.0f, 1.0f);
+        }
+    }
+    return exemplar;
+}
+
+// `count` render frame folders `folder`/f0, f1, ... of width x height for npr: a tone ramp moving
+// right by 3 px a frame, no lines, the backward motion and the disocclusion it leaves.
+void write_render_frames(const std::filesystem::path& folder, int count, int width, int height) {
+    for (int n = 0; n < count; ++n) {
+        const std::filesystem::path frame = folder / *video::format_frame_path("f%d", n);
+        std::filesystem::create_directories(frame);
+        Image tone(width, height, 1), lines(width, height, 1), flow(width, height, 2),
+            disocclusion(width, height, 1);
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                tone.at(x, y, 0) =
+                    static_cast<float>((x + 3 * n) % width) / static_cast<float>(width);
+                flow.at(x, y, 0) = -3.0f;
+                disocclusion.at(x, y, 0) = x < 3 ? 1.0f : 0.0f;
+            }
+        }
+        ASSERT_TRUE(save_image(tone, (frame / "direct_diffuse.png").string()).is_ok());
+        ASSERT_TRUE(save_image(lines, (frame / "lines.png").string()).is_ok());
+        ASSERT_TRUE(save_image(disocclusion, (frame / "disocclusion.png").string()).is_ok());
+        ASSERT_TRUE(save_flow(flow, (frame / "backward_flow.exr").string()).is_ok());
+    }
+}
+
+// A 64 x 64 grey dot pattern for npr: the texture's blue channel.
+void write_dots(const std::filesystem::path& path) {
+    Image dots(64, 64, 1);
+    const Image tex = texture(64, 64);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 64; ++x) dots.at(x, y, 0) = tex.at(x, y, 2);
+    }
+    ASSERT_TRUE(save_image(dots, path.string()).is_ok());
 }
 
 // A painting stroke through `points`, `width` px wide (the other fields at their defaults).
@@ -459,7 +510,8 @@ TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
 
 // Reads a job's event stream until its `end` event; `on_progress` is called for each progress
 // event (with the count so far).
-json follow(int port, const std::string& id, const std::function<void(int)>& on_progress = {}) {
+json follow(int port, const std::string& id, const std::function<void(int)>& on_progress = {},
+            const std::function<void(const json&)>& on_frame = {}) {
     httplib::Client events("127.0.0.1", port);
     events.set_read_timeout(120, 0);
     std::string buffer;
@@ -475,6 +527,7 @@ json follow(int port, const std::string& id, const std::function<void(int)>& on_
                 const std::size_t data_at = event.find("data: ");
                 if (event.starts_with("event: frame")) {
                     frames.push_back(json::parse(event.substr(data_at + 6)));
+                    if (on_frame) on_frame(frames.back());
                 } else if (event.starts_with("event: progress")) {
                     ++progress;
                     if (on_progress) on_progress(progress);
@@ -809,18 +862,7 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
 }
 
 TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
-    // An RGBA exemplar: the texture inside a soft disc.
-    Image ink = texture(40, 40);
-    Image exemplar(40, 40, 4);
-    for (int y = 0; y < 40; ++y) {
-        for (int x = 0; x < 40; ++x) {
-            for (int c = 0; c < 3; ++c) exemplar.at(x, y, c) = ink.at(x, y, c);
-            const float r =
-                std::hypot(static_cast<float>(x) - 19.5f, static_cast<float>(y) - 19.5f);
-            exemplar.at(x, y, 3) = std::clamp((17.0f - r) / 4.0f, 0.0f, 1.0f);
-        }
-    }
-    ASSERT_TRUE(save_image(exemplar, (base_ / "ws" / "ink.png").string()).is_ok());
+    ASSERT_TRUE(save_image(ink_exemplar(40), (base_ / "ws" / "ink.png").string()).is_ok());
     start();
     // Targets: the built-in plume, 48 x 48, frames 0..3 (warm-up: the first frames are thin).
     auto simulated = post("/api/jobs", {{"kind", "fluid-simulate"},
@@ -917,28 +959,8 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
 
 TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
     // Three render frame folders of 64 x 48: a tone ramp moving right, no lines, the motion.
-    for (int n = 0; n < 3; ++n) {
-        const fs::path folder = base_ / "ws" / "render" / *video::format_frame_path("f%d", n);
-        fs::create_directories(folder);
-        Image tone(64, 48, 1), lines(64, 48, 1), flow(64, 48, 2), disocclusion(64, 48, 1);
-        for (int y = 0; y < 48; ++y) {
-            for (int x = 0; x < 64; ++x) {
-                tone.at(x, y, 0) = static_cast<float>((x + 3 * n) % 64) / 64.0f;
-                flow.at(x, y, 0) = -3.0f;
-                disocclusion.at(x, y, 0) = x < 3 ? 1.0f : 0.0f;
-            }
-        }
-        ASSERT_TRUE(save_image(tone, (folder / "direct_diffuse.png").string()).is_ok());
-        ASSERT_TRUE(save_image(lines, (folder / "lines.png").string()).is_ok());
-        ASSERT_TRUE(save_image(disocclusion, (folder / "disocclusion.png").string()).is_ok());
-        ASSERT_TRUE(save_flow(flow, (folder / "backward_flow.exr").string()).is_ok());
-    }
-    Image dots(64, 64, 1);
-    const Image tex = texture(64, 64);
-    for (int y = 0; y < 64; ++y) {
-        for (int x = 0; x < 64; ++x) dots.at(x, y, 0) = tex.at(x, y, 2);
-    }
-    ASSERT_TRUE(save_image(dots, (base_ / "ws" / "dots.png").string()).is_ok());
+    write_render_frames(base_ / "ws" / "render", 3, 64, 48);
+    write_dots(base_ / "ws" / "dots.png");
     start();
     const json good = {{"kind", "npr"},
                        {"pattern", "dots.png"},
@@ -1030,6 +1052,29 @@ TEST_F(StudioTest, FinishedJobsAndIdleClientsBeyondTheBoundsAreForgotten) {
     EXPECT_EQ(post("/api/paint/stroke", {{"points", {{4, 4}, {20, 20}}}})->status, 409);
 }
 
+TEST_F(StudioTest, JobsAreListedInTheOrderTheyWereStarted) {
+    start();
+    // Eleven small jobs: ids 1..11, so "10" and "11" sort before "2" as strings.
+    for (int k = 1; k <= 11; ++k) {
+        auto job = post("/api/jobs", {{"kind", "fluid-simulate"},
+                                      {"width", 8},
+                                      {"height", 8},
+                                      {"last", 0},
+                                      {"alpha", "sim/a%d.png"},
+                                      {"motion", "sim/m%d.flo"}});
+        ASSERT_EQ(job->status, 202) << job->body;
+        const std::string id = body_of(job)["id"];
+        EXPECT_EQ(id, std::to_string(k));
+        EXPECT_EQ(follow(server_->port(), id)["state"], "done");
+    }
+    const json list = body_of(client_->Get("/api/jobs"));
+    ASSERT_EQ(list["jobs"].size(), 11u) << list.dump();
+    for (int k = 1; k <= 11; ++k) EXPECT_EQ(list["jobs"][k - 1]["id"], std::to_string(k));
+    // Ids are numbers: other spellings of one are no job.
+    EXPECT_EQ(client_->Get("/api/jobs/011/events")->status, 404);
+    EXPECT_EQ(client_->Get("/api/jobs/11/events")->status, 200);
+}
+
 // A job long enough to cancel: the bundled texture-by-numbers example at the best quality.
 json long_job(const std::string& output) {
     return {{"kind", "stylize"},
@@ -1069,6 +1114,43 @@ protected:
         EXPECT_FALSE(fs::exists(base_ / "ws" / output));
         EXPECT_EQ(hidden_files(base_ / "ws"), 0);
     }
+
+    // Posts the range job `job` (outputs in outputs/, frames 0..3) and cancels it when its first
+    // frame is written: it ends cancelled, the images in outputs/ are exactly the frames it
+    // reported (fewer than four), each whole (`size`), and no temporary file is left. Returns
+    // the reported frames' paths.
+    std::vector<std::string> cancel_after_first_frame(const json& job, const std::string& size) {
+        auto posted = post("/api/jobs", job);
+        EXPECT_EQ(posted->status, 202) << posted->body;
+        const std::string id = body_of(posted)["id"];
+        httplib::Client canceller("127.0.0.1", server_->port());
+        const json end = follow(server_->port(), id, {}, [&](const json& frame) {
+            if (frame["frame"] != 0) return;
+            auto c =
+                canceller.Post(("/api/jobs/" + id + "/cancel").c_str(), "{}", "application/json");
+            EXPECT_EQ(c->status, 200);
+        });
+        EXPECT_EQ(end["state"], "cancelled") << end.dump();
+        std::vector<std::string> reported, written;
+        for (const json& frame : end["frames"]) reported.push_back(frame["path"]);
+        for (const auto& entry : fs::directory_iterator(base_ / "ws" / "outputs")) {
+            const std::string name = entry.path().filename().string();
+            if (name.ends_with(".png")) written.push_back("outputs/" + name);
+        }
+        std::sort(written.begin(), written.end());
+        EXPECT_EQ(written, reported);
+        EXPECT_GE(reported.size(), 1u);
+        EXPECT_LT(reported.size(), 4u);
+        for (const std::string& file : written) {
+            auto image = load_image((base_ / "ws" / file).string());
+            EXPECT_TRUE(image.ok()) << file;
+            if (image.ok()) {
+                EXPECT_EQ(size_str(*image), size) << file;
+            }
+        }
+        EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+        return reported;
+    }
 };
 
 TEST_F(StudioJobTest, CancelStopsARunningJobAndWritesNothing) {
@@ -1104,6 +1186,100 @@ TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {
                                  {"output", "outputs/%d.png"},
                                  {"quality", "best"}},
                                 "outputs/0.png");
+}
+
+TEST_F(StudioJobTest, CancelStopsAFluidJobAndKeepsTheFinishedFramesWhole) {
+    // Four 384 x 384 frames of a still disc (no motion): each takes a while.
+    ASSERT_TRUE(save_image(ink_exemplar(48), (base_ / "ws" / "ink.png").string()).is_ok());
+    fs::create_directories(base_ / "ws" / "target");
+    Image disc(384, 384, 1), still(384, 384, 2);
+    for (int y = 0; y < 384; ++y) {
+        for (int x = 0; x < 384; ++x) {
+            const float r =
+                std::hypot(static_cast<float>(x) - 191.5f, static_cast<float>(y) - 191.5f);
+            disc.at(x, y, 0) = std::clamp((170.0f - r) / 4.0f, 0.0f, 1.0f);
+        }
+    }
+    for (int n = 0; n < 4; ++n) {
+        const fs::path target = base_ / "ws" / "target";
+        ASSERT_TRUE(
+            save_image(disc, (target / *video::format_frame_path("a%d.png", n)).string()).is_ok());
+        ASSERT_TRUE(
+            save_flow(still, (target / *video::format_frame_path("m%d.flo", n)).string()).is_ok());
+    }
+    start();
+    cancel_after_first_frame({{"kind", "fluid"},
+                              {"exemplar", "ink.png"},
+                              {"alpha", "target/a%d.png"},
+                              {"motion", "target/m%d.flo"},
+                              {"last", 3},
+                              {"output", "outputs/%d.png"}},
+                             "384x384");
+}
+
+TEST_F(StudioJobTest, CancelStopsAnNprJobAndKeepsTheFinishedFramesWhole) {
+    // Four 768 x 576 render frames at the default three levels: each takes a while.
+    write_render_frames(base_ / "ws" / "render", 4, 768, 576);
+    write_dots(base_ / "ws" / "dots.png");
+    start();
+    const std::vector<std::string> finished =
+        cancel_after_first_frame({{"kind", "npr"},
+                                  {"pattern", "dots.png"},
+                                  {"frames", "render/f%d"},
+                                  {"last", 3},
+                                  {"output", "outputs/%d.png"}},
+                                 "768x576");
+    // Each finished frame has its state beside it, the others neither.
+    for (int n = 0; n <= 3; ++n) {
+        const std::string file = "outputs/" + std::to_string(n) + ".png";
+        const bool done = std::find(finished.begin(), finished.end(), file) != finished.end();
+        EXPECT_EQ(fs::exists(base_ / "ws" / (file + ".state.exr")), done) << file;
+    }
+}
+
+TEST_F(StudioJobTest, StylitRunsPostedAtOnceLeaveOneRunning) {
+    // One job per client at most: two runs started side by side would be refused (429).
+    StudioOptions options;
+    options.max_jobs_per_client = 1;
+    start(options);
+    constexpr int kPosts = 4;
+    std::vector<std::thread> posters;
+    std::vector<int> statuses(kPosts, 0);
+    std::vector<std::string> ids(kPosts);
+    for (int k = 0; k < kPosts; ++k) {
+        posters.emplace_back([&, k] {
+            httplib::Client tab("127.0.0.1", server_->port());
+            tab.set_default_headers({{"X-Studio-Client", "tab1"}});
+            tab.set_read_timeout(120, 0);
+            const json run = {{"kind", "stylit"},
+                              {"exemplar", "texbynum/source_photo.png"},
+                              {"source", "texbynum/source_segment.png"},
+                              {"target", "texbynum/target_segment.png"},
+                              {"output", "outputs/run" + std::to_string(k) + ".png"},
+                              {"quality", "best"}};
+            auto posted = tab.Post("/api/jobs", run.dump(), "application/json");
+            if (!posted) return;
+            statuses[static_cast<std::size_t>(k)] = posted->status;
+            if (posted->status == 202)
+                ids[static_cast<std::size_t>(k)] = json::parse(posted->body)["id"];
+        });
+    }
+    for (std::thread& poster : posters) poster.join();
+    for (int k = 0; k < kPosts; ++k) ASSERT_EQ(statuses[static_cast<std::size_t>(k)], 202) << k;
+    // Each post cancelled the runs before it and waited for them: one is left running.
+    int running = 0;
+    for (const json& job : body_of(client_->Get("/api/jobs"))["jobs"])
+        running += job["state"] == "running" ? 1 : 0;
+    EXPECT_LE(running, 1);
+    // The last one started runs to the end; the others were cancelled.
+    std::sort(ids.begin(), ids.end(), [](const std::string& a, const std::string& b) {
+        return std::stoi(a) < std::stoi(b);
+    });
+    for (int k = 0; k < kPosts; ++k) {
+        const json end = follow(server_->port(), ids[static_cast<std::size_t>(k)]);
+        EXPECT_EQ(end["state"], k + 1 < kPosts ? "cancelled" : "done") << end.dump();
+    }
+    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
 }
 
 TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {
