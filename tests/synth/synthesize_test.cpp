@@ -113,6 +113,40 @@ TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
     }
 }
 
+// finest-search-radius: only the finest level's searches change (their random-search windows
+// stay near the current match); the result is the same for any thread count.
+TEST(Synthesize, FinestSearchRadiusOnlyChangesTheFinestLevel) {
+    const SynthesisInput in = two_level_input();
+    SynthesisOptions opt;
+    opt.levels = 2;
+    auto run = [&](int radius, int threads, std::vector<Image>* coarse) {
+        opt.finest_search_radius = radius;
+        DebugSink sink;
+        if (coarse != nullptr) {
+            sink = [&](const DebugFrame& f) {
+                if (f.level == 0) coarse->push_back(*f.current);
+            };
+        }
+        auto result = synthesize(in, opt, RunContext{threads}, sink);
+        EXPECT_TRUE(result.ok());
+        return result.ok() ? result->image : Image();
+    };
+    auto same = [](const Image& a, const Image& b) {
+        return std::equal(a.data().begin(), a.data().end(), b.data().begin(), b.data().end());
+    };
+    std::vector<Image> coarse_whole, coarse_near;
+    const Image whole = run(0, 2, &coarse_whole);
+    const Image near = run(2, 2, &coarse_near);
+    EXPECT_FALSE(same(whole, near));
+    ASSERT_EQ(coarse_whole.size(), coarse_near.size());
+    for (std::size_t i = 0; i < coarse_whole.size(); ++i) {
+        EXPECT_TRUE(same(coarse_whole[i], coarse_near[i])) << "frame " << i;
+    }
+    EXPECT_TRUE(same(run(2, 1, nullptr), near));
+    // A radius as large as the image is the whole image.
+    EXPECT_TRUE(same(run(100000, 2, nullptr), whole));
+}
+
 // The polish of the error budget and the uniform usage (budget-polish-iterations): only the
 // finest level changes; it runs that many iterations of plain nearest-neighbour search, whose
 // matches are closer to the same B' than the budget's. Other strategies ignore it.

@@ -100,6 +100,11 @@ struct SynthesisOptions {
     /// (measurements in docs/PERFORMANCE.md).
     int second_finest_em_iterations = 4;
     int search_iterations = 6;  ///< PatchMatch iterations per NNF search from a cold start.
+    /// Largest random-search window (pixels) of the finest level's PatchMatch searches; 0 = the
+    /// whole image (StyLit). The finest level starts from a close field (the coarser level's,
+    /// upsampled), so its wide windows rarely win but miss the caches; a few pixels make its
+    /// searches about a third cheaper (the `fast` preset; docs/PERFORMANCE.md).
+    int finest_search_radius = 0;
     /// PatchMatch iterations when the search starts from a field that is already close: the
     /// previous EM iteration's (every EM iteration after a level's first), or the previous
     /// round's (reversed-retrieval rounds). StyLit uses 6 throughout; with the warm starts of
