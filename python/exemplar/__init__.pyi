@@ -107,6 +107,7 @@ def stylize(
     coherence_sweeps: int = 2,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
+    budget_polish_levels: int = 1,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -242,6 +243,11 @@ def stylize(
           finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
           (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_levels (int, default 1)
+          With budget-polish-iterations: how many of the finest levels polish; the finest
+          runs budget-polish-iterations, the others (never the coarsest) keep their EM
+          iterations but search plain nearest neighbours from the upsampled field. 1 = the
+          finest only. Range 1..16 levels.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -342,6 +348,7 @@ def stylit(
     coherence_sweeps: int = 2,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
+    budget_polish_levels: int = 1,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -463,6 +470,11 @@ def stylit(
           finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
           (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_levels (int, default 1)
+          With budget-polish-iterations: how many of the finest levels polish; the finest
+          runs budget-polish-iterations, the others (never the coarsest) keep their EM
+          iterations but search plain nearest neighbours from the upsampled field. 1 = the
+          finest only. Range 1..16 levels.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -586,6 +598,7 @@ def animate(
     coherence_sweeps: int = 2,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
+    budget_polish_levels: int = 1,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -733,6 +746,11 @@ def animate(
           finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
           (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
           (StyLit as published). Range 0..100 iterations.
+      budget_polish_levels (int, default 1)
+          With budget-polish-iterations: how many of the finest levels polish; the finest
+          runs budget-polish-iterations, the others (never the coarsest) keep their EM
+          iterations but search plain nearest neighbours from the upsampled field. 1 = the
+          finest only. Range 1..16 levels.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.

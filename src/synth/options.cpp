@@ -67,7 +67,9 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // and the coarse levels three times (instead of six): another 15-25% less CPU, for stylit
     // 15% further from the exemplar, texture still far above ebsynth's. The finest level's
     // search starts from the upsampled field: random-search windows of 8 px at most find as
-    // much there (same fidelity and texture) for a quarter less of that level's CPU. Best: the
+    // much there (same fidelity and texture) for a quarter less of that level's CPU. The level
+    // before the finest polishes too (plain nearest neighbours from the layout the budget made
+    // on the coarser levels): a quarter less CPU again, as much texture and fidelity. Best: the
     // coarse levels iterate much more, which is nearly free and brings the most fidelity, then the
     // two finest levels converge further.
     static constexpr std::array kFast{
@@ -78,6 +80,7 @@ std::span<const QualityChange> quality_changes(Quality quality) {
         QualityChange{"em-iterations", 3},
         QualityChange{"budget-max-rounds", 1},
         QualityChange{"finest-search-radius", 8},
+        QualityChange{"budget-polish-levels", 2},
     };
     static constexpr std::array kBest{
         QualityChange{"em-iterations", 16},
@@ -120,7 +123,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 27> kSpecs{{
+const std::array<OptionSpec, 28> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -207,6 +210,11 @@ const std::array<OptionSpec, 27> kSpecs{{
      "move to where the pieces agree (closer to the exemplar, faster), but the finest grain "
      "partly washes out; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::budget_polish_iterations},
+    {"budget-polish-levels",
+     "With budget-polish-iterations: how many of the finest levels polish; the finest runs "
+     "budget-polish-iterations, the others (never the coarsest) keep their EM iterations but "
+     "search plain nearest neighbours from the upsampled field. 1 = the finest only.",
+     "levels", 1, 16, &O::budget_polish_levels},
     {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
      "rounds", 1, 1000, &O::budget_max_rounds},
     {"budget-focus",

@@ -494,8 +494,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         }
         const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
         run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,
-               /*polish=*/finest && budget_polish(options), /*end_run=*/finest && !final_pass, nnf,
-               reverse_field, current, tracker, debug);
+               /*polish=*/polishes_level(options, levels - 1 - l, levels),
+               /*end_run=*/finest && !final_pass, nnf, reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;

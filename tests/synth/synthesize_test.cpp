@@ -208,6 +208,54 @@ TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
     EXPECT_TRUE(same(run(0).back().current, run(3).back().current));
 }
 
+// budget-polish-levels: the level before the finest polishes too (its frames change, the
+// coarsest's do not); never the coarsest level; the same bytes for any thread count.
+TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
+    SynthesisInput in = identity_input(64, 56);
+    in.guides[0].target = testing::texture(68, 60, 3, 9);
+    in.guides[1].target = testing::ramp(68, 60);
+    SynthesisOptions opt;
+    opt.levels = 3;
+    opt.budget_polish_iterations = 1;
+    auto run = [&](int polish_levels, int threads, std::vector<DebugFrame>* frames,
+                   std::vector<Image>* images) {
+        opt.budget_polish_levels = polish_levels;
+        DebugSink sink;
+        if (frames != nullptr) {
+            sink = [&](const DebugFrame& f) {
+                frames->push_back(DebugFrame{f.level, f.iteration, nullptr, nullptr, nullptr});
+                images->push_back(*f.current);
+            };
+        }
+        auto result = synthesize(in, opt, RunContext{threads}, sink);
+        EXPECT_TRUE(result.ok());
+        return result.ok() ? result->image : Image();
+    };
+    auto same = [](const Image& a, const Image& b) {
+        return std::equal(a.data().begin(), a.data().end(), b.data().begin(), b.data().end());
+    };
+    std::vector<DebugFrame> frames_one, frames_two;
+    std::vector<Image> images_one, images_two;
+    const Image one = run(1, 2, &frames_one, &images_one);
+    const Image two = run(2, 2, &frames_two, &images_two);
+    ASSERT_EQ(frames_one.size(), frames_two.size());  // the same iterations per level
+    bool middle_differs = false;
+    for (std::size_t i = 0; i < frames_one.size(); ++i) {
+        EXPECT_EQ(frames_one[i].level, frames_two[i].level);
+        if (frames_one[i].level == 0) {
+            EXPECT_TRUE(same(images_one[i], images_two[i])) << "frame " << i;
+        }
+        if (frames_one[i].level == 1 && !same(images_one[i], images_two[i])) middle_differs = true;
+    }
+    EXPECT_TRUE(middle_differs);
+    EXPECT_FALSE(same(one, two));
+    EXPECT_TRUE(same(run(2, 1, nullptr, nullptr), two));
+    // More levels than the pyramid's: the coarsest still runs the usage strategy.
+    EXPECT_TRUE(same(run(3, 2, nullptr, nullptr), two));
+    opt.levels = 2;
+    EXPECT_TRUE(same(run(2, 2, nullptr, nullptr), run(1, 2, nullptr, nullptr)));
+}
+
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
 // the style, and the result does not depend on the thread count.
 TEST(Synthesize, CompressedGuidesKeepIdentityAndDeterminism) {
