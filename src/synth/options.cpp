@@ -67,9 +67,10 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // and the coarse levels three times (instead of six): another 15-25% less CPU, for stylit
     // 15% further from the exemplar, texture still far above ebsynth's. The finest level's
     // search starts from the upsampled field: random-search windows of 8 px at most find as
-    // much there (same fidelity and texture) for a quarter less of that level's CPU. The level
-    // before the finest polishes too (plain nearest neighbours from the layout the budget made
-    // on the coarser levels): a quarter less CPU again, as much texture and fidelity. Best: the
+    // much there (same fidelity and texture) for a quarter less of that level's CPU. The two
+    // levels before the finest polish too (plain nearest neighbours from the layout the budget
+    // made on the coarser levels): a third less CPU again, as much texture, closer on stylit
+    // (polishing a fourth level gains nothing and loses texture). Best: the
     // coarse levels iterate much more, which is nearly free and brings the most fidelity, then the
     // two finest levels converge further.
     static constexpr std::array kFast{
@@ -80,7 +81,7 @@ std::span<const QualityChange> quality_changes(Quality quality) {
         QualityChange{"em-iterations", 3},
         QualityChange{"budget-max-rounds", 1},
         QualityChange{"finest-search-radius", 8},
-        QualityChange{"budget-polish-levels", 2},
+        QualityChange{"budget-polish-levels", 3},
     };
     static constexpr std::array kBest{
         QualityChange{"em-iterations", 16},

@@ -190,7 +190,7 @@ struct SynthesisOptions {
     /// budget_polish_iterations; the others (never the coarsest, which starts from scratch)
     /// keep their EM iterations but search plain nearest neighbours from the upsampled field
     /// the usage laid out on the coarser levels. 1 (default) = the finest only; the `fast`
-    /// preset polishes two levels (a quarter less CPU, as much texture; docs/PERFORMANCE.md).
+    /// preset polishes three levels (a third less CPU, as much texture; docs/PERFORMANCE.md).
     int budget_polish_levels = 1;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
