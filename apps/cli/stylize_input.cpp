@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "exemplar/core/parallel.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "output_files.hpp"
 
@@ -157,9 +158,22 @@ Result<StylizeInput> load_stylize_input(const StylizeJob& job) {
     SynthesisInput& in = loaded.input;
     auto& names = loaded.names;
 
-    auto style = load_image(job.style);
-    if (!style.ok()) return style.status();
-    in.style = std::move(style).value();
+    // The style and the guide pairs are decoded in parallel (stylit's nine 1200x912 PNGs take
+    // about 10 ms each); their errors are reported in the order of the command line.
+    std::vector<const std::string*> files{&job.style};
+    for (const GuideSpec& spec : job.guides) {
+        files.push_back(&spec.source);
+        files.push_back(&spec.target);
+    }
+    std::vector<Result<Image>> images(files.size(), Result<Image>(Image()));
+    parallel_for(0, static_cast<int>(files.size()), job.threads.value_or(0), [&](int i) {
+        const auto k = static_cast<std::size_t>(i);
+        images[k] = load_image(*files[k]);
+    });
+    for (const Result<Image>& image : images) {
+        if (!image.ok()) return image.status();
+    }
+    in.style = std::move(images[0]).value();
     names.emplace_back("style", named("--style", job.style));
     in.style_channel_weights = job.style_weights;
     names.emplace_back("style-weights", "--style-weights");
@@ -170,12 +184,8 @@ Result<StylizeInput> load_stylize_input(const StylizeJob& job) {
         GuidePair pair;
         pair.name =
             "guide " + std::to_string(i + 1) + " (" + spec.source + ", " + spec.target + ")";
-        auto source = load_image(spec.source);
-        if (!source.ok()) return source.status();
-        auto target = load_image(spec.target);
-        if (!target.ok()) return target.status();
-        pair.source = std::move(source).value();
-        pair.target = std::move(target).value();
+        pair.source = std::move(images[1 + 2 * i]).value();
+        pair.target = std::move(images[2 + 2 * i]).value();
         pair.weight = spec.weight;
         if (!spec.weight_map.empty()) {
             auto map = load_grey("--weight-map", spec.weight_map);

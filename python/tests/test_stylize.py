@@ -58,12 +58,16 @@ def test_a_quality_preset_is_its_options_and_explicit_options_override_it(pair):
     style, source, target = pair
     fast = exemplar.stylize(style, [(source, target)], quality="fast")
     spelled_out = exemplar.stylize(style, [(source, target)], finest_em_iterations=1,
-                                   second_finest_em_iterations=2, warm_search_iterations=1,
-                                   budget_polish_iterations=1)
+                                   second_finest_em_iterations=1, warm_search_iterations=1,
+                                   budget_polish_iterations=1, em_iterations=3,
+                                   budget_max_rounds=1, finest_search_radius=8,
+                                   budget_polish_levels=3)
     default = exemplar.stylize(style, [(source, target)])
     overridden = exemplar.stylize(style, [(source, target)], quality="fast",
                                   finest_em_iterations=2, second_finest_em_iterations=4,
-                                  warm_search_iterations=2, budget_polish_iterations=0)
+                                  warm_search_iterations=2, budget_polish_iterations=0,
+                                  em_iterations=6, budget_max_rounds=32, finest_search_radius=0,
+                                  budget_polish_levels=1)
     np.testing.assert_array_equal(fast.nnf, spelled_out.nnf)
     assert not np.array_equal(fast.nnf, default.nnf)
     np.testing.assert_array_equal(overridden.nnf, default.nnf)

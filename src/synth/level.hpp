@@ -14,6 +14,9 @@ namespace exemplar::synth {
 
 struct Level {
     int index = 0;  ///< 0 = coarsest.
+    /// Largest random-search window of the searches on this level; 0 = the whole database
+    /// (SynthesisOptions::finest_search_radius on the finest level).
+    int search_radius = 0;
     int patch_size = 5;
     int radius = 2;
 

@@ -58,17 +58,30 @@ Result<Quality> parse_quality(std::string_view name) {
 
 std::span<const QualityChange> quality_changes(Quality quality) {
     // Measured on bench_examples stylit and facestyle, seeds 1-3 (docs/PERFORMANCE.md, "Quality
-    // presets"). Fast: the finest levels iterate less and warm searches run once; the coarse
-    // levels keep their iterations (3 instead of 6 there saves little and costs stylit a fifth
-    // of its fidelity); the finest level's one iteration is a plain nearest-neighbour polish
-    // of the budget's field (a third less CPU, closer to the exemplar, as much texture but on
-    // facestyle). Best: the coarse levels iterate much more, which is nearly free and
-    // brings the most fidelity, then the two finest levels converge further.
+    // presets"), and on all four examples for issue 15's 25x ebsynth ("fast for previews").
+    // Fast: the finest levels iterate less and warm searches run once; the finest level's one
+    // iteration is a plain nearest-neighbour polish of the budget's field (a third less CPU,
+    // closer to the exemplar, as much texture but on facestyle). One reversed-retrieval round
+    // per budget iteration (the rest falls back to forward nearest neighbours): 10-25% less CPU
+    // and closer to the exemplar on every example. The level before the finest iterates once
+    // and the coarse levels three times (instead of six): another 15-25% less CPU, for stylit
+    // 15% further from the exemplar, texture still far above ebsynth's. The finest level's
+    // search starts from the upsampled field: random-search windows of 8 px at most find as
+    // much there (same fidelity and texture) for a quarter less of that level's CPU. The two
+    // levels before the finest polish too (plain nearest neighbours from the layout the budget
+    // made on the coarser levels): a third less CPU again, as much texture, closer on stylit
+    // (polishing a fourth level gains nothing and loses texture). Best: the
+    // coarse levels iterate much more, which is nearly free and brings the most fidelity, then the
+    // two finest levels converge further.
     static constexpr std::array kFast{
         QualityChange{"budget-polish-iterations", 1},
         QualityChange{"finest-em-iterations", 1},
-        QualityChange{"second-finest-em-iterations", 2},
+        QualityChange{"second-finest-em-iterations", 1},
         QualityChange{"warm-search-iterations", 1},
+        QualityChange{"em-iterations", 3},
+        QualityChange{"budget-max-rounds", 1},
+        QualityChange{"finest-search-radius", 8},
+        QualityChange{"budget-polish-levels", 3},
     };
     static constexpr std::array kBest{
         QualityChange{"em-iterations", 16},
@@ -111,7 +124,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 26> kSpecs{{
+const std::array<OptionSpec, 28> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -130,6 +143,11 @@ const std::array<OptionSpec, 26> kSpecs{{
      "iterations", 0, 100, &O::second_finest_em_iterations},
     {"search-iterations", "PatchMatch iterations per nearest-neighbour search (StyLit: 6).",
      "iterations", 1, 100, &O::search_iterations},
+    {"finest-search-radius",
+     "Largest random-search window of the finest level's searches, which start from a close "
+     "field; 0 = the whole image (StyLit). A few pixels: about a third less search CPU there, "
+     "nearly the same result.",
+     "px", 0, 100000, &O::finest_search_radius},
     {"warm-search-iterations",
      "PatchMatch iterations when the search starts from a close field: the previous EM "
      "iteration's, or the previous reversed-retrieval round's (StyLit: 6; fewer is faster but "
@@ -193,6 +211,11 @@ const std::array<OptionSpec, 26> kSpecs{{
      "move to where the pieces agree (closer to the exemplar, faster), but the finest grain "
      "partly washes out; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::budget_polish_iterations},
+    {"budget-polish-levels",
+     "With budget-polish-iterations: how many of the finest levels polish; the finest runs "
+     "budget-polish-iterations, the others (never the coarsest) keep their EM iterations but "
+     "search plain nearest neighbours from the upsampled field. 1 = the finest only.",
+     "levels", 1, 16, &O::budget_polish_levels},
     {"budget-max-rounds", "Error budget: maximal reversed-retrieval rounds per EM iteration.",
      "rounds", 1, 1000, &O::budget_max_rounds},
     {"budget-focus",

@@ -154,7 +154,8 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
     std::vector<Match> border(static_cast<std::size_t>(bands) * static_cast<std::size_t>(w));
     const int max_x = P.db_width() - 1;
     const int max_y = P.db_height() - 1;
-    const int max_radius = std::max(P.db_width(), P.db_height());
+    const int whole = std::max(P.db_width(), P.db_height());
+    const int max_radius = P.L.search_radius > 0 ? std::min(whole, P.L.search_radius) : whole;
     for (int iter = 0; iter < iterations; ++iter) {
         const bool forward_scan = iter % 2 == 0;
         const int step = forward_scan ? 1 : -1;

@@ -440,6 +440,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
     for (int l = 0; l < levels; ++l) {
         if (context.cancelled()) return cancelled();
         synth::Level L = builder.build(l);
+        if (l == levels - 1) L.search_radius = options.finest_search_radius;
         const std::uint64_t level_key = hash_keys(options.seed, static_cast<std::uint64_t>(l));
         synth::ForwardProblem all{L, L.target_active.data()};
 
@@ -493,8 +494,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         }
         const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
         run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,
-               /*polish=*/finest && budget_polish(options), /*end_run=*/finest && !final_pass, nnf,
-               reverse_field, current, tracker, debug);
+               /*polish=*/polishes_level(options, levels - 1 - l, levels),
+               /*end_run=*/finest && !final_pass, nnf, reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
         prev_sh = L.sh;
@@ -505,6 +506,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             // Optional final iterations with 3x3 patches restore the finest grain.
             if (final_pass) {
                 synth::Level fine = builder.build(l, 3);
+                fine.search_radius = L.search_radius;
                 set_target_style(fine, current);
                 // Same grid as the last pass: both fields carry over (every 5x5 match is a
                 // valid 3x3 match).

@@ -226,6 +226,16 @@ TEST_F(Cli, MissingCorruptAndUnknownFiles) {
     args = stylize_args();
     args[5] = path("nope_b.png");
     expect_failure(args, 1, path("nope_b.png") + ": no such file");
+    // The inputs are decoded in parallel; the first bad one on the command line is reported.
+    for (const char* threads : {"1", "2", "4"}) {
+        args = stylize_args();
+        args[4] = path("nope_a.png");
+        args[5] = path("nope_b.png");
+        args.insert(args.end(), {"-j", threads});
+        expect_failure(args, 1, path("nope_a.png") + ": no such file");
+        args[2] = path("nope.png");
+        expect_failure(args, 1, path("nope.png") + ": no such file");
+    }
     std::ofstream(path("corrupt.png")) << "definitely not a png";
     args = stylize_args();
     args[2] = path("corrupt.png");

@@ -81,6 +81,28 @@ SynthesisInput two_level_input() {
     return in;
 }
 
+// A frame of a run's debug sink: its level and B' after the iteration.
+struct LevelImage {
+    int level = 0;
+    Image current;
+};
+
+// synthesize with `threads`; with `frames`, collects every iteration's level and B'.
+Image synthesize_frames(const SynthesisInput& in, const SynthesisOptions& opt, int threads,
+                        std::vector<LevelImage>* frames) {
+    DebugSink sink;
+    if (frames != nullptr) {
+        sink = [&](const DebugFrame& f) { frames->push_back(LevelImage{f.level, *f.current}); };
+    }
+    auto result = synthesize(in, opt, RunContext{threads}, sink);
+    EXPECT_TRUE(result.ok());
+    return result.ok() ? result->image : Image();
+}
+
+bool same_pixels(const Image& a, const Image& b) {
+    return std::equal(a.data().begin(), a.data().end(), b.data().begin(), b.data().end());
+}
+
 // finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
 // finest level's first reversed round only (coarser levels are unaffected).
 TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
@@ -111,6 +133,30 @@ TEST(Synthesize, FinestFirstRoundIterationsOnlyChangeTheFinestLevel) {
         EXPECT_TRUE(std::equal(coarse_one[i].data().begin(), coarse_one[i].data().end(),
                                coarse_zero[i].data().begin()));
     }
+}
+
+// finest-search-radius: only the finest level's searches change (their random-search windows
+// stay near the current match); the result is the same for any thread count.
+TEST(Synthesize, FinestSearchRadiusOnlyChangesTheFinestLevel) {
+    const SynthesisInput in = two_level_input();
+    SynthesisOptions opt;
+    opt.levels = 2;
+    auto run = [&](int radius, int threads, std::vector<LevelImage>* frames) {
+        opt.finest_search_radius = radius;
+        return synthesize_frames(in, opt, threads, frames);
+    };
+    std::vector<LevelImage> frames_whole, frames_near;
+    const Image whole = run(0, 2, &frames_whole);
+    const Image near = run(2, 2, &frames_near);
+    EXPECT_FALSE(same_pixels(whole, near));
+    ASSERT_EQ(frames_whole.size(), frames_near.size());
+    for (std::size_t i = 0; i < frames_whole.size(); ++i) {
+        if (frames_whole[i].level > 0) continue;
+        EXPECT_TRUE(same_pixels(frames_whole[i].current, frames_near[i].current)) << "frame " << i;
+    }
+    EXPECT_TRUE(same_pixels(run(2, 1, nullptr), near));
+    // A radius as large as the image is the whole image.
+    EXPECT_TRUE(same_pixels(run(100000, 2, nullptr), whole));
 }
 
 // The polish of the error budget and the uniform usage (budget-polish-iterations): only the
@@ -172,6 +218,42 @@ TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
     // The other strategies ignore it: nothing to polish (none is plain already).
     opt.usage = UsageStrategy::None;
     EXPECT_TRUE(same(run(0).back().current, run(3).back().current));
+}
+
+// budget-polish-levels: the level before the finest polishes too (its frames change, the
+// coarsest's do not); never the coarsest level; the same bytes for any thread count.
+TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
+    SynthesisInput in = identity_input(64, 56);
+    in.guides[0].target = testing::texture(68, 60, 3, 9);
+    in.guides[1].target = testing::ramp(68, 60);
+    SynthesisOptions opt;
+    opt.levels = 3;
+    opt.budget_polish_iterations = 1;
+    auto run = [&](int polish_levels, int threads, std::vector<LevelImage>* frames) {
+        opt.budget_polish_levels = polish_levels;
+        return synthesize_frames(in, opt, threads, frames);
+    };
+    std::vector<LevelImage> frames_one, frames_two;
+    const Image one = run(1, 2, &frames_one);
+    const Image two = run(2, 2, &frames_two);
+    ASSERT_EQ(frames_one.size(), frames_two.size());  // the same iterations per level
+    bool middle_differs = false;
+    for (std::size_t i = 0; i < frames_one.size(); ++i) {
+        EXPECT_EQ(frames_one[i].level, frames_two[i].level);
+        const bool same = same_pixels(frames_one[i].current, frames_two[i].current);
+        if (frames_one[i].level == 0) {
+            EXPECT_TRUE(same) << "frame " << i;
+        } else if (frames_one[i].level == 1 && !same) {
+            middle_differs = true;
+        }
+    }
+    EXPECT_TRUE(middle_differs);
+    EXPECT_FALSE(same_pixels(one, two));
+    EXPECT_TRUE(same_pixels(run(2, 1, nullptr), two));
+    // More levels than the pyramid's: the coarsest still runs the usage strategy.
+    EXPECT_TRUE(same_pixels(run(3, 2, nullptr), two));
+    opt.levels = 2;
+    EXPECT_TRUE(same_pixels(run(2, 2, nullptr), run(1, 2, nullptr)));
 }
 
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces

@@ -100,6 +100,11 @@ struct SynthesisOptions {
     /// (measurements in docs/PERFORMANCE.md).
     int second_finest_em_iterations = 4;
     int search_iterations = 6;  ///< PatchMatch iterations per NNF search from a cold start.
+    /// Largest random-search window (pixels) of the finest level's PatchMatch searches; 0 = the
+    /// whole image (StyLit). The finest level starts from a close field (the coarser level's,
+    /// upsampled), so its wide windows rarely win but miss the caches; a few pixels make its
+    /// searches about a third cheaper (the `fast` preset; docs/PERFORMANCE.md).
+    int finest_search_radius = 0;
     /// PatchMatch iterations when the search starts from a field that is already close: the
     /// previous EM iteration's (every EM iteration after a level's first), or the previous
     /// round's (reversed-retrieval rounds). StyLit uses 6 throughout; with the warm starts of
@@ -181,6 +186,12 @@ struct SynthesisOptions {
     /// as published; the `best` preset uses it). Not in the 3x3 final pass. Measurements in
     /// docs/PERFORMANCE.md.
     int budget_polish_iterations = 0;
+    /// With budget_polish_iterations: how many of the finest levels polish. The finest runs
+    /// budget_polish_iterations; the others (never the coarsest, which starts from scratch)
+    /// keep their EM iterations but search plain nearest neighbours from the upsampled field
+    /// the usage laid out on the coarser levels. 1 (default) = the finest only; the `fast`
+    /// preset polishes three levels (a third less CPU, as much texture; docs/PERFORMANCE.md).
+    int budget_polish_levels = 1;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
     /// Error budget: once fewer than this fraction of the target patches are still free, a
@@ -206,6 +217,14 @@ inline bool budget_polish(const SynthesisOptions& options) {
     return (options.usage == UsageStrategy::ErrorBudget ||
             options.usage == UsageStrategy::Uniform) &&
            options.budget_polish_iterations > 0;
+}
+
+/// Whether the level `depth` steps above the finest (0 = finest) of a pyramid with `levels`
+/// levels polishes (SynthesisOptions::budget_polish_levels): the finest when budget_polish, the
+/// next ones up to budget_polish_levels but never the coarsest.
+inline bool polishes_level(const SynthesisOptions& options, int depth, int levels) {
+    if (!budget_polish(options)) return false;
+    return depth == 0 || (depth < options.budget_polish_levels && depth < levels - 1);
 }
 
 /// EM iterations of the level `depth` steps above the finest (0 = finest) of a pyramid with
