@@ -221,6 +221,19 @@ std::string guide_compression_note(const SynthesisResult& result, float guide_pc
     return note.str();
 }
 
+std::string unlabelled_levels_note(const SynthesisResult& result) {
+    const std::vector<int>& levels = result.unlabelled_levels;
+    if (levels.empty()) return "";
+    const bool finest = std::find(levels.begin(), levels.end(), 0) != levels.end();
+    std::ostringstream note;
+    note << "exemplar: " << (finest ? "warning" : "note") << ": labels not enforced on "
+         << levels.size() << (levels.size() == 1 ? " level" : " levels")
+         << (finest ? ", the finest among them" : " (coarse levels only)")
+         << ": a source segment has no whole patch there (narrower than a patch); "
+            "target pixels of its label took patches of any label\n";
+    return note.str();
+}
+
 bool same_file(const std::string& a, const std::string& b) {
     std::error_code ea, eb;
     const fs::path ca = fs::weakly_canonical(a, ea);

@@ -64,6 +64,10 @@ std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outp
 /// The note on what --guide-pca did ("" when it is off).
 std::string guide_compression_note(const SynthesisResult& result, float guide_pca);
 
+/// The note for SynthesisResult::unlabelled_levels: which levels could not keep the labels
+/// apart (empty when all did).
+std::string unlabelled_levels_note(const SynthesisResult& result);
+
 /// True if both paths name the same file (after resolving `.`, `..` and symbolic links).
 bool same_file(const std::string& a, const std::string& b);
 

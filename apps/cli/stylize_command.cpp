@@ -303,6 +303,7 @@ Status StylizeCommand::run(const Streams& streams) {
         streams.out << job.output << '\n';
         streams.err << nnf_note(*result, outputs_of(job));
         streams.err << guide_compression_note(*result, options.guide_pca);
+        streams.err << unlabelled_levels_note(*result);
     }
     return Status::ok();
 }

@@ -40,6 +40,7 @@ class StylizeResult:
     vote_seams: bool
     guide_channels: int
     explained_variance: float
+    unlabelled_levels: list[int]
 
 class NprState:
     frame: int

@@ -34,6 +34,7 @@ struct StylizeResult {
     bool vote_seams = false;
     int guide_channels = 0;
     double explained_variance = 1.0;
+    std::vector<int> unlabelled_levels;
 };
 
 StylizeResult make_result(SynthesisResult&& result, SampleType type, int guide_channels,
@@ -47,6 +48,7 @@ StylizeResult make_result(SynthesisResult&& result, SampleType type, int guide_c
     out.vote_seams = result.vote_seams;
     out.guide_channels = guide_channels;
     out.explained_variance = explained_variance;
+    out.unlabelled_levels = std::move(result.unlabelled_levels);
     return out;
 }
 
@@ -394,6 +396,11 @@ void register_synthesis(py::module_& module) {
                       "stylit preview).")
         .def_readonly("explained_variance", &StylizeResult::explained_variance,
                       "Fraction of the weighted guide variance kept (1 unless compressed).")
+        .def_readonly("unlabelled_levels", &StylizeResult::unlabelled_levels,
+                      "With label maps: the pyramid levels (0 = finest) on which the labels were "
+                      "not enforced because a segment had no valid source patch there (narrower "
+                      "than a patch at that scale, or behind the source mask); empty when they "
+                      "held everywhere.")
         .def("__repr__", [](const StylizeResult& r) {
             return "<exemplar.StylizeResult image " +
                    std::string(py::str(py::tuple(r.image.attr("shape")))) + " " +

@@ -148,6 +148,25 @@ def test_labels_restrict_the_patches(pair):
     assert (result.nnf[..., 0] >= 14).all()
 
 
+def test_the_result_names_the_levels_where_labels_could_not_hold(pair):
+    style, source, target = pair
+    # Label 1 on the two right columns, behind a masked-out column: no valid patch of label 1 on
+    # the finest level, so the labels are dropped there and the result says so.
+    source_labels = np.zeros((24, 28), dtype=np.uint8)
+    source_labels[:, 26:] = 1
+    source_mask = np.full((24, 28), 255, dtype=np.uint8)
+    source_mask[:, 25] = 0
+    target_labels = np.zeros((26, 32), dtype=np.uint8)
+    target_labels[:13] = 1
+    result = exemplar.stylize(style, [(source, target)], source_labels=source_labels,
+                              target_labels=target_labels, source_mask=source_mask)
+    assert 0 in result.unlabelled_levels
+    wide = np.zeros((24, 28), dtype=np.uint8)
+    wide[:, 14:] = 1
+    assert exemplar.stylize(style, [(source, target)], source_labels=wide,
+                            target_labels=target_labels).unlabelled_levels.count(0) == 0
+
+
 def test_the_output_array_owns_its_memory_safely(pair):
     style, source, target = pair
     image = exemplar.stylize(style.astype(np.float32), [(source, target)]).image

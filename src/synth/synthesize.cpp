@@ -441,6 +441,9 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         if (context.cancelled()) return cancelled();
         synth::Level L = builder.build(l);
         if (l == levels - 1) L.search_radius = options.finest_search_radius;
+        if (!in.source_labels.empty() && L.target_label.empty()) {
+            result.unlabelled_levels.push_back(levels - 1 - l);
+        }
         const std::uint64_t level_key = hash_keys(options.seed, static_cast<std::uint64_t>(l));
         synth::ForwardProblem all{L, L.target_active.data()};
 

@@ -174,6 +174,45 @@ TEST_F(Cli, LabelMapsAreComparedByColour) {
     EXPECT_GT(matched, 0);
 }
 
+// A segment the engine cannot give patches on the finest level (two columns behind a masked-out
+// one) leaves its labels unenforced there: the run still writes its image, and says so.
+TEST_F(Cli, SaysWhenLabelsCouldNotHoldOnTheFinestLevel) {
+    Image source_labels(32, 28, 1, 51.0f / 255.0f);
+    Image source_mask(32, 28, 1, 1.0f);
+    for (int y = 0; y < 28; ++y) {
+        for (int x = 30; x < 32; ++x) source_labels.at(x, y, 0) = 102.0f / 255.0f;
+        source_mask.at(29, y, 0) = 0.0f;
+    }
+    write("sliver_labels.png", source_labels);
+    write("sliver_mask.png", source_mask);
+    Image target_labels(36, 30, 1, 51.0f / 255.0f);
+    for (int y = 0; y < 15; ++y) {
+        for (int x = 0; x < 36; ++x) target_labels.at(x, y, 0) = 102.0f / 255.0f;
+    }
+    write("halves_labels.png", target_labels);
+    const CliRun r =
+        run(with(stylize_args(), {"--source-labels", path("sliver_labels.png"), "--target-labels",
+                                  path("halves_labels.png"), "--source-mask",
+                                  path("sliver_mask.png"), "-o", path("sliver.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: labels not enforced on"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the finest among them"), std::string::npos) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(path("sliver.png")));
+    // Segments wide enough on every level: no such line.
+    write("wide_labels.png", [] {
+        Image labels(32, 28, 1, 51.0f / 255.0f);
+        for (int y = 0; y < 28; ++y) {
+            for (int x = 16; x < 32; ++x) labels.at(x, y, 0) = 102.0f / 255.0f;
+        }
+        return labels;
+    }());
+    const CliRun wide =
+        run(with(stylize_args(), {"--source-labels", path("wide_labels.png"), "--target-labels",
+                                  path("halves_labels.png"), "-o", path("wide.png")}));
+    ASSERT_EQ(wide.code, 0) << wide.err;
+    EXPECT_EQ(wide.err.find("labels not enforced"), std::string::npos) << wide.err;
+}
+
 TEST_F(Cli, GreyMasksMayBeStoredAsRgb) {
     Image mask(36, 30, 3, 0.0f);
     for (int y = 8; y < 20; ++y) {

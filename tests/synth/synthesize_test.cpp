@@ -429,6 +429,54 @@ TEST(Synthesize, LabelsRestrictSources) {
     EXPECT_LT(result->image.at(18, 30, 0), 0.4f);
 }
 
+// Labels hold on every level when each segment has valid patches centred in it on each (the
+// halves above); a segment with none (a sliver behind a masked-out column) cannot, even on the
+// finest level:
+// the labels are then dropped there, and the result says on which levels, as it does for the
+// coarse levels where a segment shrinks away.
+TEST(Synthesize, ResultNamesTheLevelsWhereLabelsCouldNotHold) {
+    // Label 2 on the right `stripe` columns; with `gap`, the column just left of the stripe is
+    // outside the source mask.
+    auto run = [](int stripe, bool gap) {
+        SynthesisInput in;
+        in.style = Image(40, 30, 1);
+        in.source_labels = Image(40, 30, 1);
+        in.source_mask = Image(40, 30, 1);
+        for (int y = 0; y < 30; ++y) {
+            for (int x = 0; x < 40; ++x) {
+                const bool narrow = x >= 40 - stripe;
+                in.style.at(x, y, 0) = (narrow ? 0.8f : 0.2f) + 0.05f * std::sin(x * 1.3f + y);
+                in.source_labels.at(x, y, 0) = narrow ? 2.0f : 1.0f;
+                in.source_mask.at(x, y, 0) = gap && x == 39 - stripe ? 0.0f : 1.0f;
+            }
+        }
+        in.target_labels = Image(36, 36, 1);
+        for (int y = 0; y < 36; ++y) {
+            for (int x = 0; x < 36; ++x) in.target_labels.at(x, y, 0) = y < 18 ? 2.0f : 1.0f;
+        }
+        in.guides.push_back(GuidePair{"labels", in.source_labels, in.target_labels, 1.0f, {}});
+        SynthesisOptions opt;
+        opt.levels = 3;
+        return synthesize(in, opt, RunContext{2});
+    };
+    // 20 px: patches of both segments on every level.
+    const auto wide = run(20, false);
+    ASSERT_TRUE(wide.ok()) << wide.status().message();
+    EXPECT_TRUE(wide->unlabelled_levels.empty());
+    for (int y = 0; y < 36; ++y) {
+        for (int x = 0; x < 36; ++x) {
+            const Match& m = wide->nnf.at(x, y);
+            ASSERT_EQ(m.x >= 20 ? 2 : 1, y < 18 ? 2 : 1) << x << "," << y;
+        }
+    }
+    // 2 px at the border behind a masked-out column: every patch centred in label 2 reaches the
+    // column, so label 2 has no valid patch on the finest level nor on the one before; on the
+    // coarsest the box-filtered mask no longer excludes the column and the labels hold.
+    const auto narrow = run(2, true);
+    ASSERT_TRUE(narrow.ok()) << narrow.status().message();
+    EXPECT_EQ(narrow->unlabelled_levels, (std::vector<int>{1, 0}));
+}
+
 // Mean squared derivative along x and along y of channel 0.
 std::pair<double, double> gradient_energy(const Image& im, int margin) {
     double gx = 0, gy = 0;

@@ -95,6 +95,11 @@ struct SynthesisResult {
         int channels_after = 0;
         double explained_variance = 1.0;
     } guide_compression;
+    /// With labels: the levels (0 = finest, 1 = the one before, ...) on which they were not
+    /// enforced because some target label had no whole source patch there (a segment of the
+    /// source narrower than a patch at that scale); every target pixel then took patches of any
+    /// label on that level. Empty when the labels held everywhere or none were given.
+    std::vector<int> unlabelled_levels;
 };
 
 /// Checks inputs (sizes, channel counts, masks, finite values) and options; returns the first
