@@ -76,6 +76,17 @@ Result<paint::PixelRect> PaintSession::stroke(const paint::Stroke& stroke,
     return *changed;
 }
 
+Result<PaintSession::Preview> PaintSession::preview(const paint::Stroke& stroke, int reduction,
+                                                    const RunContext& context) const {
+    paint::PaintCanvas canvas = history_.current().canvas;
+    auto changed = canvas.add_stroke(stroke);
+    if (!changed.ok()) return changed.status();
+    auto previewed =
+        paint::preview_repaint(source_, canvas, image(), *changed, options_, reduction, context);
+    if (!previewed.ok()) return previewed.status();
+    return Preview{std::move(previewed->image), *changed};
+}
+
 Result<BrushSession> BrushSession::start(const Image& palette, const paint::Stroke& selection,
                                          int width, int height,
                                          const paint::FeatureBrushOptions& options, bool snap,
