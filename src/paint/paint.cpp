@@ -210,6 +210,18 @@ Status check_painted_labels(const Exemplar& exemplar, const CanvasView& canvas) 
     return Status::ok();
 }
 
+// A premultiplied RGBA pixel to straight alpha (`out` may be `in`); transparent (all 0) where
+// the canvas is not `painted` or alpha is 0.
+void straighten(const float* in, bool painted, float* out) {
+    const float a = std::clamp(in[3], 0.0f, 1.0f);
+    if (!painted || a <= 0.0f) {
+        out[0] = out[1] = out[2] = out[3] = 0.0f;
+        return;
+    }
+    for (int c = 0; c < 3; ++c) out[c] = std::clamp(in[c] / a, 0.0f, 1.0f);
+    out[3] = a;
+}
+
 Image premultiplied(const Image& rgba) {
     Image out = rgba;
     for (int y = 0; y < out.height(); ++y) {
@@ -327,13 +339,7 @@ Result<PaintResult> run(const PaintSource& source, const CanvasView& canvas,
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             float* p = result.image.pixel(x, y);
-            const float a = std::clamp(p[3], 0.0f, 1.0f);
-            if (canvas.coverage().at(x, y, 0) == 0.0f || a <= 0.0f) {
-                p[0] = p[1] = p[2] = p[3] = 0.0f;
-                continue;
-            }
-            for (int c = 0; c < 3; ++c) p[c] = std::clamp(p[c] / a, 0.0f, 1.0f);
-            p[3] = a;
+            straighten(p, canvas.coverage().at(x, y, 0) != 0.0f, p);
         }
     }
     result.image.set_channel_names({"R", "G", "B", "A"});
@@ -429,7 +435,7 @@ Result<PaintResult> preview_repaint(const PaintSource& source, const PaintCanvas
     Image straight_previous = small_previous;
     for (std::size_t i = 0; i < straight_previous.pixel_count(); ++i) {
         float* p = straight_previous.data().data() + 4 * i;
-        for (int c = 0; c < 3; ++c) p[c] = p[3] > 0.0f ? std::clamp(p[c] / p[3], 0.0f, 1.0f) : 0.0f;
+        straighten(p, true, p);
     }
     PaintOptions small_options = options;
     small_options.edge_extent_px = std::max(1.0f, options.edge_extent_px / static_cast<float>(r));
@@ -449,15 +455,8 @@ Result<PaintResult> preview_repaint(const PaintSource& source, const PaintCanvas
     for (int y = std::max(changed.y0 - grow_px, 0); y < std::min(changed.y1 + grow_px, h); ++y) {
         for (int x = std::max(changed.x0 - grow_px, 0); x < std::min(changed.x1 + grow_px, w);
              ++x) {
-            float* p = result.image.pixel(x, y);
-            const float* u = up.pixel(x, y);
-            const float a = std::clamp(u[3], 0.0f, 1.0f);
-            if (canvas.coverage().at(x, y, 0) == 0.0f || a <= 0.0f) {
-                p[0] = p[1] = p[2] = p[3] = 0.0f;
-                continue;
-            }
-            for (int c = 0; c < 3; ++c) p[c] = std::clamp(u[c] / a, 0.0f, 1.0f);
-            p[3] = a;
+            straighten(up.pixel(x, y), canvas.coverage().at(x, y, 0) != 0.0f,
+                       result.image.pixel(x, y));
         }
     }
     result.nnf = std::move(coarse->nnf);

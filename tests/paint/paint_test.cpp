@@ -328,6 +328,26 @@ TEST(Paint, UniformUsageKeepsSparseFlecksThatPlainEmWashesOut) {
               0.5 * histogram_distance(source.image, plain->image));
 }
 
+// Checks that `after` keeps `before`'s bytes outside `changed` grown by the default patch size;
+// returns the painted pixels within it that are mostly opaque in `after`.
+int kept_outside(const Image& before, const Image& after, const PixelRect& changed,
+                 const PaintCanvas& canvas) {
+    int painted_new = 0;
+    for (int y = 0; y < before.height(); ++y) {
+        for (int x = 0; x < before.width(); ++x) {
+            const bool near = x >= changed.x0 - 5 && x < changed.x1 + 5 && y >= changed.y0 - 5 &&
+                              y < changed.y1 + 5;
+            if (!near) {
+                EXPECT_EQ(std::memcmp(before.pixel(x, y), after.pixel(x, y), 4 * sizeof(float)), 0)
+                    << x << "," << y;
+            } else if (canvas.coverage().at(x, y, 0) != 0.0f && after.at(x, y, 3) > 0.5f) {
+                ++painted_new;
+            }
+        }
+    }
+    return painted_new;
+}
+
 TEST(Paint, RepaintChangesOnlyTheTouchedRegion) {
     const PaintSource source = striped_blob(48, 22);
     PaintCanvas canvas(96, 64);
@@ -338,22 +358,7 @@ TEST(Paint, RepaintChangesOnlyTheTouchedRegion) {
     ASSERT_TRUE(changed.ok());
     const auto second = repaint(source, canvas, first->image, *changed, {}, RunContext(2));
     ASSERT_TRUE(second.ok()) << second.status().message();
-    int painted_new = 0;
-    for (int y = 0; y < 64; ++y) {
-        for (int x = 0; x < 96; ++x) {
-            const bool near = x >= changed->x0 - 5 && x < changed->x1 + 5 && y >= changed->y0 - 5 &&
-                              y < changed->y1 + 5;
-            if (!near) {
-                EXPECT_EQ(std::memcmp(first->image.pixel(x, y), second->image.pixel(x, y),
-                                      4 * sizeof(float)),
-                          0)
-                    << x << "," << y;
-            } else if (canvas.coverage().at(x, y, 0) != 0.0f && second->image.at(x, y, 3) > 0.5f) {
-                ++painted_new;
-            }
-        }
-    }
-    EXPECT_GT(painted_new, 300);
+    EXPECT_GT(kept_outside(first->image, second->image, *changed, canvas), 300);
 }
 
 // Mean absolute RGB difference (alpha-weighted, so transparent pixels count as black) of two
@@ -397,22 +402,7 @@ TEST(Paint, PreviewIsDeterministicKeepsTheRestAndIsCloseToTheRepaintAtCoarseScal
                           preview->image.data().size() * sizeof(float)),
               0);
     // Outside the rectangle a repaint synthesizes, the previous painting's bytes.
-    int painted_new = 0;
-    for (int y = 0; y < 96; ++y) {
-        for (int x = 0; x < 128; ++x) {
-            const bool near = x >= changed->x0 - 5 && x < changed->x1 + 5 && y >= changed->y0 - 5 &&
-                              y < changed->y1 + 5;
-            if (!near) {
-                EXPECT_EQ(std::memcmp(first->image.pixel(x, y), preview->image.pixel(x, y),
-                                      4 * sizeof(float)),
-                          0)
-                    << x << "," << y;
-            } else if (canvas.coverage().at(x, y, 0) != 0.0f && preview->image.at(x, y, 3) > 0.5f) {
-                ++painted_new;
-            }
-        }
-    }
-    EXPECT_GT(painted_new, 2000);
+    EXPECT_GT(kept_outside(first->image, preview->image, *changed, canvas), 2000);
     // At 1/8 scale (a stripe period, so the texture's detail averages out) the preview's colours
     // are the repaint's: measured 0.027 (7/255), against 0.16 for the painting without the new
     // stroke; the bound leaves room for other compilers' rounding, not for a misplaced or
