@@ -3,7 +3,9 @@
 // in-process server as the browser calls it (request, library call, answer bytes; not the
 // browser's drawing, which the browser test logs).
 // Paint: a 512x512 canvas (0.26 MPix) painted with tests/data/flow/synthetic-img0.png; each
-// stroke's changed rectangle is printed with its wall and CPU time. Strokes: a thin
+// stroke's changed rectangle is printed with its wall and CPU time from pen-up to the preview
+// pixels (POST /api/paint/preview) and to the final pixels (then POST /api/paint/stroke, as the
+// SPA does), and of the final alone (the stroke posted without a preview). Strokes: a thin
 // diagonal (the rectangle is the whole canvas, a sixth of it painted) and a wide stroke painting
 // most of the canvas, then a comb across both.
 // Sketch: a stroke against a drawing of 12 accepted strokes (a grid of lines), suggestions
@@ -72,32 +74,51 @@ int main(int argc, char** argv) {
         {{"points", {{40, 256}, {470, 256}}}, {"width", 120}, {"comb", true}},
     };
     for (std::size_t s = 0; s < std::size(strokes); ++s) {
-        std::vector<double> times, cpu;
+        // Wall and CPU (the process's: the server is in it) times from pen-up to the preview,
+        // to the final after the preview, and to the final posted alone.
+        std::vector<double> wall[3], cpu[3];
         std::string rect;
         for (int r = 0; r < repeats; ++r) {
-            post("/api/paint/start",
-                 {{"exemplar", "exemplar.png"}, {"width", 512}, {"height", 512}});
-            for (std::size_t before = 0; before < s; ++before)
-                post("/api/paint/stroke", strokes[before]);
-            const auto t0 = std::chrono::steady_clock::now();
-            const std::clock_t c0 = std::clock();  // the process's CPU time: the server is in it
-            auto res = post("/api/paint/stroke", strokes[s]);
-            times.push_back(ms_since(t0));
-            cpu.push_back(1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-            if (!res || res->status != 200) {
-                std::fprintf(stderr, "bench_studio: stroke failed\n");
-                return 1;
+            for (int previewed = 0; previewed < 2; ++previewed) {
+                post("/api/paint/start",
+                     {{"exemplar", "exemplar.png"}, {"width", 512}, {"height", 512}});
+                for (std::size_t before = 0; before < s; ++before)
+                    post("/api/paint/stroke", strokes[before]);
+                const auto t0 = std::chrono::steady_clock::now();
+                const std::clock_t c0 = std::clock();
+                const auto lap = [&](int k) {
+                    wall[k].push_back(ms_since(t0));
+                    cpu[k].push_back(1000.0 * static_cast<double>(std::clock() - c0) /
+                                     CLOCKS_PER_SEC);
+                };
+                if (previewed) {
+                    auto pre = post("/api/paint/preview", strokes[s]);
+                    if (!pre || pre->status != 200) {
+                        std::fprintf(stderr, "bench_studio: preview failed\n");
+                        return 1;
+                    }
+                    lap(0);
+                }
+                auto res = post("/api/paint/stroke", strokes[s]);
+                if (!res || res->status != 200) {
+                    std::fprintf(stderr, "bench_studio: stroke failed\n");
+                    return 1;
+                }
+                lap(previewed ? 1 : 2);
+                rect = res->get_header_value("X-Rect");
             }
-            rect = res->get_header_value("X-Rect");
         }
         int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
         std::sscanf(rect.c_str(), "%d,%d,%d,%d", &x0, &y0, &x1, &y1);
         std::printf(
-            "paint stroke %zu (%s, width %g px): rectangle %dx%d = %.3f MPix: wall median %.0f ms, "
-            "min %.0f ms; CPU median %.0f ms\n",
+            "paint stroke %zu (%s, width %g px): rectangle %dx%d = %.3f MPix: wall median (min) / "
+            "CPU median: preview %.0f (%.0f) / %.0f ms, final after it %.0f (%.0f) / %.0f ms, "
+            "final alone %.0f (%.0f) / %.0f ms\n",
             s + 1, strokes[s].value("comb", false) ? "comb" : "paint",
             strokes[s]["width"].get<double>(), x1 - x0, y1 - y0, (x1 - x0) * (y1 - y0) / 1e6,
-            median(times), *std::min_element(times.begin(), times.end()), median(cpu));
+            median(wall[0]), *std::min_element(wall[0].begin(), wall[0].end()), median(cpu[0]),
+            median(wall[1]), *std::min_element(wall[1].begin(), wall[1].end()), median(cpu[1]),
+            median(wall[2]), *std::min_element(wall[2].begin(), wall[2].end()), median(cpu[2]));
     }
 
     // Sketch: 12 accepted lines (a grid), then the timed stroke.

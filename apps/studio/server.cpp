@@ -563,6 +563,23 @@ void StudioServer::Impl::add_paint_routes() {
             answer(res, 200, {{"width", c.paint->width()}, {"height", c.paint->height()}});
         });
     });
+    // Pen-up, first request: the stroke previewed at a reduced scale (the state is unchanged);
+    // the client then posts it to /api/paint/stroke for the final pixels.
+    http->route("POST", "/api/paint/preview", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        auto stroke = stroke_field(*body);
+        if (!stroke.ok()) return fail(res, stroke.status());
+        auto reduction = number_field(*body, "reduction", 4.0, 1.0, 16.0);
+        if (!reduction.ok()) return fail(res, reduction.status());
+        with_client(req, res, [&](ClientState& c) {
+            if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
+            auto preview =
+                c.paint->preview(*stroke, static_cast<int>(*reduction), interactive_context());
+            if (!preview.ok()) return fail(res, preview.status());
+            answer_rgba(res, preview->image, preview->changed);
+        });
+    });
 }
 
 // Stroke, undo, redo and save of a tool whose state is a painting (paint, brush): a stroke

@@ -67,13 +67,24 @@ Result<PaintSession> PaintSession::start(Image exemplar, int width, int height,
 Result<paint::PixelRect> PaintSession::stroke(const paint::Stroke& stroke,
                                               const RunContext& context) {
     State next = history_.current();
-    auto changed = next.canvas.add_stroke(stroke);
+    auto changed = next.canvas.add_stroke(stroke, context.threads);
     if (!changed.ok()) return changed.status();
     auto painted = paint::repaint(source_, next.canvas, next.image, *changed, options_, context);
     if (!painted.ok()) return painted.status();
     next.image = std::move(painted->image);
     history_.push(std::move(next));
     return *changed;
+}
+
+Result<PaintSession::Preview> PaintSession::preview(const paint::Stroke& stroke, int reduction,
+                                                    const RunContext& context) const {
+    paint::PaintCanvas canvas = history_.current().canvas;
+    auto changed = canvas.add_stroke(stroke, context.threads);
+    if (!changed.ok()) return changed.status();
+    auto previewed =
+        paint::preview_repaint(source_, canvas, image(), *changed, options_, reduction, context);
+    if (!previewed.ok()) return previewed.status();
+    return Preview{std::move(previewed->image), *changed};
 }
 
 Result<BrushSession> BrushSession::start(const Image& palette, const paint::Stroke& selection,

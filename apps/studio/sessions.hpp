@@ -81,6 +81,15 @@ public:
     /// Applies a painting or combing stroke and repaints what it touched; returns that
     /// rectangle. The painting is unchanged on error.
     Result<paint::PixelRect> stroke(const paint::Stroke& stroke, const RunContext& context);
+    /// What `stroke` would give, quickly (paint::preview_repaint, reduced `reduction` times):
+    /// the painting with the stroke previewed and the rectangle it touched. The session is
+    /// unchanged, so undo/redo never see a preview; `stroke` paints the final pixels after.
+    struct Preview {
+        Image image;
+        paint::PixelRect changed;
+    };
+    Result<Preview> preview(const paint::Stroke& stroke, int reduction,
+                            const RunContext& context) const;
     bool undo() { return history_.undo(); }
     bool redo() { return history_.redo(); }
     /// The painting: RGBA, straight alpha, transparent where nothing is painted.

@@ -17,6 +17,7 @@
 #include <string>
 #include <utility>
 
+#include "exemplar/filters/resample.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/shape_hint.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -26,6 +27,27 @@ namespace exemplar::paint {
 namespace {
 
 constexpr int kOrientationSteps = 32;
+
+// What `run` reads of a canvas: a PaintCanvas, or its images at a reduced scale (the preview).
+class CanvasView {
+public:
+    explicit CanvasView(const PaintCanvas& canvas)
+        : coverage_(&canvas.coverage()),
+          directions_(&canvas.directions()),
+          labels_(&canvas.labels()) {}
+    CanvasView(const Image& coverage, const Image& directions, const Image& labels)
+        : coverage_(&coverage), directions_(&directions), labels_(&labels) {}
+    int width() const { return coverage_->width(); }
+    int height() const { return coverage_->height(); }
+    const Image& coverage() const { return *coverage_; }
+    const Image& directions() const { return *directions_; }
+    const Image& labels() const { return *labels_; }
+
+private:
+    const Image* coverage_;
+    const Image* directions_;
+    const Image* labels_;
+};
 
 std::string size_of(const Image& image) {
     return std::to_string(image.width()) + "x" + std::to_string(image.height());
@@ -168,7 +190,7 @@ Image spread_labels(const Image& labels, const Image& coverage) {
 
 // Every painted label must name a segment of the exemplar (inside its shape); without a
 // segmentation, every label must be 0.
-Status check_painted_labels(const Exemplar& exemplar, const PaintCanvas& canvas) {
+Status check_painted_labels(const Exemplar& exemplar, const CanvasView& canvas) {
     std::set<long> painted;
     for (std::size_t i = 0; i < canvas.labels().pixel_count(); ++i) {
         if (canvas.coverage().data()[i] > 0.5f)
@@ -188,6 +210,18 @@ Status check_painted_labels(const Exemplar& exemplar, const PaintCanvas& canvas)
     return Status::ok();
 }
 
+// A premultiplied RGBA pixel to straight alpha (`out` may be `in`); transparent (all 0) where
+// the canvas is not `painted` or alpha is 0.
+void straighten(const float* in, bool painted, float* out) {
+    const float a = std::clamp(in[3], 0.0f, 1.0f);
+    if (!painted || a <= 0.0f) {
+        out[0] = out[1] = out[2] = out[3] = 0.0f;
+        return;
+    }
+    for (int c = 0; c < 3; ++c) out[c] = std::clamp(in[c] / a, 0.0f, 1.0f);
+    out[3] = a;
+}
+
 Image premultiplied(const Image& rgba) {
     Image out = rgba;
     for (int y = 0; y < out.height(); ++y) {
@@ -199,7 +233,17 @@ Image premultiplied(const Image& rgba) {
     return out;
 }
 
-Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
+Status check_previous(const Image* previous, int w, int h) {
+    if (previous != nullptr &&
+        (previous->width() != w || previous->height() != h || previous->channels() != 4)) {
+        return invalid_argument("previous: " + size_of(*previous) + " with " +
+                                std::to_string(previous->channels()) +
+                                " channels (must be RGBA, the canvas' size)");
+    }
+    return Status::ok();
+}
+
+Result<PaintResult> run(const PaintSource& source, const CanvasView& canvas,
                         const PaintOptions& options, const RunContext& context,
                         const Image* previous, const PixelRect* changed) {
     EXEMPLAR_RETURN_IF_ERROR(validate(options));
@@ -207,12 +251,7 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     if (!exemplar.ok()) return exemplar.status();
     EXEMPLAR_RETURN_IF_ERROR(check_painted_labels(*exemplar, canvas));
     const int w = canvas.width(), h = canvas.height();
-    if (previous != nullptr &&
-        (previous->width() != w || previous->height() != h || previous->channels() != 4)) {
-        return invalid_argument("previous: " + size_of(*previous) + " with " +
-                                std::to_string(previous->channels()) +
-                                " channels (must be RGBA, the canvas' size)");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(check_previous(previous, w, h));
 
     // The region to synthesize: the painted pixels (within the changed rectangle on a repaint).
     // An exemplar without a boundary (opaque, or a mask covering it) has no boundary effects to
@@ -300,13 +339,7 @@ Result<PaintResult> run(const PaintSource& source, const PaintCanvas& canvas,
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             float* p = result.image.pixel(x, y);
-            const float a = std::clamp(p[3], 0.0f, 1.0f);
-            if (canvas.coverage().at(x, y, 0) == 0.0f || a <= 0.0f) {
-                p[0] = p[1] = p[2] = p[3] = 0.0f;
-                continue;
-            }
-            for (int c = 0; c < 3; ++c) p[c] = std::clamp(p[c] / a, 0.0f, 1.0f);
-            p[3] = a;
+            straighten(p, canvas.coverage().at(x, y, 0) != 0.0f, p);
         }
     }
     result.image.set_channel_names({"R", "G", "B", "A"});
@@ -343,13 +376,91 @@ Status validate(const PaintOptions& o) {
 
 Result<PaintResult> paint(const PaintSource& source, const PaintCanvas& canvas,
                           const PaintOptions& options, const RunContext& context) {
-    return run(source, canvas, options, context, nullptr, nullptr);
+    return run(source, CanvasView(canvas), options, context, nullptr, nullptr);
 }
 
 Result<PaintResult> repaint(const PaintSource& source, const PaintCanvas& canvas,
                             const Image& previous, const PixelRect& changed,
                             const PaintOptions& options, const RunContext& context) {
-    return run(source, canvas, options, context, &previous, &changed);
+    return run(source, CanvasView(canvas), options, context, &previous, &changed);
+}
+
+Result<PaintResult> preview_repaint(const PaintSource& source, const PaintCanvas& canvas,
+                                    const Image& previous, const PixelRect& changed,
+                                    const PaintOptions& options, int reduction,
+                                    const RunContext& context) {
+    EXEMPLAR_RETURN_IF_ERROR(validate(options));
+    if (reduction < 1 || reduction > 16) {
+        return invalid_argument("reduction: " + std::to_string(reduction) +
+                                " is invalid (must be 1..16)");
+    }
+    const int w = canvas.width(), h = canvas.height();
+    EXEMPLAR_RETURN_IF_ERROR(check_previous(&previous, w, h));
+    if (source.image.empty()) return invalid_argument("source: the exemplar is empty");
+    // The reduced exemplar keeps at least 3 patches across its shorter side (the engine's
+    // coarsest level needs room); a factor that leaves less is lowered, down to the full repaint.
+    const int shorter = std::min(source.image.width(), source.image.height());
+    int r = reduction;
+    while (r > 1 && shorter / r < 3 * options.patch_size) --r;
+    if (r == 1) return repaint(source, canvas, previous, changed, options, context);
+
+    const int t = context.threads;
+    const auto reduced = [r](int size) { return std::max(1, (size + r - 1) / r); };
+    const auto shrink = [&](const Image& image, ResampleFilter filter) {
+        if (image.empty()) return Image();
+        const bool canvas_sized = image.width() == w && image.height() == h;
+        const int sw = canvas_sized ? reduced(w) : reduced(image.width());
+        const int sh = canvas_sized ? reduced(h) : reduced(image.height());
+        return resize(image, sw, sh, filter, t);
+    };
+
+    // The exemplar at 1/r: what the engine's coarse pyramid levels see of it.
+    PaintSource small;
+    small.image = shrink(source.image, ResampleFilter::Box);
+    small.mask = shrink(source.mask, ResampleFilter::Box);
+    small.labels = shrink(source.labels, ResampleFilter::Nearest);
+    if (!source.directions.empty()) {
+        if (!source.directions.same_size(source.image) || source.directions.channels() != 1) {
+            return repaint(source, canvas, previous, changed, options, context);  // its error
+        }
+        small.directions = direction_angles(
+            shrink(directions_from_angles(source.directions), ResampleFilter::Box));
+    }
+    // The canvas at 1/r: a pixel is painted where at least half of it was.
+    Image coverage = shrink(canvas.coverage(), ResampleFilter::Box);
+    for (float& v : coverage.data()) v = v >= 0.5f ? 1.0f : 0.0f;
+    const Image directions = shrink(canvas.directions(), ResampleFilter::Box);
+    const Image labels = shrink(canvas.labels(), ResampleFilter::Nearest);
+    const Image small_previous = shrink(premultiplied(previous), ResampleFilter::Box);
+    Image straight_previous = small_previous;
+    for (std::size_t i = 0; i < straight_previous.pixel_count(); ++i) {
+        float* p = straight_previous.data().data() + 4 * i;
+        straighten(p, true, p);
+    }
+    PaintOptions small_options = options;
+    small_options.edge_extent_px = std::max(1.0f, options.edge_extent_px / static_cast<float>(r));
+    const PixelRect small_changed{changed.x0 / r, changed.y0 / r, (changed.x1 + r - 1) / r,
+                                  (changed.y1 + r - 1) / r};
+    auto coarse = run(small, CanvasView(coverage, directions, labels), small_options, context,
+                      &straight_previous, &small_changed);
+    if (!coarse.ok()) return coarse.status();
+
+    // Up to the canvas' size (premultiplied, so the transparent outside does not darken the
+    // rim), into the pixels a repaint would synthesize; the others keep `previous`.
+    const Image up = resize(premultiplied(coarse->image), w, h, ResampleFilter::Gaussian, t);
+    PaintResult result;
+    result.image = previous;
+    result.image.set_channel_names({"R", "G", "B", "A"});
+    const int grow_px = options.patch_size;
+    for (int y = std::max(changed.y0 - grow_px, 0); y < std::min(changed.y1 + grow_px, h); ++y) {
+        for (int x = std::max(changed.x0 - grow_px, 0); x < std::min(changed.x1 + grow_px, w);
+             ++x) {
+            straighten(up.pixel(x, y), canvas.coverage().at(x, y, 0) != 0.0f,
+                       result.image.pixel(x, y));
+        }
+    }
+    result.nnf = std::move(coarse->nnf);
+    return result;
 }
 
 Image composite_over(const Image& painting, const Image& background) {

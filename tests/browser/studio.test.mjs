@@ -180,6 +180,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('painting'));
     const overlay = page.locator('#paint-overlay');
     const paintMs = [];
+    const previewMs = [];
     for (const [i, stroke] of PAINT_STROKES.entries()) {
       await page.evaluate((w) => {
         const brush = document.getElementById('paint-brush');
@@ -189,6 +190,9 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
       await drag(page, overlay, [stroke.from, stroke.to]);
       await page.waitForFunction((n) => window.studio.paintStrokes === n, i + 1, { timeout: 60000 });
       paintMs.push(await page.evaluate(() => window.studio.lastPaintMs));
+      previewMs.push(await page.evaluate(() => window.studio.lastPreviewMs));
+      // Every stroke showed its coarse preview before the final pixels.
+      assert.equal(await page.evaluate(() => window.studio.paintPreviews), i + 1);
     }
     await page.locator('#paint-canvas').screenshot({ path: path.join(artifacts, 'painting-canvas.png') });
     await page.fill('#paint-output', 'outputs/painting.png');
@@ -477,7 +481,7 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     assert.deepEqual(hiddenFiles(workspace), []);
     assert.deepEqual(errors, []);
 
-    console.log(`studio timings: paint stroke pen-up to canvas ${paintMs.map((t) => t.toFixed(0)).join(', ')} ms ` +
+    console.log(`studio timings: paint stroke pen-up to preview ${previewMs.map((t) => t.toFixed(0)).join(', ')} ms, to canvas ${paintMs.map((t) => t.toFixed(0)).join(', ')} ms ` +
       `(strokes of ${PAINT_STROKES.map((s) => s.width).join(', ')} px on ${CANVAS.width}x${CANVAS.height}); ` +
       `sketch suggestions ${sketchMs.toFixed(0)} ms; ${fillStatus} (160x100 px region); painting vs reference ${JSON.stringify(vsReference)}; ` +
       `screenshots in ${artifacts}`);

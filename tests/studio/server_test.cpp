@@ -348,6 +348,35 @@ TEST_F(StudioTest, SketchSuggestsAfterEachStrokeAndUndoesAcceptedOnes) {
     EXPECT_EQ(json::parse(other.Get("/api/sketch")->body)["paths"].size(), 0u);
 }
 
+// Compares an RGBA8 answer of the rectangle `rect` with the library's image: the bytes that
+// differ from its rounding, and the answer's opaque pixels.
+std::pair<int, int> compare_rgba(const std::string& body, const paint::PixelRect& rect,
+                                 const Image& expected) {
+    int differing = 0, opaque = 0;
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const auto got = static_cast<unsigned char>(body[static_cast<std::size_t>(
+                    ((y - rect.y0) * (rect.x1 - rect.x0) + x - rect.x0) * 4 + c)]);
+                const long want =
+                    std::lround(std::clamp(expected.at(x, y, c), 0.0f, 1.0f) * 255.0f);
+                differing += got != want;
+                opaque += c == 3 && got == 255;
+            }
+        }
+    }
+    return {differing, opaque};
+}
+
+// The library's source for the studio's paint tool on `exemplar`: directions analysed once.
+paint::PaintSource paint_source_of(const Image& exemplar) {
+    auto field = paint::analyze_directions(exemplar, {}, 1);
+    paint::PaintSource source;
+    source.image = exemplar;
+    if (field.ok()) source.directions = paint::direction_angles(*field);
+    return source;
+}
+
 TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     start();
     auto started = post("/api/paint/start",
@@ -366,11 +395,8 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     // The same library calls, made here: identical bytes.
     auto exemplar = load_image((base_ / "ws" / "tex.png").string());
     ASSERT_TRUE(exemplar.ok());
-    auto field = paint::analyze_directions(*exemplar, {}, 1);
-    ASSERT_TRUE(field.ok());
-    paint::PaintSource source;
-    source.image = *exemplar;
-    source.directions = paint::direction_angles(*field);
+    const paint::PaintSource source = paint_source_of(*exemplar);
+    ASSERT_FALSE(source.directions.empty());
     paint::PaintCanvas canvas(96, 64);
     auto changed = canvas.add_stroke(stroke_of({{10, 30}, {50, 34}, {80, 20}}, 16.0f));
     ASSERT_TRUE(changed.ok());
@@ -381,20 +407,8 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     auto expected =
         paint::repaint(source, canvas, Image(96, 64, 4), *changed, options, RunContext(1));
     ASSERT_TRUE(expected.ok());
-    int painted_pixels = 0, differing = 0;
-    for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-            for (int c = 0; c < 4; ++c) {
-                const auto got = static_cast<unsigned char>(
-                    painted
-                        ->body[static_cast<std::size_t>(((y - y0) * (x1 - x0) + x - x0) * 4 + c)]);
-                const long want =
-                    std::lround(std::clamp(expected->image.at(x, y, c), 0.0f, 1.0f) * 255.0f);
-                differing += got != want;
-                painted_pixels += c == 3 && got == 255;
-            }
-        }
-    }
+    const auto [differing, painted_pixels] =
+        compare_rgba(painted->body, {x0, y0, x1, y1}, expected->image);
     EXPECT_EQ(differing, 0);
     EXPECT_GT(painted_pixels, 40 * 12);
 
@@ -432,6 +446,51 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
 }
 
 // A palette with one line feature: a dark wavy band on a grainy light ground.
+TEST_F(StudioTest, PaintPreviewArrivesFirstAndTheFinalIsTheLibrarysRepaint) {
+    start();
+    ASSERT_EQ(post("/api/paint/start",
+                   {{"exemplar", "tex.png"}, {"width", 96}, {"height", 64}, {"seed", 3}})
+                  ->status,
+              200);
+    const json stroke = {{"points", {{10, 30}, {50, 34}, {80, 20}}}, {"width", 16}};
+    auto previewed = post("/api/paint/preview", stroke);
+    ASSERT_TRUE(previewed);
+    ASSERT_EQ(previewed->status, 200) << previewed->body;
+    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(exemplar.ok());
+    const paint::PaintSource source = paint_source_of(*exemplar);
+    paint::PaintCanvas canvas(96, 64);
+    auto changed = canvas.add_stroke(stroke_of({{10, 30}, {50, 34}, {80, 20}}, 16.0f));
+    ASSERT_TRUE(changed.ok());
+    const std::string rect = std::to_string(changed->x0) + "," + std::to_string(changed->y0) + "," +
+                             std::to_string(changed->x1) + "," + std::to_string(changed->y1);
+    EXPECT_EQ(previewed->get_header_value("X-Rect"), rect);
+    paint::PaintOptions options;
+    options.seed = 3;
+    const Image blank(96, 64, 4);
+    auto preview =
+        paint::preview_repaint(source, canvas, blank, *changed, options, 4, RunContext(1));
+    auto final_ = paint::repaint(source, canvas, blank, *changed, options, RunContext(1));
+    ASSERT_TRUE(preview.ok() && final_.ok());
+    const auto [preview_differing, preview_opaque] =
+        compare_rgba(previewed->body, *changed, preview->image);
+    EXPECT_EQ(preview_differing, 0);
+    EXPECT_GT(preview_opaque, 40 * 12);
+    // The preview changed nothing: undo has no stroke to take back, the canvas is blank.
+    EXPECT_EQ(post("/api/paint/undo", json::object())->body, std::string(96 * 64 * 4, '\0'));
+    // Then the final pixels: the library's repaint, bytes equal; undo/redo step over it alone.
+    auto painted = post("/api/paint/stroke", stroke);
+    ASSERT_EQ(painted->status, 200) << painted->body;
+    EXPECT_EQ(painted->get_header_value("X-Rect"), rect);
+    EXPECT_EQ(compare_rgba(painted->body, *changed, final_->image).first, 0);
+    EXPECT_NE(painted->body, previewed->body);
+    EXPECT_EQ(post("/api/paint/undo", json::object())->body, std::string(96 * 64 * 4, '\0'));
+    EXPECT_EQ(
+        post("/api/paint/preview", {{"points", {{1, 1}, {9, 9}}}, {"width", 4}, {"reduction", 40}})
+            ->status,
+        400);
+}
+
 Image band_palette() {
     Image image(200, 64, 3);
     for (int y = 0; y < 64; ++y) {

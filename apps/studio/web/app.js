@@ -7,7 +7,7 @@ const client = sessionStorage.getItem('studio-client') ||
 sessionStorage.setItem('studio-client', client);
 
 // What the browser test reads: timings and counts of the last answers.
-const studio = { client, lastPaintMs: null, lastSketchMs: null, paintSent: 0, paintStrokes: 0, sketch: null };
+const studio = { client, lastPaintMs: null, lastPreviewMs: null, paintPreviews: 0, lastSketchMs: null, paintSent: 0, paintStrokes: 0, sketch: null };
 window.studio = studio;
 
 const $ = (id) => document.getElementById(id);
@@ -167,13 +167,18 @@ strokes(paintOverlay, (points) => {
   const started = performance.now();
   studio.paintSent += 1;
   try {
-    const res = await api('POST', '/api/paint/stroke', {
-      points, width: Number($('paint-brush').value), comb: $('paint-comb').checked,
-    }, true);
+    // Pen-up: a coarse preview of the stroke at once (the server keeps no state for it), then
+    // the final repaint over it (docs/studio.md, "Pen-up latency").
+    const stroke = { points, width: Number($('paint-brush').value), comb: $('paint-comb').checked };
+    await putRgba(await api('POST', '/api/paint/preview', stroke, true));
+    studio.lastPreviewMs = performance.now() - started;
+    studio.paintPreviews += 1;
+    overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
+    const res = await api('POST', '/api/paint/stroke', stroke, true);
     await putRgba(res);
     studio.lastPaintMs = performance.now() - started;
     studio.paintStrokes += 1;
-    say(`stroke ${studio.paintStrokes}: ${studio.lastPaintMs.toFixed(0)} ms`);
+    say(`stroke ${studio.paintStrokes}: preview ${studio.lastPreviewMs.toFixed(0)} ms, final ${studio.lastPaintMs.toFixed(0)} ms`);
   } catch (e) { fail(e); }
   overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
 });

@@ -114,6 +114,21 @@ Result<PaintResult> repaint(const PaintSource& source, const PaintCanvas& canvas
                             const Image& previous, const PixelRect& changed,
                             const PaintOptions& options = {}, const RunContext& context = {});
 
+/// A quick preview of `repaint` for interactive painting (the studio shows it at pen-up, then
+/// the repaint): the same synthesis run on the canvas and the exemplar reduced `reduction`
+/// times per side (box filter; labels nearest; the edge extent scaled alike) — what the
+/// engine's coarse pyramid levels see, about reduction² times less work — and enlarged
+/// (Gaussian, premultiplied) into the pixels `repaint` would synthesize; the others keep
+/// `previous`. The texture is blurred at the full scale; its colours and layout follow the
+/// repaint's coarse levels (tests/paint: the mean colour difference to the repaint at 1/8 scale).
+/// Deterministic for any thread count. The factor is lowered while the reduced exemplar would
+/// have fewer than 3 patches across its shorter side; at 1 this is `repaint`. `reduction`:
+/// 1..16. The result's `nnf` is the reduced run's. Errors as `repaint`'s.
+Result<PaintResult> preview_repaint(const PaintSource& source, const PaintCanvas& canvas,
+                                    const Image& previous, const PixelRect& changed,
+                                    const PaintOptions& options = {}, int reduction = 4,
+                                    const RunContext& context = {});
+
 /// Composites a painting result (RGBA, straight alpha) over a background (3 or 4 channels, the
 /// same size): RGBA, straight alpha, "over" operator.
 Image composite_over(const Image& painting, const Image& background);
