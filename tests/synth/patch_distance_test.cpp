@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <utility>
 
 #include "level_builder.hpp"
@@ -298,18 +299,28 @@ TEST(SsdTerms, SimdEqualsScalarExactly) {
     const std::vector<std::uint8_t> a = random_codes(512, 25), b = random_codes(512, 26);
     const std::vector<float> w = random_weights(512, 27);
     ASSERT_TRUE(simd_enabled());
-    for (int n : {1, 3, 6, 15, 16, 17, 30, 45, 75, 240}) {
-        std::vector<float> simd(static_cast<std::size_t>(n) + kSsdSlack, -1.0f);
-        std::vector<float> scalar(static_cast<std::size_t>(n), -1.0f);
-        ssd_terms(a.data() + 5, b.data() + 9, w.data() + 3, n, simd.data());
-        ssd_terms_scalar(a.data() + 5, b.data() + 9, w.data() + 3, n, scalar.data());
-        for (int i = 0; i < n; ++i) {
-            const auto ui = static_cast<std::size_t>(i);
-            ASSERT_EQ(simd[ui], scalar[ui]) << "n=" << n << " i=" << i;
-            const auto d = static_cast<float>(static_cast<int>(a[ui + 5]) - b[ui + 9]);
-            ASSERT_EQ(scalar[ui], w[ui + 3] * d * d);
+    // Every SIMD target this CPU supports (the kernels are resolved again for each).
+    for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
+         targets &= targets - 1) {
+        const int64_t target = targets & -targets;
+        hwy::SetSupportedTargetsForTest(target);
+        set_simd_enabled(true);
+        for (int n : {1, 3, 6, 15, 16, 17, 30, 45, 75, 240}) {
+            std::vector<float> simd(static_cast<std::size_t>(n) + kSsdSlack, -1.0f);
+            std::vector<float> scalar(static_cast<std::size_t>(n), -1.0f);
+            ssd_terms(a.data() + 5, b.data() + 9, w.data() + 3, n, simd.data());
+            ssd_terms_scalar(a.data() + 5, b.data() + 9, w.data() + 3, n, scalar.data());
+            for (int i = 0; i < n; ++i) {
+                const auto ui = static_cast<std::size_t>(i);
+                ASSERT_EQ(simd[ui], scalar[ui])
+                    << hwy::TargetName(target) << " n=" << n << " i=" << i;
+                const auto d = static_cast<float>(static_cast<int>(a[ui + 5]) - b[ui + 9]);
+                ASSERT_EQ(scalar[ui], w[ui + 3] * d * d);
+            }
         }
     }
+    hwy::SetSupportedTargetsForTest(0);
+    set_simd_enabled(true);
 }
 
 TEST(SsdRows, TailBytesPastTheRowAreIgnored) {
@@ -364,10 +375,16 @@ TEST(SsdRows, EverySupportedSimdTargetMatchesScalar) {
     const std::vector<std::uint8_t> a = random_codes(4096, 9), b = random_codes(4096, 10);
     const std::vector<float> w = random_weights(256, 11);
     int tested = 0;
+    std::set<SsdRowsFn> kernels;
     for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
          targets &= targets - 1) {
         const int64_t target = targets & -targets;
         hwy::SetSupportedTargetsForTest(target);
+        // The kernel is resolved once and cached: resolve it again for this target (without
+        // this every round would test the first target's kernel).
+        set_simd_enabled(true);
+        EXPECT_STREQ(simd_target_name(), hwy::TargetName(target));
+        kernels.insert(detail::g_ssd_kernel.load());
         for (int row_bytes : {4, 9, 20, 45, 75, 80}) {
             const float scalar = ssd_rows_scalar(a.data(), 400, b.data(), 400, 5, row_bytes,
                                                  SsdWeights{w.data()}, 1e30f);
@@ -379,7 +396,10 @@ TEST(SsdRows, EverySupportedSimdTargetMatchesScalar) {
         ++tested;
     }
     hwy::SetSupportedTargetsForTest(0);
+    set_simd_enabled(true);
     EXPECT_GE(tested, 1);
+    // Each target ran its own kernel.
+    EXPECT_EQ(kernels.size(), static_cast<std::size_t>(tested));
 }
 
 }  // namespace
