@@ -350,6 +350,9 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
       return li.textContent.includes('outputs/animate/') && li.dataset.state === 'done' && li.querySelector('img');
     }, null, { timeout: 120000 });
     assert.equal(await page.locator('#job-list li:first-child .job-frames a').count(), 3);
+    // Listed in frame order, though the sweeps finish them in another.
+    assert.deepEqual(await page.locator('#job-list li:first-child .job-frames a').allTextContents(),
+      ['0', '1', '2']);
     const animJob = path.join(artifacts, 'animate-job.json');
     fs.writeFileSync(animJob, JSON.stringify({
       frames: path.join(workspace, '%04d.png'), first: 0, last: 2, flows: 'estimate', quality: 'fast',

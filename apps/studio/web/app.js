@@ -414,7 +414,12 @@ function followJob(id, output) {
     if (end.state === 'done' || frameFiles.length) refreshFiles().catch(fail);
   }, (f) => {
     frameFiles.push(f.path);
-    frames.append(' ', download(f.path, `${f.frame}`));
+    // Listed in frame order, whatever order the job finishes them in (animate's sweeps).
+    const item = document.createElement('span');
+    item.dataset.frame = f.frame;
+    item.append(' ', download(f.path, `${f.frame}`));
+    const next = [...frames.children].find((c) => Number(c.dataset.frame) > f.frame);
+    frames.insertBefore(item, next || null);
   });
 }
 // StyLit: the exemplar painting (loaded, then painted over with the mouse) stylizes the target
