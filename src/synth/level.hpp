@@ -123,6 +123,13 @@ struct Level {
         k = k >= n ? k - n : k;
         return k >= n ? k - n : k;
     }
+    /// The step whose tables hold `angle` (exactly one of step_angle), or -1: no orientation
+    /// steps, or an angle that is not a step (then offsets are computed from it).
+    int table_step(float angle) const {
+        if (orientation_steps == 0) return -1;
+        const int k = step_of(angle);
+        return step_angle[static_cast<std::size_t>(k)] == angle ? k : -1;
+    }
 };
 
 }  // namespace exemplar::synth

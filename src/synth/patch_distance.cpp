@@ -107,8 +107,7 @@ bool rotated_interior_distance(const Level& L, int tx, int ty, int sx, int sy, f
     // The offsets first (the level's table for a rounded angle), then the copies.
     int computed[kMaxPixels];
     const int* offset = computed;
-    const int step = L.orientation_steps > 0 ? L.step_of(angle) : 0;
-    if (L.orientation_steps > 0 && L.step_angle[static_cast<std::size_t>(step)] == angle) {
+    if (const int step = L.table_step(angle); step >= 0) {
         offset = L.step_offsets.data() + static_cast<std::size_t>(step) * (P * P);
     } else {
         rotated_offsets(L, angle, computed);

@@ -72,13 +72,10 @@ inline RotatedOffset rotated_step(float angle_rad, int dx, int dy) {
 /// angle is one of its orientation steps (the same offsets without a cosine and a sine).
 inline RotatedOffset rotated_step(const Level& L, float angle_rad, int dx, int dy) {
     if (angle_rad == 0.0f) return {dx, dy};
-    if (L.orientation_steps > 0) {
-        const int k = L.step_of(angle_rad);
-        if (L.step_angle[static_cast<std::size_t>(k)] == angle_rad) {
-            const int move = dx != 0 ? (dx > 0 ? 0 : 1) : (dy > 0 ? 2 : 3);
-            const int* o = &L.step_moves[static_cast<std::size_t>(8 * k + 2 * move)];
-            return {o[0], o[1]};
-        }
+    if (const int k = L.table_step(angle_rad); k >= 0) {
+        const int move = dx != 0 ? (dx > 0 ? 0 : 1) : (dy > 0 ? 2 : 3);
+        const int* o = &L.step_moves[static_cast<std::size_t>(8 * k + 2 * move)];
+        return {o[0], o[1]};
     }
     return rotated_step(angle_rad, dx, dy);
 }
