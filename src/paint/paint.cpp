@@ -233,6 +233,13 @@ Image premultiplied(const Image& rgba) {
     return out;
 }
 
+// The pixels a repaint of `changed` synthesizes (and its preview redraws): the rectangle grown
+// by a patch, clipped to the w x h canvas.
+PixelRect repainted_area(const PixelRect& changed, int patch_size, int w, int h) {
+    return {std::max(changed.x0 - patch_size, 0), std::max(changed.y0 - patch_size, 0),
+            std::min(changed.x1 + patch_size, w), std::min(changed.y1 + patch_size, h)};
+}
+
 Status check_previous(const Image* previous, int w, int h) {
     if (previous != nullptr &&
         (previous->width() != w || previous->height() != h || previous->channels() != 4)) {
@@ -261,11 +268,10 @@ Result<PaintResult> run(const PaintSource& source, const CanvasView& canvas,
     // strokes after.
     Image region = exemplar->has_boundary ? canvas.coverage() : Image(w, h, 1, 1.0f);
     if (changed != nullptr) {
-        const int grow_px = options.patch_size;
+        const PixelRect area = repainted_area(*changed, options.patch_size, w, h);
         for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x) {
-                const bool near = x >= changed->x0 - grow_px && x < changed->x1 + grow_px &&
-                                  y >= changed->y0 - grow_px && y < changed->y1 + grow_px;
+                const bool near = x >= area.x0 && x < area.x1 && y >= area.y0 && y < area.y1;
                 if (!near) region.at(x, y, 0) = 0.0f;
             }
         }
@@ -451,10 +457,9 @@ Result<PaintResult> preview_repaint(const PaintSource& source, const PaintCanvas
     PaintResult result;
     result.image = previous;
     result.image.set_channel_names({"R", "G", "B", "A"});
-    const int grow_px = options.patch_size;
-    for (int y = std::max(changed.y0 - grow_px, 0); y < std::min(changed.y1 + grow_px, h); ++y) {
-        for (int x = std::max(changed.x0 - grow_px, 0); x < std::min(changed.x1 + grow_px, w);
-             ++x) {
+    const PixelRect area = repainted_area(changed, options.patch_size, w, h);
+    for (int y = area.y0; y < area.y1; ++y) {
+        for (int x = area.x0; x < area.x1; ++x) {
             straighten(up.pixel(x, y), canvas.coverage().at(x, y, 0) != 0.0f,
                        result.image.pixel(x, y));
         }
