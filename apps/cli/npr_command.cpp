@@ -46,23 +46,22 @@ Result<std::string> frame_path(const std::string& flag, const std::string& patte
     return path;
 }
 
-// Buffer `name` of a render frame folder: NAME.exr or NAME.png; `linear` tells which (EXR
-// buffers hold linear light, PNG ones sRGB-encoded values).
+// Buffer `name` of a render frame folder (npr::frame_buffer_file); `linear` tells whether it
+// came from the EXR (linear light) or the PNG (sRGB-encoded values).
 Status load_buffer(const std::string& folder, const std::string& name, Image& image, bool& linear) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
         return io_error(folder + ": no such frame folder (from exemplar render --frames)");
-    for (const char* extension : {".exr", ".png"}) {
-        const std::string path = (fs::path(folder) / (name + extension)).string();
-        if (!exists(path)) continue;
-        auto loaded = load_image(path);
-        if (!loaded.ok()) return loaded.status();
-        image = std::move(loaded).value();
-        linear = std::string(extension) == ".exr";
-        return Status::ok();
+    const std::string path = npr::frame_buffer_file(folder, name);
+    if (path.empty()) {
+        return io_error(folder + ": missing buffer '" + name + "' (" + name + ".png or " + name +
+                        ".exr)");
     }
-    return io_error(folder + ": missing buffer '" + name + "' (" + name + ".png or " + name +
-                    ".exr)");
+    auto loaded = load_image(path);
+    if (!loaded.ok()) return loaded.status();
+    image = std::move(loaded).value();
+    linear = path.ends_with(".exr");
+    return Status::ok();
 }
 
 // A stored state (OUT.state.exr) as the previous frame of the next one.

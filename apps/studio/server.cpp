@@ -1080,16 +1080,6 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
 
 namespace {
 
-// Buffer `name` of a render frame folder as `exemplar npr` looks for it: NAME.exr (linear
-// light) or NAME.png (sRGB-encoded values); "" when neither is there.
-std::string render_buffer_file(const std::filesystem::path& folder, const std::string& name) {
-    for (const char* extension : {".exr", ".png"}) {
-        const std::filesystem::path path = folder / (name + extension);
-        if (std::filesystem::is_regular_file(path)) return path.string();
-    }
-    return "";
-}
-
 Status missing_buffer(const std::string& folder, const std::string& name) {
     return invalid_argument("frames: " + folder + ": missing buffer '" + name + "' (" + name +
                             ".png or " + name + ".exr)");
@@ -1165,8 +1155,7 @@ Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& p
     // Every buffer the frames read is there before anything runs.
     for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
         for (const npr::BufferNeed& need : npr::needed_buffers(npr_options, k > 0 || before)) {
-            const std::filesystem::path folder = folders.absolute[k];
-            if (render_buffer_file(folder, need.name).empty())
+            if (npr::frame_buffer_file(folders.absolute[k], need.name).empty())
                 return missing_buffer(folders.relative[k], need.name);
         }
     }
@@ -1186,7 +1175,7 @@ Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& p
             npr::NprFrame frame;
             for (const npr::BufferNeed& need :
                  npr::needed_buffers(npr_options, previous.has_value())) {
-                const std::string file = render_buffer_file(folders.absolute[k], need.name);
+                const std::string file = npr::frame_buffer_file(folders.absolute[k], need.name);
                 if (file.empty()) return missing_buffer(folders.relative[k], need.name);
                 auto buffer = load_image(file);
                 if (!buffer.ok()) return buffer.status();

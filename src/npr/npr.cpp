@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <utility>
 
@@ -134,6 +135,15 @@ Result<Pattern> prepare_pattern(const Image& pattern, const NprOptions& options,
     // The coarsest level's patches span patch-size x 2^(levels-1) pattern pixels
     const int min_size = options.patch_size << (options.levels - 1);
     return prepare_pattern(pattern, pattern_options, min_size, context.threads);
+}
+
+std::string frame_buffer_file(const std::string& folder, const std::string& name) {
+    for (const char* extension : {".exr", ".png"}) {
+        const std::filesystem::path path = std::filesystem::path(folder) / (name + extension);
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(path, ec)) return path.string();
+    }
+    return "";
 }
 
 std::vector<BufferNeed> needed_buffers(const NprOptions& options, bool continues) {

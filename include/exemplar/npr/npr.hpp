@@ -132,6 +132,11 @@ struct BufferNeed {
 /// writes it). Assumes valid options.
 std::vector<BufferNeed> needed_buffers(const NprOptions& options, bool continues);
 
+/// The file of buffer `name` in a frame folder of `exemplar render --frames`: NAME.exr (linear
+/// light) if it is there, else NAME.png (sRGB-encoded values); "" when neither is. A tone buffer
+/// read from an EXR sets NprFrame::tone_linear.
+std::string frame_buffer_file(const std::string& folder, const std::string& name);
+
 /// One frame's buffers, at the output resolution; empty = not given. Channels beyond those
 /// used are ignored.
 struct NprFrame {
