@@ -20,6 +20,7 @@
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/npr/npr.hpp"
+#include "exemplar/npr/npr_range.hpp"
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/sketch/svg.hpp"
 #include "exemplar/stylit/stylit.hpp"
@@ -873,6 +874,26 @@ Result<std::pair<int, int>> frame_range(const json& body) {
     return std::pair{static_cast<int>(*first), static_cast<int>(*last)};
 }
 
+// The file of frame n of a range job's pattern `field` (its frames first.. resolved as
+// `absolute`): those of the range by number; the frame before it (a range continued) by its
+// name in the workspace, when it is inside.
+std::function<Result<std::string>(int)> frame_namer(const Workspace& workspace, const json& body,
+                                                    const char* field, int first,
+                                                    const std::vector<std::string>& absolute) {
+    return [workspace, absolute, first, pattern = body.value(field, std::string()),
+            field](int n) -> Result<std::string> {
+        const int k = n - first;
+        if (k >= 0 && k < static_cast<int>(absolute.size()))
+            return absolute[static_cast<std::size_t>(k)];
+        if (n < 0) return invalid_argument(std::string(field) + ": no frame " + std::to_string(n));
+        auto name = video::format_frame_path(pattern, n);
+        if (!name.ok()) return name.status();
+        auto path = workspace.resolve(*name);
+        if (!path.ok()) return path.status();
+        return path->string();
+    };
+}
+
 }  // namespace
 
 // An animate job (TCIA, the call `exemplar animate` makes for a job whose flows are estimated):
@@ -1042,29 +1063,12 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
         if (k + 1 < alpha.absolute.size() && !std::filesystem::is_regular_file(motion.absolute[k]))
             return invalid_argument("motion: " + motion.relative[k] + ": no such file");
     }
-    // Frames of the range by number; the frame before it (a range continued) by its name in
-    // the workspace, when it is inside.
-    const auto namer = [&](const char* field, const FrameFiles& files) {
-        return [ws = workspace, files, pattern = body.value(field, std::string()),
-                field](int n) -> Result<std::string> {
-            const int k = n - files.first;
-            if (k >= 0 && k < static_cast<int>(files.absolute.size()))
-                return files.absolute[static_cast<std::size_t>(k)];
-            if (n < 0)
-                return invalid_argument(std::string(field) + ": no frame " + std::to_string(n));
-            auto name = video::format_frame_path(pattern, n);
-            if (!name.ok()) return name.status();
-            auto path = ws.resolve(*name);
-            if (!path.ok()) return path.status();
-            return path->string();
-        };
-    };
     fluid::FluidRange range;
     range.first = alpha.first;
     range.last = alpha.first + static_cast<int>(alpha.absolute.size()) - 1;
-    range.alpha_file = namer("alpha", alpha);
-    range.motion_file = namer("motion", motion);
-    range.output_file = namer("output", outputs);
+    range.alpha_file = frame_namer(workspace, body, "alpha", alpha.first, alpha.absolute);
+    range.motion_file = frame_namer(workspace, body, "motion", motion.first, motion.absolute);
+    range.output_file = frame_namer(workspace, body, "output", outputs.first, outputs.absolute);
     range.resume = false;  // a job runs again with other options: it rewrites its frames
     return JobWork([exemplar = std::move(*exemplar), fluid_options, range, outputs](
                        const RunContext& context, const OutputSink& wrote) -> Status {
@@ -1080,24 +1084,34 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
 
 namespace {
 
-Status missing_buffer(const std::string& folder, const std::string& name) {
-    return invalid_argument("frames: " + folder + ": missing buffer '" + name + "' (" + name +
-                            ".png or " + name + ".exr)");
+// `status` with the workspace's absolute paths in its message named as the client names them
+// (relative to the workspace), after `prefix`.
+Status in_client_terms(const Status& status, const Workspace& workspace,
+                       const std::string& prefix = "") {
+    if (status.is_ok()) return status;
+    std::string message = status.message();
+    const std::string root = workspace.root().string() + "/";
+    for (std::size_t at = message.find(root); at != std::string::npos; at = message.find(root, at))
+        message.erase(at, root.size());
+    return Status(status.code(), prefix + message);
 }
 
 }  // namespace
 
-// An npr job (image-space stippling and hatching, what `exemplar npr` does without --paper and
-// --bidirectional): the frame folders `frames` (a pattern of `exemplar render --frames` folders)
-// first..last styled with `pattern` in order, each frame continuing from the one before; each
-// output is written atomically to `output` (a pattern) with its synthesis state beside it
-// (OUT.state.exr, as the command writes it, so the command can continue the range), and a
-// finished frame just before the range hands its state over, as the command does.
+// An npr job (image-space stippling and hatching, the range driver `exemplar npr` calls,
+// npr::stylize_range, without resume: a job run again redoes its frames): the frame folders
+// `frames` (a pattern of `exemplar render --frames` folders) first..last styled with `pattern`
+// in order, each frame continuing from the one before, with the paper layer of `paper` and the
+// bidirectional loop when asked; each output is written atomically to `output` (a pattern) with
+// its synthesis states beside it (OUT.state.exr, OUT.paper.state.exr, as the command writes
+// them, so the command can continue the range), and a finished frame just before the range
+// hands its states over, as the command does. Every buffer the range reads is checked when the
+// job is posted.
 Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& paths) {
     npr::NprOptions npr_options;
     for (const auto& [key, value] : body.items()) {
         if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
-            key == "seed") {
+            key == "seed" || key == "bidirectional") {
             continue;
         }
         if (key == "style" || key == "tone" || key == "orientation") {
@@ -1117,92 +1131,56 @@ Result<JobWork> StudioServer::Impl::npr_work(const json& body, const JobPaths& p
             (key == "lines" ? npr_options.lines : npr_options.tone_correction) = value.get<bool>();
             continue;
         }
-        if (key == "paper-grain" || key == "erosion") {
-            return invalid_argument(key +
-                                    ": belongs to the paper layer, which is exemplar npr's "
-                                    "(--paper) for now");
-        }
         const auto set = set_table_key(npr_options, npr::npr_option_specs(), key, value);
         if (!set) return invalid_argument(key + ": unknown option of an npr job");
         EXEMPLAR_RETURN_IF_ERROR(*set);
     }
+    npr_options.paper = paths.contains("paper");
+    for (const char* key : {"paper-grain", "erosion"}) {
+        if (!npr_options.paper && body.contains(key))
+            return invalid_argument(std::string(key) + ": needs paper");
+    }
     EXEMPLAR_RETURN_IF_ERROR(read_seed(body, npr_options.seed));
     EXEMPLAR_RETURN_IF_ERROR(npr::validate(npr_options));
+    auto bidirectional = number_field(body, "bidirectional", 0.0, 0.0, 1000.0);
+    if (!bidirectional.ok()) return bidirectional.status();
+    if (*bidirectional != std::floor(*bidirectional))
+        return invalid_argument("bidirectional: must be an integer");
     const FrameFiles& folders = paths.patterns.at("frames");
     const FrameFiles& outputs = paths.patterns.at("output");
     EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
-    for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
-        if (!std::filesystem::is_directory(folders.absolute[k])) {
-            return invalid_argument("frames: " + folders.relative[k] +
-                                    ": no such frame folder (from exemplar render --frames)");
-        }
+    npr::NprRange range;
+    range.first = folders.first;
+    range.last = folders.first + static_cast<int>(folders.absolute.size()) - 1;
+    range.frame_folder = frame_namer(workspace, body, "frames", folders.first, folders.absolute);
+    range.output_file = frame_namer(workspace, body, "output", outputs.first, outputs.absolute);
+    range.bidirectional = static_cast<int>(*bidirectional);
+    range.resume = false;
+    EXEMPLAR_RETURN_IF_ERROR(npr::validate(range));
+    // Every frame folder and buffer the range reads is there before anything runs.
+    EXEMPLAR_RETURN_IF_ERROR(
+        in_client_terms(npr::check_npr_range(range, npr_options), workspace, "frames: "));
+    const RunContext prepare_context(options.threads);
+    std::optional<npr::Pattern> patterns[2];  // the pattern and the paper
+    for (int k = 0; k < (npr_options.paper ? 2 : 1); ++k) {
+        const std::string field = k == 0 ? "pattern" : "paper";
+        auto image = load_image(paths.at(field).string());
+        if (!image.ok()) return invalid_argument(field + ": " + image.status().message());
+        auto prepared = npr::prepare_pattern(*image, npr_options, prepare_context);
+        if (!prepared.ok()) return invalid_argument(field + ": " + prepared.status().message());
+        patterns[k] = std::move(prepared).value();
     }
-    auto pattern_image = load_image(paths.at("pattern").string());
-    if (!pattern_image.ok())
-        return invalid_argument("pattern: " + pattern_image.status().message());
-    auto pattern = npr::prepare_pattern(*pattern_image, npr_options, RunContext(options.threads));
-    if (!pattern.ok()) return invalid_argument("pattern: " + pattern.status().message());
-    // The state of a finished frame just before the range.
-    std::optional<std::string> before;
-    if (folders.first > 0) {
-        auto name =
-            video::format_frame_path(body.value("output", std::string()), folders.first - 1);
-        if (name.ok()) {
-            auto path = workspace.resolve(*name + ".state.exr");
-            if (path.ok() && std::filesystem::is_regular_file(*path)) before = path->string();
-        }
-    }
-    // Every buffer the frames read is there before anything runs.
-    for (std::size_t k = 0; k < folders.absolute.size(); ++k) {
-        for (const npr::BufferNeed& need : npr::needed_buffers(npr_options, k > 0 || before)) {
-            if (npr::frame_buffer_file(folders.absolute[k], need.name).empty())
-                return missing_buffer(folders.relative[k], need.name);
-        }
-    }
-    return JobWork([pattern = std::move(*pattern), npr_options, folders, outputs, before](
-                       const RunContext& context, const OutputSink& wrote) -> Status {
-        std::optional<npr::FrameState> previous;
-        if (before) {
-            auto packed = load_image(*before);
-            if (!packed.ok()) return packed.status();
-            auto state = npr::unpack_state(pattern, *packed);
-            if (!state.ok()) return state.status();
-            previous = std::move(*state);
-        }
-        const auto count = folders.absolute.size();
-        for (std::size_t k = 0; k < count; ++k) {
-            const int n = folders.first + static_cast<int>(k);
-            npr::NprFrame frame;
-            for (const npr::BufferNeed& need :
-                 npr::needed_buffers(npr_options, previous.has_value())) {
-                const std::string file = npr::frame_buffer_file(folders.absolute[k], need.name);
-                if (file.empty()) return missing_buffer(folders.relative[k], need.name);
-                auto buffer = load_image(file);
-                if (!buffer.ok()) return buffer.status();
-                frame[need.role] = std::move(*buffer);
-                if (need.role == npr::BufferRole::Tone) frame.tone_linear = file.ends_with(".exr");
-            }
-            RunContext frame_context = context;
-            frame_context.progress = [&](const ProgressEvent& event) {
-                ProgressEvent overall = event;
-                overall.fraction = (static_cast<double>(k) + event.fraction) / count;
-                context.report(overall);
-            };
-            auto styled = npr::stylize_frame(pattern, frame, previous ? &*previous : nullptr, n,
-                                             npr_options, frame_context);
-            if (!styled.ok()) {
-                return Status(styled.status().code(),
-                              folders.relative[k] + ": " + styled.status().message());
-            }
-            SaveOptions state_options;
-            state_options.format = PixelFormat::Float;
-            EXEMPLAR_RETURN_IF_ERROR(save_image(npr::pack_state(styled->state),
-                                                outputs.absolute[k] + ".state.exr", state_options));
-            EXEMPLAR_RETURN_IF_ERROR(save_image(styled->image, outputs.absolute[k]));
-            wrote(n, outputs.relative[k]);
-            previous = std::move(styled->state);
-        }
-        return Status::ok();
+    return JobWork([pattern = std::move(*patterns[0]), paper = std::move(patterns[1]), npr_options,
+                    range, outputs,
+                    ws = workspace](const RunContext& context, const OutputSink& wrote) -> Status {
+        npr::NprRange job_range = range;
+        job_range.on_frame = [&](int n, const std::string&, const Image*) -> Status {
+            wrote(n, outputs.relative[static_cast<std::size_t>(n - outputs.first)]);
+            return Status::ok();
+        };
+        return in_client_terms(
+            npr::stylize_range(pattern, paper ? &*paper : nullptr, job_range, npr_options, context),
+            ws);
     });
 }
 
@@ -1215,7 +1193,7 @@ void StudioServer::Impl::add_job_routes() {
         const std::string kind = body->value("kind", std::string());
         using Fields = std::vector<const char*>;
         struct Kind {
-            Fields files;       ///< One path each.
+            Fields files;       ///< One path each ("NAME?": optional).
             Fields file_lists;  ///< A path or a list of paths each.
             Result<JobWork> (Impl::*work)(const json&, const JobPaths&);
         };
@@ -1232,7 +1210,7 @@ void StudioServer::Impl::add_job_routes() {
             {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
             {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
             {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}},
-            {"npr", {{"pattern"}, {}, &Impl::npr_work}}};
+            {"npr", {{"pattern", "paper?"}, {}, &Impl::npr_work}}};
         const auto found = kinds.find(kind);
         if (found == kinds.end()) {
             return fail(res, 400,
@@ -1247,10 +1225,14 @@ void StudioServer::Impl::add_job_routes() {
             if (!path.ok()) fail(res, 403, std::string(field) + ": " + path.status().message());
             return path;
         };
-        for (const char* field : found->second.files) {
-            auto name = text_field(*body, field);
+        for (std::string_view spec : found->second.files) {
+            // "NAME?": an optional file, resolved when given
+            const bool optional = spec.ends_with('?');
+            const std::string field(spec.substr(0, spec.size() - (optional ? 1 : 0)));
+            if (optional && !body->contains(field)) continue;
+            auto name = text_field(*body, field.c_str());
             if (!name.ok()) return fail(res, name.status());
-            auto path = resolve(field, *name);
+            auto path = resolve(field.c_str(), *name);
             if (!path.ok()) return;
             paths.one[field] = *path;
         }

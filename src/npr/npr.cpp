@@ -256,7 +256,19 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
     synthesis.coherence_weight = options.coherence_weight;
     synthesis.motion_levels = options.motion_levels;
     synthesis.seed = options.seed;
-    auto state = synthesize_frame(pattern, input, previous, frame_index, synthesis, context);
+    // With the paper, each synthesis reports its share of the frame (the pattern's first half)
+    const auto share = [&](double start) {
+        RunContext shared = context;
+        if (options.paper && context.progress) {
+            shared.progress = [&context, start](const ProgressEvent& event) {
+                ProgressEvent frame_event = event;
+                frame_event.fraction = start + 0.5 * event.fraction;
+                context.report(frame_event);
+            };
+        }
+        return shared;
+    };
+    auto state = synthesize_frame(pattern, input, previous, frame_index, synthesis, share(0.0));
     if (!state.ok()) return state.status();
     // and the paper, the same way along the same motion, unoriented and with its own randomness
     Result<FrameState> paper_state = FrameState{};
@@ -267,7 +279,7 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
         SynthesisOptions paper_synthesis = synthesis;
         paper_synthesis.seed = options.seed ^ 0x7061706572ull;  // "paper"
         paper_state = synthesize_frame(*paper.pattern, paper_input, paper.previous, frame_index,
-                                       paper_synthesis, context);
+                                       paper_synthesis, share(0.5));
         if (!paper_state.ok()) return paper_state.status();
     }
 

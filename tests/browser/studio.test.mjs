@@ -2,8 +2,8 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame, three animate frames, fluid targets and frames and three npr
-// frames, run StyLit and paint over its
+// cancel it, run a noisy frame, three animate frames, fluid targets and frames, three npr
+// frames and three more with a paper and the bidirectional loop, run StyLit and paint over its
 // exemplar (the result follows),
 // then stop the server with SIGINT while a job runs.
 //
@@ -418,6 +418,26 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     for (const f of ['0000.png', '0001.png', '0002.png']) {
       assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'npr', f))
         .equals(fs.readFileSync(path.join(artifacts, 'npr-cli', f))), `npr frame ${f} differs from the command's`);
+    }
+    // Again with the paper layer (the halftone screen as the paper) and the bidirectional loop:
+    // `exemplar npr --paper --bidirectional 2`'s bytes, the states beside each frame.
+    await page.setInputFiles('#upload', path.join(source, 'examples/npr/halftone.png'));
+    await page.waitForSelector('#file-list a:text("halftone.png")', { state: 'attached' });
+    await page.selectOption('#npr-form select[name=paper]', 'halftone.png');
+    await page.fill('#npr-form input[name=bidirectional]', '2');
+    await page.fill('#npr-form input[name=output]', 'outputs/nprbi/%04d.png');
+    await page.click('#npr-form button[type=submit]');
+    await jobDone('outputs/nprbi/%04d.png');
+    assert.equal(await page.locator('#job-list li:first-child .job-frames a').count(), 3);
+    fs.rmSync(path.join(artifacts, 'nprbi-cli'), { recursive: true, force: true });
+    const nprBiCli = spawnSync(exemplarCli, ['npr', '--pattern', path.join(workspace, 'stipple.png'),
+      '--paper', path.join(workspace, 'halftone.png'), '--bidirectional', '2',
+      '--frames', path.join(workspace, 'render', 'frame_%04d'), '--first', '0', '--last', '2',
+      '-o', path.join(artifacts, 'nprbi-cli', '%04d.png'), '-j', '2', '-q']);
+    assert.equal(nprBiCli.status, 0, `exemplar npr --paper --bidirectional: ${nprBiCli.stderr}`);
+    for (const f of ['0000.png', '0001.png', '0002.png', '0002.png.paper.state.exr']) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'nprbi', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'nprbi-cli', f))), `npr frame ${f} (paper, bidirectional) differs from the command's`);
     }
 
     // StyLit: the bundled painting and buffers (examples/stylit) uploaded and run; the image

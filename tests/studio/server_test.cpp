@@ -24,6 +24,7 @@
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
 #include "exemplar/npr/npr.hpp"
+#include "exemplar/npr/npr_range.hpp"
 #include "exemplar/paint/directions.hpp"
 #include "exemplar/paint/feature_brush.hpp"
 #include "exemplar/paint/feature_fill.hpp"
@@ -89,6 +90,26 @@ void write_render_frames(const std::filesystem::path& folder, int count, int wid
         ASSERT_TRUE(save_image(lines, (frame / "lines.png").string()).is_ok());
         ASSERT_TRUE(save_image(disocclusion, (frame / "disocclusion.png").string()).is_ok());
         ASSERT_TRUE(save_flow(flow, (frame / "backward_flow.exr").string()).is_ok());
+    }
+}
+
+// What the bidirectional loop and the paper layer read besides in the folders of
+// write_render_frames: the forward motion (3 px right), the occlusion it leaves at the right
+// edge, and a shape (alpha) of the left two thirds.
+void write_loop_buffers(const std::filesystem::path& folder, int count, int width, int height) {
+    for (int n = 0; n < count; ++n) {
+        const std::filesystem::path frame = folder / *video::format_frame_path("f%d", n);
+        Image flow(width, height, 2), occlusion(width, height, 1), alpha(width, height, 1);
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                flow.at(x, y, 0) = 3.0f;
+                occlusion.at(x, y, 0) = x >= width - 3 ? 1.0f : 0.0f;
+                alpha.at(x, y, 0) = 3 * x < 2 * width ? 1.0f : 0.0f;
+            }
+        }
+        ASSERT_TRUE(save_flow(flow, (frame / "forward_flow.exr").string()).is_ok());
+        ASSERT_TRUE(save_image(occlusion, (frame / "occlusion.png").string()).is_ok());
+        ASSERT_TRUE(save_image(alpha, (frame / "alpha.png").string()).is_ok());
     }
 }
 
@@ -1073,6 +1094,99 @@ TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
                     {"wobble", 1, "wobble: "},
                     {"tone", "sunlight", "sunlight"},
                     {"pattern", "nope.png", "pattern: "}});
+}
+
+// The paper layer and the bidirectional loop: the frames and states are those of the library's
+// range driver (the one exemplar npr calls) on the same files.
+TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
+    write_render_frames(base_ / "ws" / "render", 5, 64, 48);
+    write_loop_buffers(base_ / "ws" / "render", 5, 64, 48);
+    write_dots(base_ / "ws" / "dots.png");
+    fs::copy_file(std::string(EXEMPLAR_TEST_DATA_DIR) + "/paper/struc.pgm",
+                  base_ / "ws" / "paper.pgm");
+    start();
+    const json good = {{"kind", "npr"},
+                       {"pattern", "dots.png"},
+                       {"paper", "paper.pgm"},
+                       {"frames", "render/f%d"},
+                       {"last", 4},
+                       {"output", "outputs/npr/%d.png"},
+                       {"bidirectional", 2},
+                       {"erosion", 1.5},
+                       {"levels", 2},
+                       {"patch-size", 8},
+                       {"seed", 3}};
+    // The library's range on the same files, written outside the workspace.
+    npr::NprOptions options;
+    options.levels = 2;
+    options.patch_size = 8;
+    options.seed = 3;
+    options.paper = true;
+    options.erosion_px = 1.5f;
+    const RunContext context(1);
+    auto pattern =
+        npr::prepare_pattern(*load_image((base_ / "ws" / "dots.png").string()), options, context);
+    auto paper =
+        npr::prepare_pattern(*load_image((base_ / "ws" / "paper.pgm").string()), options, context);
+    ASSERT_TRUE(pattern.ok() && paper.ok());
+    const auto named = [](const fs::path& files) {
+        return [files](int n) -> Result<std::string> {
+            return video::format_frame_path(files.string(), n);
+        };
+    };
+    npr::NprRange range;
+    range.last = 4;
+    range.frame_folder = named(base_ / "ws" / "render" / "f%d");
+    range.output_file = named(base_ / "lib" / "%d.png");
+    range.bidirectional = 2;
+    for (const bool with_paper : {true, false}) {
+        json job_body = good;
+        if (!with_paper) {
+            job_body.erase("paper");
+            job_body.erase("erosion");
+            job_body["output"] = "outputs/plain/%d.png";
+            options.paper = false;
+            range.output_file = named(base_ / "plain" / "%d.png");
+        }
+        ASSERT_TRUE(
+            npr::stylize_range(*pattern, with_paper ? &*paper : nullptr, range, options, context)
+                .is_ok());
+        auto job = post("/api/jobs", job_body);
+        ASSERT_EQ(job->status, 202) << job->body;
+        const json end = follow(server_->port(), body_of(job)["id"]);
+        ASSERT_EQ(end["state"], "done") << end.dump();
+        ASSERT_EQ(end["frames"].size(), 5u);
+        const std::string folder = with_paper ? "npr" : "plain";
+        for (int n = 0; n <= 4; ++n) {
+            const std::string name = *video::format_frame_path("%d.png", n);
+            const fs::path mine = base_ / (with_paper ? "lib" : "plain") / name;
+            const fs::path theirs = base_ / "ws" / "outputs" / folder / name;
+            for (const char* suffix : {"", ".state.exr", ".paper.state.exr"}) {
+                if (!with_paper && std::string(suffix) == ".paper.state.exr") continue;
+                EXPECT_TRUE(fs::exists(theirs.string() + suffix)) << name << suffix;
+                EXPECT_TRUE(file_bytes(theirs.string() + suffix) ==
+                            file_bytes(mine.string() + suffix))
+                    << name << suffix;
+            }
+        }
+    }
+    // Bad parameters: one line naming the parameter (400), the paper outside the workspace 403.
+    expect_refused("/api/jobs", good,
+                   {{"bidirectional", 1, "bidirectional: 1 is invalid (must be 0 or 2..1000)"},
+                    {"bidirectional", 2.5, "bidirectional: "},
+                    {"paper", "nope.png", "paper: "},
+                    {"paper", 3, "paper: "},
+                    {"paper-grain", 2, "paper-grain: "}});
+    json no_paper = good;
+    no_paper.erase("paper");
+    expect_refused("/api/jobs", no_paper, {{"erosion", 1.5, "erosion: needs paper"}});
+    json outside = good;
+    outside["paper"] = "../outside/secret.txt";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+    // The backward passes read the forward flow, checked when the job is posted.
+    fs::remove(base_ / "ws" / "render" / "f3" / "forward_flow.exr");
+    expect_refused("/api/jobs", good,
+                   {{"last", 4, "frames: render/f3: missing buffer 'forward_flow'"}});
 }
 
 TEST_F(StudioTest, FinishedJobsAndIdleClientsBeyondTheBoundsAreForgotten) {

@@ -87,8 +87,11 @@ async function refreshFiles() {
   const images = files.map((f) => f.path).filter((p) => /\.(png|jpe?g)$/i.test(p));
   for (const select of document.querySelectorAll('.file-select')) {
     const keep = select.value;
-    select.replaceChildren(...images.map((p) => new Option(p, p)));
-    if (images.includes(keep)) select.value = keep;
+    // An optional file (data-optional) starts at "none", which leaves it out of the job.
+    const optional = 'optional' in select.dataset;
+    select.replaceChildren(...(optional ? [new Option('none', '')] : []),
+      ...images.map((p) => new Option(p, p)));
+    if (images.includes(keep) || (optional && keep === '')) select.value = keep;
   }
   if ($('brush-palette').value !== brush.shown) await showPalette();
   if ($('stylit-exemplar').value !== stylit.shown) await showStylitExemplar();
@@ -509,13 +512,16 @@ strokes(stylitOverlay.canvas, (points) => {
   stylitLater();
 });
 
-// Each job form names its kind; number fields are sent as JSON numbers.
+// Each job form names its kind; number fields are sent as JSON numbers, optional files left at
+// "none" are left out.
 for (const jobForm of document.querySelectorAll('.job-form')) {
   jobForm.addEventListener('submit', async (e) => {
     e.preventDefault();
     const body = { kind: e.target.dataset.kind };
     for (const [k, v] of new FormData(e.target)) {
-      body[k] = e.target.elements[k].type === 'number' ? Number(v) : v;
+      const field = e.target.elements[k];
+      if (v === '' && 'optional' in field.dataset) continue;
+      body[k] = field.type === 'number' ? Number(v) : v;
     }
     try {
       const { id } = await api('POST', '/api/jobs', body);

@@ -201,7 +201,8 @@ struct NprPaper {
 /// prepared with other levels. Cancelled through context.cancel (checked before each
 /// correction sub-pass); progress events after each level ("synthesis", the last with fraction
 /// 1). Uses context.threads. With NprOptions::paper, `paper.pattern` is required (and rejected
-/// without it); the paper is synthesized after the pattern (its progress events follow).
+/// without it); the paper is synthesized after the pattern (the pattern's progress events then
+/// cover fractions 0..0.5 and the paper's 0.5..1).
 Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& frame,
                                      const FrameState* previous, int frame_index,
                                      const NprOptions& options, const RunContext& context = {},
