@@ -301,7 +301,6 @@ Result<PaintResult> run(const PaintSource& source, const CanvasView& canvas,
     // rounded offsets per patch distance. A fifth less time; the tested quality holds
     // (docs/PERFORMANCE.md "Brushables painting").
     in.orientation_steps = kOrientationSteps;
-    in.rotated_copies = true;
     if (!exemplar->labels.empty()) {
         in.source_labels = exemplar->labels;
         // Outside the strokes the nearest stroke's segment: the engine matches every pixel

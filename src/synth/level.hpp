@@ -12,17 +12,6 @@
 
 namespace exemplar::synth {
 
-/// The source features turned by −angle (nearest pixel, clamped to the source): copy pixel q
-/// holds source pixel round(R(angle) (q − origin)), R the counter-clockwise rotation of
-/// rotate_offset. A source centre s lies at round(R(−angle) s) + origin (position()), within a
-/// pixel of the exact point, and the copy reaches a patch radius and one pixel beyond every
-/// source centre.
-struct RotatedCopy {
-    FeatureImage features;
-    int origin_x = 0, origin_y = 0;
-    float cos = 1.0f, sin = 0.0f;  ///< Of the step's angle.
-};
-
 struct Level {
     int index = 0;  ///< 0 = coarsest.
     /// Largest random-search window of the searches on this level; 0 = the whole database
@@ -48,10 +37,6 @@ struct Level {
     /// Per step k, the rotated one-pixel moves of the search's propagation: rotate_offset of
     /// (1, 0), (-1, 0), (0, 1) and (0, -1) by step_angle[k], as (dx, dy) pairs at 8k..8k+7.
     std::vector<int> step_moves;
-    /// With SynthesisInput::rotated_copies: per step k (index k; step 0, no rotation, stays
-    /// empty) the source features turned by −step_angle[k] (rotated_copies.hpp), in which a
-    /// patch rotated by that step is a plain run of rows. Empty without.
-    std::vector<RotatedCopy> step_copies;
 
     // Target.
     int tw = 0, th = 0;

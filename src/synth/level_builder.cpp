@@ -11,7 +11,6 @@
 #include "exemplar/filters/resample.hpp"
 #include "guide_pca.hpp"
 #include "patch_distance.hpp"
-#include "rotated_copies.hpp"
 
 namespace exemplar::synth {
 
@@ -386,7 +385,6 @@ Level LevelBuilder::build(int index, int patch_size) const {
                     L.step_moves.push_back(o.dy);
                 }
             }
-            if (input_.rotated_copies) build_rotated_copies(L, threads_);
         }
     }
 

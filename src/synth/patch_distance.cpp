@@ -8,8 +8,6 @@
 #include <cstring>
 #include <utility>
 
-#include "rotated_copies.hpp"
-
 namespace exemplar::synth {
 
 namespace {
@@ -247,13 +245,6 @@ float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, f
 
 float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, float angle,
                              float bound) {
-    const int r = L.radius;
-    if (!L.step_copies.empty() && angle != 0.0f && L.target_weights.empty() &&
-        L.pixel_weight.empty() && tx >= r && ty >= r && tx < L.tw - r && ty < L.th - r) {
-        if (const int step = L.table_step(angle); step > 0) {
-            return copy_distance(L, tx, ty, sx, sy, step, bound);
-        }
-    }
     float sum = 0.0f;
     if (angle != 0.0f && L.target_weights.empty() && L.pixel_weight.empty() &&
         rotated_interior_distance(L, tx, ty, sx, sy, angle, bound, sum)) {

@@ -52,16 +52,6 @@ struct SynthesisInput {
     /// rounded offsets per patch distance (the way Brushables and LazyFluids pre-rotate their
     /// exemplars). The field's angles are the rounded ones.
     int orientation_steps = 0;
-    /// With orientation_steps: every level also keeps orientation_steps − 1 copies of its source
-    /// features, each turned by one step's angle (nearest pixel), and compares a rotated patch
-    /// with the plain patch of its step's copy (the unrotated kernel on contiguous rows) instead
-    /// of gathering the source pixels at the step's offsets: the pre-rotated exemplars of
-    /// Brushables and LazyFluids. The copy resamples the source on the rotated grid, so the patch
-    /// it compares is centred within 0.71 px of the match's source pixel: distances (and hence
-    /// results) differ slightly from the gathered ones; matches, votes and usage stay in the
-    /// exemplar's coordinates. Memory: each copy is about 1 + |sin 2θ| times the level's source
-    /// features. Default false; true without orientation_steps is an error.
-    bool rotated_copies = false;
     Image initial_target;  ///< Optional start (required with target_mask): style channels.
     Nnf initial_nnf;       ///< Optional start NNF on the target grid (finest level).
     /// Optional extra candidate fields on the target grid (e.g. ribbons, Bénard et al. 2013
