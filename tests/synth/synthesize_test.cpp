@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "test_images.hpp"
@@ -541,6 +542,46 @@ TEST(Synthesize, OrientationStepsRoundEveryAngle) {
     }
 }
 
+// Turned target patches (SynthesisInput::rotate_target_patches): the same bytes for any thread
+// count (the per-thread cache of gathered target patches changes nothing), every angle a step,
+// and the matches about as close to the exemplar as with turned source patches: the mean final
+// patch error of each, each measured with its own distance, within 10% (measured 2.2% higher:
+// 0.3901 against 0.3817).
+TEST(Synthesize, TurnedTargetPatchesAreDeterministicAndAsClose) {
+    SynthesisInput in;
+    in.style = testing::texture(40, 40, 3, 1);
+    in.source_orientation = testing::texture(40, 40, 1, 2);
+    in.target_orientation = testing::texture(44, 38, 1, 3);
+    in.target_width = 44;
+    in.target_height = 38;
+    in.orientation_steps = 32;
+    SynthesisOptions opt;
+    opt.usage = UsageStrategy::None;
+    const auto turned_source = synthesize(in, opt, RunContext{2});
+    in.rotate_target_patches = true;
+    const auto one = synthesize(in, opt, RunContext{1});
+    const auto two = synthesize(in, opt, RunContext{2});
+    ASSERT_TRUE(one.ok() && two.ok() && turned_source.ok()) << one.status().message();
+    EXPECT_TRUE(
+        std::equal(one->image.data().begin(), one->image.data().end(), two->image.data().begin()));
+    auto mean_error = [](const Nnf& nnf) {
+        double sum = 0.0;
+        int n = 0;
+        for (const Match& m : nnf.matches()) {
+            if (m.x < 0) continue;
+            const double steps = m.angle_rad / (2.0 * std::numbers::pi / 32.0);
+            EXPECT_NEAR(steps, std::round(steps), 1e-5) << m.angle_rad;
+            sum += m.error;
+            ++n;
+        }
+        return sum / n;
+    };
+    const double turned = mean_error(one->nnf), before = mean_error(turned_source->nnf);
+    std::printf("mean final patch error: turned target %.5f, turned source %.5f\n", turned, before);
+    EXPECT_LT(turned, 1.1 * before);
+    EXPECT_GT(turned, 0.9 * before);
+}
+
 // The quality dial: Default is the default-constructed options; the other presets are the
 // defaults with exactly their listed changes, each naming a real option, in range, and changing
 // it; Fast iterates less and Best more on every level; names parse and bad names are rejected.
@@ -847,6 +888,8 @@ TEST(Synthesize, RejectsBadInputWithOneLineMessages) {
         {"negative weight", [](auto& in, auto&) { in.guides[0].weight = -1; }, "weight"},
         {"orientation steps", [](auto& in, auto&) { in.orientation_steps = 2; },
          "orientation steps: 2 is invalid (must be 0 or 4..1024)"},
+        {"turned target without steps", [](auto& in, auto&) { in.rotate_target_patches = true; },
+         "rotate target patches: needs orientation fields and orientation steps (4..1024)"},
     };
     for (const BadCase& c : cases) {
         SynthesisInput in = identity_input(40, 40);
