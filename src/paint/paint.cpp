@@ -341,6 +341,11 @@ Result<PaintResult> run(const PaintSource& source, const CanvasView& canvas,
     // before, and the coarsest runs 6 EM iterations. A third of the time; the tested quality
     // holds (docs/PERFORMANCE.md "Brushables painting").
     so.search_iterations = 2;
+    // Random-search windows of at most 8 px on the finest level (the `fast` preset's cap): it
+    // starts from the upsampled field of the level before, whose wide windows rarely win but
+    // miss the caches. 7% less time; the coherent regions grow, the patch error rises 2%
+    // (docs/PERFORMANCE.md "Brushables painting").
+    so.finest_search_radius = 8;
     auto synthesized = synthesize(std::move(in), so, context);
     if (!synthesized.ok()) return synthesized.status();
 
