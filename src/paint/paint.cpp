@@ -303,8 +303,11 @@ Result<PaintResult> run(const PaintSource& source, const CanvasView& canvas,
     in.orientation_steps = kOrientationSteps;
     // Rotated pairs compare the plain exemplar patch with the target patch turned back, gathered
     // once per target pixel and step for all of its candidates: 12% less time, the tested
-    // quality holds or improves (docs/paint.md "Synthesis", docs/PERFORMANCE.md).
-    in.rotate_target_patches = true;
+    // quality holds or improves (docs/paint.md "Synthesis", docs/PERFORMANCE.md). Not with
+    // patch-usage control: uniform usage then over-represents sparse details (the yellow flecks
+    // of Paint.UniformUsageKeepsSparseFlecksThatPlainEmWashesOut: 0.12-0.17 of the painted
+    // pixels against the exemplar's 0.10), so it keeps the exemplar patches turned.
+    in.rotate_target_patches = options.usage == UsageStrategy::None;
     if (!exemplar->labels.empty()) {
         in.source_labels = exemplar->labels;
         // Outside the strokes the nearest stroke's segment: the engine matches every pixel

@@ -327,14 +327,18 @@ TEST(Paint, UniformUsageKeepsSparseFlecksThatPlainEmWashesOut) {
     const double exemplar = yellow_share(source.image);
     std::printf("yellow share: exemplar %.3f, plain EM %.3f, uniform usage %.3f\n", exemplar,
                 yellow_share(plain->image), yellow_share(uniform->image));
+    std::printf("histogram distance to the exemplar: plain EM %.3f, uniform usage %.3f\n",
+                histogram_distance(source.image, plain->image),
+                histogram_distance(source.image, uniform->image));
     EXPECT_LT(yellow_share(plain->image), 0.2 * exemplar);
     EXPECT_GT(yellow_share(uniform->image), 0.6 * exemplar);
-    // Measured 0.194 against 0.336 (seeds 1-6: 0.53-0.68 of it; with turned source patches and
-    // whole-image search windows 0.47-0.53: the turned target patches keep more of the yellow,
-    // 0.12-0.17 of the painted pixels against the exemplar's 0.10, where turned source patches
-    // kept 0.10-0.14).
+    // Measured 0.171 against 0.336. Uniform usage keeps the exemplar patches turned (paint.cpp);
+    // plain EM's turned target patches keep a few more flecks than before (yellow 0.000 ->
+    // 0.012, its distance a little lower), so the ratio moved from under 0.5 to 0.51 while the
+    // uniform output's own distance stayed 0.170-0.171: both are asserted.
+    EXPECT_LT(histogram_distance(source.image, uniform->image), 0.18);
     EXPECT_LT(histogram_distance(source.image, uniform->image),
-              0.65 * histogram_distance(source.image, plain->image));
+              0.55 * histogram_distance(source.image, plain->image));
 }
 
 // Checks that `after` keeps `before`'s bytes outside `changed` grown by the default patch size;
