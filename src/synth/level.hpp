@@ -37,6 +37,11 @@ struct Level {
     /// Per step k, the rotated one-pixel moves of the search's propagation: rotate_offset of
     /// (1, 0), (-1, 0), (0, 1) and (0, -1) by step_angle[k], as (dx, dy) pairs at 8k..8k+7.
     std::vector<int> step_moves;
+    /// With SynthesisInput::rotate_target_patches: per step k, step_target_offsets[k * P² + i] is
+    /// the byte offset in target_features of the i-th pixel (row-major) of a patch rotated by
+    /// −step_angle[k]: the rotated patch distance then turns the target patch instead of the
+    /// source patch (patch_distance.hpp). Empty otherwise.
+    std::vector<int> step_target_offsets;
 
     // Target.
     int tw = 0, th = 0;

@@ -385,6 +385,14 @@ Level LevelBuilder::build(int index, int patch_size) const {
                     L.step_moves.push_back(o.dy);
                 }
             }
+            if (input_.rotate_target_patches && L.patch_size <= 15) {
+                L.step_target_offsets.resize(area * static_cast<std::size_t>(n));
+                for (int k = 0; k < n; ++k) {
+                    rotated_target_offsets(
+                        L, L.step_angle[static_cast<std::size_t>(k)],
+                        L.step_target_offsets.data() + area * static_cast<std::size_t>(k));
+                }
+            }
         }
     }
 

@@ -65,19 +65,48 @@ constexpr auto kPatchGrids = [] {
     return grids;
 }();
 
-}  // namespace
-
-void rotated_offsets(const Level& L, float angle_rad, int* offsets) {
+// The byte offsets in `image` of the pixels of a patch of radius r rotated by `angle_rad`.
+void offsets_in(const FeatureImage& image, int r, float angle_rad, int* offsets) {
     const float c = std::cos(angle_rad);
     const float s = std::sin(angle_rad);
-    const int pixel_stride = L.source_features.stride();
-    const int row_stride = static_cast<int>(L.source_features.row_bytes());
+    const int pixel_stride = image.stride();
+    const int row_stride = static_cast<int>(image.row_bytes());
     // One flat loop over the patch's pixels (it vectorizes; a loop per row of P would not).
-    const PatchGrid& grid = kPatchGrids[L.radius];
-    for (int k = 0; k < L.patch_size * L.patch_size; ++k) {
+    const PatchGrid& grid = kPatchGrids[r];
+    for (int k = 0; k < (2 * r + 1) * (2 * r + 1); ++k) {
         const RotatedOffset o = rotate_offset(grid.dx[k], grid.dy[k], c, s);
         offsets[k] = o.dy * row_stride + o.dx * pixel_stride;
     }
+}
+
+}  // namespace
+
+void rotated_offsets(const Level& L, float angle_rad, int* offsets) {
+    offsets_in(L.source_features, L.radius, angle_rad, offsets);
+}
+
+void rotated_target_offsets(const Level& L, float angle_rad, int* offsets) {
+    offsets_in(L.target_features, L.radius, -angle_rad, offsets);
+}
+
+void gather_target_patch(const Level& L, int tx, int ty, int step, std::uint8_t* block) {
+    const int area = L.patch_size * L.patch_size;
+    const int* offset = L.step_target_offsets.data() + static_cast<std::size_t>(step) * area;
+    const std::uint8_t* centre = L.target_features.pixel(tx, ty);
+    const auto F = static_cast<std::size_t>(L.feature_channels());
+    // A fixed 16-byte copy is one vector move (as in rotated_interior_distance).
+    for (int k = 0; k < area; ++k, block += F) std::memcpy(block, centre + offset[k], 16);
+    std::memset(block, 0, kSsdSlack);  // read by ssd_rows past the last row, weighted 0
+}
+
+float turned_target_distance(const Level& L, const std::uint8_t* block, int sx, int sy,
+                             float bound) {
+    const int r = L.radius;
+    const int row_bytes = L.patch_size * L.feature_channels();
+    const FeatureImage& s = L.source_features;
+    return ssd_rows(block, static_cast<std::size_t>(row_bytes), s.pixel(sx - r, sy - r),
+                    s.row_bytes(), L.patch_size, row_bytes, SsdWeights{L.row_weight.data(), 0},
+                    bound);
 }
 
 namespace {
@@ -245,6 +274,13 @@ float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, f
 
 float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, float angle,
                              float bound) {
+    if (angle != 0.0f && turns_target(L, tx, ty, sx, sy)) {
+        if (const int step = L.table_step(angle); step >= 0) {
+            alignas(64) std::uint8_t block[kTargetPatchBytes];
+            gather_target_patch(L, tx, ty, step, block);
+            return turned_target_distance(L, block, sx, sy, bound);
+        }
+    }
     float sum = 0.0f;
     if (angle != 0.0f && L.target_weights.empty() && L.pixel_weight.empty() &&
         rotated_interior_distance(L, tx, ty, sx, sy, angle, bound, sum)) {

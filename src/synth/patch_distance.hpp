@@ -35,6 +35,35 @@ inline RotatedOffset rotate_offset(int dx, int dy, float c, float s) {
 /// (Level::step_offsets holds them for each step of a level with orientation steps.)
 void rotated_offsets(const Level& L, float angle_rad, int* offsets);
 
+/// The same for the target patch turned back, by −angle_rad, as byte offsets in
+/// L.target_features (Level::step_target_offsets holds them per step).
+void rotated_target_offsets(const Level& L, float angle_rad, int* offsets);
+
+/// Bytes of a gathered target patch (gather_target_patch) for patches up to 15x15 of at most
+/// 16 channels, with ssd_rows' slack.
+inline constexpr int kTargetPatchBytes = 15 * 15 * 16 + kSsdSlack + 16;
+
+/// Whether the pair takes the turned-target distance (SynthesisInput::rotate_target_patches):
+/// a level with step_target_offsets, no weight maps or fall-off, at most 16 channels, the turned
+/// target patch inside the target and the source patch inside the source.
+inline bool turns_target(const Level& L, int tx, int ty, int sx, int sy) {
+    const int r = L.radius;
+    // A turned offset is at most r·√2 rounded.
+    const int margin = static_cast<int>(std::ceil(static_cast<float>(r) * 1.41422f));
+    return !L.step_target_offsets.empty() && L.target_weights.empty() && L.pixel_weight.empty() &&
+           L.feature_channels() <= 16 && tx >= margin && ty >= margin && tx < L.tw - margin &&
+           ty < L.th - margin && sx >= r && sy >= r && sx < L.sw - r && sy < L.sh - r;
+}
+
+/// The target patch centred at (tx, ty) turned back by orientation step `step`, gathered
+/// row-major into `block` (kTargetPatchBytes): what turned_target_distance compares.
+void gather_target_patch(const Level& L, int tx, int ty, int step, std::uint8_t* block);
+
+/// The distance of a gathered turned target patch and the plain source patch centred at
+/// (sx, sy); stops as patch_distance does once the sum exceeds `bound`.
+float turned_target_distance(const Level& L, const std::uint8_t* block, int sx, int sy,
+                             float bound);
+
 /// The simple reference: every pixel and channel, no early termination. Test oracle.
 float patch_distance_reference(const Level& level, int tx, int ty, int sx, int sy, float angle_rad);
 

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -255,7 +256,14 @@ void run_patchmatch(const Problem& P, Nnf& field, int iterations, std::uint64_t 
     }
 }
 
-/// Forward search: target pixels → source patch centres.
+/// A key no other ForwardProblem of the process has (for its cache of turned target patches).
+inline std::uint64_t next_problem_key() {
+    static std::atomic<std::uint64_t> next{0};
+    return next.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+/// Forward search: target pixels → source patch centres. The level's target features must not
+/// change while a problem is in use (they are read through a per-thread cache).
 struct ForwardProblem {
     const Level& L;
     const std::uint8_t* process;            ///< Target pixels to optimize (tw*th).
@@ -271,6 +279,8 @@ struct ForwardProblem {
     /// Optional (tw*th): target pixels whose matches propagate to their neighbours (default:
     /// `process`); set when only some of the matched pixels are optimized.
     const std::uint8_t* matched = nullptr;
+    /// Identifies this problem's turned target patches in the per-thread cache (turned_target).
+    std::uint64_t key = next_problem_key();
 
     int db_width() const { return L.sw; }
     int db_height() const { return L.sh; }
@@ -285,7 +295,33 @@ struct ForwardProblem {
     void prefetch(int sx, int sy) const { prefetch_patch(L.source_features, L.radius, sx, sy); }
     float cost(int tx, int ty, int sx, int sy, float angle_rad, float bound) const {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
+        // patch_distance's value; a turned target patch is gathered once for all the
+        // candidates of a query at the same step.
+        if (angle_rad != 0.0f && turns_target(L, tx, ty, sx, sy)) {
+            if (const int step = L.table_step(angle_rad); step >= 0) {
+                return turned_target_distance(L, turned_target(tx, ty, step), sx, sy,
+                                              bound - extra) +
+                       extra;
+            }
+        }
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
+    }
+    /// gather_target_patch(L, tx, ty, step), kept per thread until another is asked for.
+    const std::uint8_t* turned_target(int tx, int ty, int step) const {
+        struct Cache {
+            std::uint64_t key = 0;
+            int tx = 0, ty = 0, step = 0;
+            alignas(64) std::uint8_t block[kTargetPatchBytes];
+        };
+        thread_local Cache cache;
+        if (cache.key != key || cache.tx != tx || cache.ty != ty || cache.step != step) {
+            gather_target_patch(L, tx, ty, step, cache.block);
+            cache.key = key;
+            cache.tx = tx;
+            cache.ty = ty;
+            cache.step = step;
+        }
+        return cache.block;
     }
     int candidate_count() const {
         return candidates != nullptr ? static_cast<int>(candidates->size()) : 0;

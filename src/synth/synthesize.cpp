@@ -355,6 +355,10 @@ Status validate_input(const SynthesisInput& in, const SynthesisOptions& options)
         return invalid_argument("orientation steps: " + std::to_string(in.orientation_steps) +
                                 " is invalid (must be 0 or 4..1024)");
     }
+    if (in.rotate_target_patches && (in.orientation_steps == 0 || in.source_orientation.empty())) {
+        return invalid_argument(
+            "rotate target patches: needs orientation fields and orientation steps (4..1024)");
+    }
     const bool rotated = !in.source_orientation.empty();
     const int room =
         synth::max_levels(std::min(sw, sh), options.patch_size, options.pyramid_ratio, rotated);

@@ -219,12 +219,15 @@ TEST(Paint, CoherenceWeightGivesLargerCoherentRegions) {
     // Brushables Fig. 7: with rotations (a curved stroke) the coherence-weighted vote lets
     // larger coherently mapped areas form. Measured with the Shape Hint off: with it on (the
     // default) the regions are larger either way and the coherence weight made no measurable
-    // difference (17.8 against 18.1 px on these seeds).
+    // difference (17.8 against 18.1 px on the first 3 seeds, before the turned target patches).
+    // 12 seeds: the effect is smaller than the spread of 3 (with turned target patches seeds 1-3
+    // gave 14.1 against 14.4 px).
     const PaintSource source = striped_blob(64, 30);
     PaintCanvas canvas(96, 96);
     ASSERT_TRUE(canvas.add_stroke(stroke({{10, 80}, {30, 30}, {70, 15}, {88, 60}}, 30)).ok());
     double with = 0.0, without = 0.0;
-    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    constexpr int kSeeds = 12;
+    for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
         PaintOptions options;
         options.seed = seed;
         options.shape_weight = 0.0f;
@@ -233,13 +236,15 @@ TEST(Paint, CoherenceWeightGivesLargerCoherentRegions) {
         options.vote_coherence = 0.0f;
         const auto b = paint(source, canvas, options, RunContext(2));
         ASSERT_TRUE(a.ok() && b.ok());
-        with += mean_coherent_region(a->nnf, canvas.coverage()) / 3.0;
-        without += mean_coherent_region(b->nnf, canvas.coverage()) / 3.0;
+        with += mean_coherent_region(a->nnf, canvas.coverage()) / kSeeds;
+        without += mean_coherent_region(b->nnf, canvas.coverage()) / kSeeds;
     }
     std::printf(
-        "mean coherent NNF region (px, 3 seeds): with coherence weight %.1f, without %.1f\n", with,
+        "mean coherent NNF region (px, 12 seeds): with coherence weight %.1f, without %.1f\n", with,
         without);
-    EXPECT_GT(with, 1.08 * without);  // measured 14.4 against 12.6 px
+    // Measured 18.4 against 16.0 px (whole-image search windows: 17.3 against 15.1; turned source
+    // patches as well: 15.3 against 11.9).
+    EXPECT_GT(with, 1.08 * without);
 }
 
 // An opaque 64x64 exemplar of 4x4 cells, each of one colour with grain: blue (70% of the
@@ -295,7 +300,7 @@ TEST(Paint, HistogramWeightKeepsTheExemplarsColourDistribution) {
         without += histogram_distance(source.image, b->image) / 2.0;
     }
     std::printf("histogram distance to the exemplar: weight 1 %.3f, off %.3f\n", with, without);
-    EXPECT_LT(with, 0.85 * without);  // measured 0.53 against 0.70
+    EXPECT_LT(with, 0.85 * without);  // measured 0.47 against 0.72 (before: 0.53 against 0.77)
 }
 
 // A limit of the paper's plain EM that no vote weight lifts: sparse yellow flecks on a flat blue
@@ -322,10 +327,18 @@ TEST(Paint, UniformUsageKeepsSparseFlecksThatPlainEmWashesOut) {
     const double exemplar = yellow_share(source.image);
     std::printf("yellow share: exemplar %.3f, plain EM %.3f, uniform usage %.3f\n", exemplar,
                 yellow_share(plain->image), yellow_share(uniform->image));
+    std::printf("histogram distance to the exemplar: plain EM %.3f, uniform usage %.3f\n",
+                histogram_distance(source.image, plain->image),
+                histogram_distance(source.image, uniform->image));
     EXPECT_LT(yellow_share(plain->image), 0.2 * exemplar);
     EXPECT_GT(yellow_share(uniform->image), 0.6 * exemplar);
+    // Measured 0.171 against 0.336. Uniform usage keeps the exemplar patches turned (paint.cpp);
+    // plain EM's turned target patches keep a few more flecks than before (yellow 0.000 ->
+    // 0.012, its distance a little lower), so the ratio moved from under 0.5 to 0.51 while the
+    // uniform output's own distance stayed 0.170-0.171: both are asserted.
+    EXPECT_LT(histogram_distance(source.image, uniform->image), 0.18);
     EXPECT_LT(histogram_distance(source.image, uniform->image),
-              0.5 * histogram_distance(source.image, plain->image));
+              0.55 * histogram_distance(source.image, plain->image));
 }
 
 // Checks that `after` keeps `before`'s bytes outside `changed` grown by the default patch size;

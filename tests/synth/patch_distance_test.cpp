@@ -31,9 +31,10 @@ std::vector<float> random_weights(std::size_t n, std::uint64_t seed) {
 }
 
 Level make_level(int patch, bool weight_map, float falloff, bool rotated, int guide_channels = 2,
-                 int orientation_steps = 0) {
+                 int orientation_steps = 0, bool turn_target = false) {
     SynthesisInput in;
     in.orientation_steps = orientation_steps;
+    in.rotate_target_patches = turn_target;
     in.style = testing::texture(30, 26, 3, 1);
     GuidePair g;
     g.source = testing::texture(30, 26, guide_channels, 2);
@@ -159,6 +160,85 @@ TEST(PatchDistance, OrientationStepsRoundAnglesAndUseTheirTables) {
             }
         }
     }
+}
+
+// Turned target patches (SynthesisInput::rotate_target_patches): where they apply (the turned
+// target patch inside the target, the source patch inside the source, at most 16 channels, no
+// weight maps or fall-off), the distance at every step is the weighted SSD of the plain source
+// patch and the target pixels at the offsets turned back by the step (nearest pixel), computed
+// here from scratch; the search's cached gather gives the same value to the bit, with the same
+// early exit; elsewhere the distance is the turned source patch's (the reference's).
+TEST(PatchDistance, TurnedTargetPatchesMatchTheirDefinition) {
+    for (int guide_channels : {2, 9, 15}) {
+        for (int patch : {3, 5, 7}) {
+            const Level L = make_level(patch, false, 0.0f, true, guide_channels, 32, true);
+            ASSERT_EQ(L.step_target_offsets.size(), static_cast<std::size_t>(32 * patch * patch));
+            const int r = patch / 2;
+            const int F = L.feature_channels();
+            const std::uint8_t process = 1;
+            std::vector<std::uint8_t> all(static_cast<std::size_t>(L.tw) * L.th, process);
+            const ForwardProblem problem{L, all.data()};
+            for (int ty = 0; ty < L.th; ty += 2) {
+                for (int tx = 0; tx < L.tw; ++tx) {
+                    for (int k = 0; k < 32; k += 3) {
+                        const float angle = L.step_angle[static_cast<std::size_t>(k)];
+                        const float c = std::cos(-angle), s = std::sin(-angle);
+                        for (const auto& [sx, sy] : {std::pair{12, 11}, {3, 4}, {27, 24}, {1, 1}}) {
+                            if (!turns_target(L, tx, ty, sx, sy) || angle == 0.0f) {
+                                ASSERT_EQ(problem.cost(tx, ty, sx, sy, angle, 1e30f),
+                                          patch_distance(L, tx, ty, sx, sy, angle));
+                                ASSERT_NEAR(
+                                    patch_distance(L, tx, ty, sx, sy, angle),
+                                    patch_distance_reference(L, tx, ty, sx, sy, angle),
+                                    1e-5f * (1.0f + patch_distance(L, tx, ty, sx, sy, angle)));
+                                continue;
+                            }
+                            ASSERT_LE(F, 16);
+                            float want = 0.0f;
+                            for (int ey = -r; ey <= r; ++ey) {
+                                for (int ex = -r; ex <= r; ++ex) {
+                                    const RotatedOffset o = rotate_offset(ex, ey, c, s);
+                                    const std::uint8_t* a =
+                                        L.target_features.pixel(tx + o.dx, ty + o.dy);
+                                    const std::uint8_t* b =
+                                        L.source_features.pixel(sx + ex, sy + ey);
+                                    for (int ch = 0; ch < F; ++ch) {
+                                        const auto d = static_cast<float>(a[ch] - b[ch]);
+                                        want +=
+                                            L.channel_weight[static_cast<std::size_t>(ch)] * d * d;
+                                    }
+                                }
+                            }
+                            const float got = patch_distance(L, tx, ty, sx, sy, angle);
+                            ASSERT_NEAR(got, want, 1e-5f * (1.0f + want))
+                                << "F " << F << " patch " << patch << " t " << tx << "," << ty
+                                << " s " << sx << "," << sy << " step " << k;
+                            // The search's cost: the gathered patch kept for the next candidate.
+                            ASSERT_EQ(problem.cost(tx, ty, sx, sy, angle, 1e30f), got);
+                            if (got > 0.0f) {
+                                EXPECT_GT(problem.cost(tx, ty, sx, sy, angle, 0.5f * got),
+                                          0.5f * got);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+// A new problem (a new search) reads the target as it is then, though the same thread's cache
+// holds the patch gathered at the same pixel and step before the target changed.
+TEST(PatchDistance, TurnedTargetCacheSeesTheNewTarget) {
+    Level L = make_level(5, false, 0.0f, true, 2, 32, true);
+    std::vector<std::uint8_t> all(static_cast<std::size_t>(L.tw) * L.th, 1);
+    const float angle = L.step_angle[5];
+    ASSERT_TRUE(turns_target(L, 10, 10, 12, 11));
+    const float before = ForwardProblem{L, all.data()}.cost(10, 10, 12, 11, angle, 1e30f);
+    set_target_style(L, testing::texture(22, 20, 3, 8));
+    const float after = ForwardProblem{L, all.data()}.cost(10, 10, 12, 11, angle, 1e30f);
+    EXPECT_NE(before, after);
+    EXPECT_EQ(after, patch_distance(L, 10, 10, 12, 11, angle));
 }
 
 // Patches over a border, rotated ones with weight maps or fall-off and every weighted one take the

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "test_images.hpp"
@@ -517,28 +518,64 @@ TEST(Synthesize, OrientationDifferenceRotatesStripes) {
     }
 }
 
-// Rotations rounded to orientation steps: every match's angle is one of the steps, and the result
-// is the same for any thread count.
-TEST(Synthesize, OrientationStepsRoundEveryAngle) {
+// A textured 40x40 style and random orientation fields, rotations rounded to `steps`.
+SynthesisInput stepped_input(int tw, int th, int steps, bool turn_target) {
     SynthesisInput in;
     in.style = testing::texture(40, 40, 3, 1);
     in.source_orientation = testing::texture(40, 40, 1, 2);
-    in.target_orientation = testing::texture(36, 30, 1, 3);
-    in.target_width = 36;
-    in.target_height = 30;
-    in.orientation_steps = 8;
+    in.target_orientation = testing::texture(tw, th, 1, 3);
+    in.target_width = tw;
+    in.target_height = th;
+    in.orientation_steps = steps;
+    in.rotate_target_patches = turn_target;
+    return in;
+}
+
+// Rotations rounded to orientation steps: every match's angle is one of the steps, and the result
+// is the same for any thread count; also with turned target patches (whose per-thread cache of
+// gathered target patches changes nothing).
+TEST(Synthesize, OrientationStepsRoundEveryAngle) {
+    for (const bool turn_target : {false, true}) {
+        const SynthesisInput in = stepped_input(36, 30, 8, turn_target);
+        SynthesisOptions opt;
+        opt.usage = UsageStrategy::None;
+        auto one = synthesize(in, opt, RunContext{1});
+        auto two = synthesize(in, opt, RunContext{2});
+        ASSERT_TRUE(one.ok() && two.ok()) << one.status().message();
+        EXPECT_TRUE(std::equal(one->image.data().begin(), one->image.data().end(),
+                               two->image.data().begin()))
+            << turn_target;
+        for (const Match& m : one->nnf.matches()) {
+            if (m.x < 0) continue;
+            const double steps = m.angle_rad / (2.0 * std::numbers::pi / 8.0);
+            EXPECT_NEAR(steps, std::round(steps), 1e-5) << m.angle_rad;
+        }
+    }
+}
+
+// Turned target patches (SynthesisInput::rotate_target_patches) find matches about as close to
+// the exemplar as turned source patches: the mean final patch error of each, each measured with
+// its own distance, within 10% (measured 2.2% higher: 0.3901 against 0.3817).
+TEST(Synthesize, TurnedTargetPatchesAreAsClose) {
     SynthesisOptions opt;
     opt.usage = UsageStrategy::None;
-    auto one = synthesize(in, opt, RunContext{1});
-    auto two = synthesize(in, opt, RunContext{2});
-    ASSERT_TRUE(one.ok() && two.ok()) << one.status().message();
-    EXPECT_TRUE(
-        std::equal(one->image.data().begin(), one->image.data().end(), two->image.data().begin()));
-    for (const Match& m : one->nnf.matches()) {
-        if (m.x < 0) continue;
-        const double steps = m.angle_rad / (2.0 * std::numbers::pi / 8.0);
-        EXPECT_NEAR(steps, std::round(steps), 1e-5) << m.angle_rad;
-    }
+    const auto turned_source = synthesize(stepped_input(44, 38, 32, false), opt, RunContext{2});
+    const auto turned_target = synthesize(stepped_input(44, 38, 32, true), opt, RunContext{2});
+    ASSERT_TRUE(turned_source.ok() && turned_target.ok());
+    auto mean_error = [](const Nnf& nnf) {
+        double sum = 0.0;
+        int n = 0;
+        for (const Match& m : nnf.matches()) {
+            if (m.x < 0) continue;
+            sum += m.error;
+            ++n;
+        }
+        return sum / n;
+    };
+    const double turned = mean_error(turned_target->nnf), before = mean_error(turned_source->nnf);
+    std::printf("mean final patch error: turned target %.5f, turned source %.5f\n", turned, before);
+    EXPECT_LT(turned, 1.1 * before);
+    EXPECT_GT(turned, 0.9 * before);
 }
 
 // The quality dial: Default is the default-constructed options; the other presets are the
@@ -847,6 +884,8 @@ TEST(Synthesize, RejectsBadInputWithOneLineMessages) {
         {"negative weight", [](auto& in, auto&) { in.guides[0].weight = -1; }, "weight"},
         {"orientation steps", [](auto& in, auto&) { in.orientation_steps = 2; },
          "orientation steps: 2 is invalid (must be 0 or 4..1024)"},
+        {"turned target without steps", [](auto& in, auto&) { in.rotate_target_patches = true; },
+         "rotate target patches: needs orientation fields and orientation steps (4..1024)"},
     };
     for (const BadCase& c : cases) {
         SynthesisInput in = identity_input(40, 40);

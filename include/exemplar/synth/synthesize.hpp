@@ -52,6 +52,15 @@ struct SynthesisInput {
     /// rounded offsets per patch distance (the way Brushables and LazyFluids pre-rotate their
     /// exemplars). The field's angles are the rounded ones.
     int orientation_steps = 0;
+    /// With orientation_steps: a rotated patch pair is compared with the source patch as it
+    /// stands and the target patch turned back by the step's angle (nearest pixel), instead of
+    /// the target patch as it stands and the source patch turned: the same rotation sampled on
+    /// the other grid, so both centres stay exact. Every candidate of a target pixel at the same
+    /// step then shares one gathered target patch, and each compares it with a plain source
+    /// patch (contiguous rows). Distances differ from the turned-source ones by the nearest-pixel
+    /// rounding (docs/paint.md); matches, votes and usage are as before. Default false; true
+    /// without orientation_steps is an error.
+    bool rotate_target_patches = false;
     Image initial_target;  ///< Optional start (required with target_mask): style channels.
     Nnf initial_nnf;       ///< Optional start NNF on the target grid (finest level).
     /// Optional extra candidate fields on the target grid (e.g. ribbons, Bénard et al. 2013
