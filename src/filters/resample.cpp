@@ -121,7 +121,8 @@ Image resize(const Image& image, int width, int height, ResampleFilter filter, i
         do_rows();
         do_columns();
     }
-    return current == &image ? image : out;
+    if (current == &image) return image;
+    return out;
 }
 
 int pyramid_level_size(int size, float ratio, int level) {
