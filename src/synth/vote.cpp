@@ -298,13 +298,11 @@ void vote_pixels(const VoteSetup& v, Image& out, int threads) {
 }
 
 // A voting patch centre as the row vote reads it: its weight (0 = it does not vote: inactive,
-// no match, or a weight that is not positive), its match and the match's source pixel index,
-// and whether the match's footprint lies inside the source (no clamping to do).
+// no match, or a weight that is not positive) and its match's source pixel index when the
+// match's footprint lies inside the source, else -1 (clamped reads, from the NNF).
 struct Centre {
     float weight;
-    int x, y;
     std::int32_t index;
-    bool inside;
 };
 
 // Adds the vote of weight w read from source pixel s to a pixel's sums: kChannels channels
@@ -337,7 +335,7 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
                 weight = 0.0f;
             }
             const bool inside = m.x - r >= 0 && m.y - r >= 0 && m.x + r < sw && m.y + r < sh;
-            centres[i] = Centre{weight, m.x, m.y, m.y * sw + m.x, inside};
+            centres[i] = Centre{weight, inside ? m.y * sw + m.x : -1};
         }
     });
     const float* source = v.source.data().data();
@@ -357,8 +355,9 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
                     const Centre& c = row[x - dx];
                     if (!(c.weight > 0.0f)) continue;
                     std::int32_t index = c.index + offset;
-                    if (!c.inside) {
-                        int sx = c.x + dx, sy = c.y + dy;
+                    if (c.index < 0) {
+                        const Match& m = v.nnf.at(x - dx, cy);
+                        int sx = m.x + dx, sy = m.y + dy;
                         if (params.clamp_source) {
                             sx = std::clamp(sx, 0, sw - 1);
                             sy = std::clamp(sy, 0, sh - 1);
