@@ -326,57 +326,67 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
     const VoteParams& params = v.params;
     const int w = v.w, h = v.h, r = v.vote_r;
     const int sw = v.source.width(), sh = v.source.height();
-    std::vector<Centre> centres(v.nnf.pixel_count());
-    parallel_for(0, h, threads, [&](int y) {
-        for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
+    const float* source = v.source.data().data();
+    // Bands of output rows, each with the centres of its rows and r rows around them (a table
+    // of the whole field would add its size to the run's peak memory).
+    constexpr int kBand = 8;
+    parallel_for(0, (h + kBand - 1) / kBand, threads, [&](int band) {
+        const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
+        const int c0 = std::max(0, y0 - r), c1 = std::min(h, y1 + r);
+        std::vector<Centre> centres(static_cast<std::size_t>(c1 - c0) * w);
+        for (std::size_t i = static_cast<std::size_t>(c0) * w,
+                         end = static_cast<std::size_t>(c1) * w;
+             i < end; ++i) {
             const Match& m = v.nnf[i];
             float weight = params.patch_weights.empty() ? 1.0f : params.patch_weights[i];
             if ((params.active != nullptr && !params.active[i]) || m.x < 0 || !(weight > 0.0f)) {
                 weight = 0.0f;
             }
             const bool inside = m.x - r >= 0 && m.y - r >= 0 && m.x + r < sw && m.y + r < sh;
-            centres[i] = Centre{weight, inside ? m.y * sw + m.x : -1};
+            centres[i - static_cast<std::size_t>(c0) * w] =
+                Centre{weight, inside ? m.y * sw + m.x : -1};
         }
-    });
-    const float* source = v.source.data().data();
-    parallel_for(0, h, threads, [&](int y) {
-        PixelVote<kChannels> pixel(v, y);
-        const int C = pixel.channels();
+        const int C = kChannels > 0 ? kChannels : v.source.channels();
         const std::size_t stride = static_cast<std::size_t>(C) + 1;  // the sums, then the total
-        std::vector<double> sums(static_cast<std::size_t>(w) * stride, 0.0);
-        for (int dy = -r; dy <= r; ++dy) {
-            const int cy = y - dy;
-            if (cy < 0 || cy >= h) continue;
-            const Centre* row = centres.data() + static_cast<std::size_t>(cy) * w;
-            for (int dx = -r; dx <= r; ++dx) {
-                const int offset = dy * sw + dx;
-                // The pixels x whose patch centre x - dx lies in the row.
-                for (int x = std::max(0, dx), x_end = std::min(w, w + dx); x < x_end; ++x) {
-                    const Centre& c = row[x - dx];
-                    if (!(c.weight > 0.0f)) continue;
-                    std::int32_t index = c.index + offset;
-                    if (c.index < 0) {
-                        const Match& m = v.nnf.at(x - dx, cy);
-                        int sx = m.x + dx, sy = m.y + dy;
-                        if (params.clamp_source) {
-                            sx = std::clamp(sx, 0, sw - 1);
-                            sy = std::clamp(sy, 0, sh - 1);
+        std::vector<double> sums(static_cast<std::size_t>(w) * stride);
+        for (int y = y0; y < y1; ++y) {
+            PixelVote<kChannels> pixel(v, y);
+            std::fill(sums.begin(), sums.end(), 0.0);
+            for (int dy = -r; dy <= r; ++dy) {
+                const int cy = y - dy;
+                if (cy < 0 || cy >= h) continue;
+                const Centre* row = centres.data() + static_cast<std::size_t>(cy - c0) * w;
+                for (int dx = -r; dx <= r; ++dx) {
+                    const int offset = dy * sw + dx;
+                    // The pixels x whose patch centre x - dx lies in the row.
+                    for (int x = std::max(0, dx), x_end = std::min(w, w + dx); x < x_end; ++x) {
+                        const Centre& c = row[x - dx];
+                        if (!(c.weight > 0.0f)) continue;
+                        std::int32_t index = c.index + offset;
+                        if (c.index < 0) {
+                            const Match& m = v.nnf.at(x - dx, cy);
+                            int sx = m.x + dx, sy = m.y + dy;
+                            if (params.clamp_source) {
+                                sx = std::clamp(sx, 0, sw - 1);
+                                sy = std::clamp(sy, 0, sh - 1);
+                            }
+                            EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < sw && sy < sh);
+                            index = sy * sw + sx;
                         }
-                        EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < sw && sy < sh);
-                        index = sy * sw + sx;
+                        add_vote<kChannels>(sums.data() + static_cast<std::size_t>(x) * stride,
+                                            source + static_cast<std::size_t>(index) * C, c.weight,
+                                            C);
                     }
-                    add_vote<kChannels>(sums.data() + static_cast<std::size_t>(x) * stride,
-                                        source + static_cast<std::size_t>(index) * C, c.weight, C);
                 }
             }
-        }
-        for (int x = 0; x < w; ++x) {
-            const std::size_t qi = static_cast<std::size_t>(y) * w + x;
-            if (params.fixed != nullptr && params.fixed[qi]) continue;
-            const double* s = sums.data() + static_cast<std::size_t>(x) * stride;
-            std::copy_n(s, C, pixel.acc.begin());
-            const double t = pixel.vote_at(x, &s[C]);
-            if (t > 0.0) write_vote<kChannels>(pixel.acc, t, C, out.pixel(x, y));
+            for (int x = 0; x < w; ++x) {
+                const std::size_t qi = static_cast<std::size_t>(y) * w + x;
+                if (params.fixed != nullptr && params.fixed[qi]) continue;
+                const double* s = sums.data() + static_cast<std::size_t>(x) * stride;
+                std::copy_n(s, C, pixel.acc.begin());
+                const double t = pixel.vote_at(x, &s[C]);
+                if (t > 0.0) write_vote<kChannels>(pixel.acc, t, C, out.pixel(x, y));
+            }
         }
     });
 }
