@@ -119,17 +119,28 @@ BENCHMARK(BM_PatchMatchIteration)
     ->Args({1, 1024})
     ->Unit(benchmark::kMillisecond);
 
+// As the engine votes (clamped source reads, weighted by the matches' errors); range(1) = 1 runs
+// the per-pixel reference, 0 the row vote (the same bytes).
 void BM_Vote(benchmark::State& state) {
     Setup& s = setup(256);
     Image out(256, 256, 3);
+    const std::vector<float> weights = vote_weights(s.nnf, nullptr, 5, 0.0f, 1);
     VoteParams params;
+    params.clamp_source = true;
+    params.patch_weights = weights;
+    const bool reference = state.range(1) != 0;
+    state.SetLabel(reference ? "reference" : "rows");
     for (auto _ : state) {
-        vote(s.nnf, s.L.source_style, params, out, static_cast<int>(state.range(0)));
+        if (reference) {
+            vote_reference(s.nnf, s.L.source_style, params, out, static_cast<int>(state.range(0)));
+        } else {
+            vote(s.nnf, s.L.source_style, params, out, static_cast<int>(state.range(0)));
+        }
         benchmark::DoNotOptimize(out.data().data());
     }
     state.SetItemsProcessed(state.iterations() * 256 * 256);
 }
-BENCHMARK(BM_Vote)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Vote)->Args({1, 1})->Args({1, 0})->Args({2, 0})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace exemplar::synth

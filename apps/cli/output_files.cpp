@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -29,13 +30,16 @@ std::string named(std::string_view flag, const std::string& path) {
 // Largest step (in [0, 1] units) of an integer grid all values lie on: 8 for k/255, 16 for
 // k/65535, 0 if some value is on neither (float data, or outside [0, 1]).
 int integer_grid_bits(const Image& image) {
+    // The nearest integer of a value >= 0 as floor(v + 0.5) (a cast, no libm call): it differs
+    // from std::round only within an ulp of a half-integer, where both are 0.5 away.
+    const auto off_grid = [](double v) {
+        return std::fabs(v - static_cast<double>(static_cast<std::int64_t>(v + 0.5)));
+    };
     bool on8 = true, on16 = true;
     for (float v : image.data()) {
         if (!(v >= 0.0f && v <= 1.0f)) return 0;
-        const double v8 = static_cast<double>(v) * 255.0;
-        const double v16 = static_cast<double>(v) * 65535.0;
-        on8 = on8 && std::fabs(v8 - std::round(v8)) < 1e-3;
-        on16 = on16 && std::fabs(v16 - std::round(v16)) < 0.02;
+        on8 = on8 && off_grid(static_cast<double>(v) * 255.0) < 1e-3;
+        on16 = on16 && off_grid(static_cast<double>(v) * 65535.0) < 0.02;
         if (!on8 && !on16) return 0;
     }
     return on8 ? 8 : 16;
@@ -170,10 +174,8 @@ Status check_output_paths(const SynthesisOutputs& outputs) {
 }
 
 Status check_output_formats(const SynthesisOutputs& outputs, const Image& reference,
-                            const std::string& reference_path) {
-    EXEMPLAR_RETURN_IF_ERROR(
-        check_output_format("--output", outputs.output, reference,
-                            output_options(reference, reference_path, outputs.output)));
+                            const SaveOptions& save) {
+    EXEMPLAR_RETURN_IF_ERROR(check_output_format("--output", outputs.output, reference, save));
     if (!outputs.save_error.empty()) {
         SaveOptions options;
         const Image like = error_map_for_file(Image(1, 1, 1), outputs.save_error, options);

@@ -50,10 +50,11 @@ struct SynthesisOutputs {
 /// is an .exr file. Messages name the flag and the path.
 Status check_output_paths(const SynthesisOutputs& outputs);
 
-/// Checks that --output can hold an image like `reference` (read from `reference_path`, see
-/// `output_options`) and --save-error an error map, before the run.
+/// Checks that --output can hold an image like `reference` written with `save` (its
+/// `output_options`, chosen once by the caller, which writes with them too) and --save-error an
+/// error map, before the run.
 Status check_output_formats(const SynthesisOutputs& outputs, const Image& reference,
-                            const std::string& reference_path);
+                            const SaveOptions& save);
 
 /// Writes the --save-nnf and --save-error files of `result` (each atomically).
 Status save_nnf_and_error(const SynthesisResult& result, const SynthesisOutputs& outputs);

@@ -241,7 +241,8 @@ Status StylitCommand::run_stylize(const Streams& streams) {
     auto input = stylit_input(*exemplar, *source, *target, options);
     if (!input.ok()) return input.status();
     EXEMPLAR_RETURN_IF_ERROR(validate_input(*input, options.synthesis));
-    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs, *exemplar, exemplar_));
+    const SaveOptions save = output_options(*exemplar, exemplar_, output_);
+    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs, *exemplar, save));
 
     // Run.
     ProgressBar bar(streams.err, options.preview ? "stylit preview" : "stylit",
@@ -252,8 +253,7 @@ Status StylitCommand::run_stylize(const Streams& streams) {
     bar.finish();
     if (!result.ok()) return result.status();
 
-    EXEMPLAR_RETURN_IF_ERROR(save_image(result->synthesis.image, output_,
-                                        output_options(*exemplar, exemplar_, output_)));
+    EXEMPLAR_RETURN_IF_ERROR(save_image(result->synthesis.image, output_, save));
     EXEMPLAR_RETURN_IF_ERROR(save_nnf_and_error(result->synthesis, outputs));
     if (!quiet_) {
         streams.out << output_ << '\n';

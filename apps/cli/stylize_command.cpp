@@ -283,9 +283,9 @@ Status StylizeCommand::run(const Streams& streams) {
     if (!loaded.ok()) return loaded.status();
     SynthesisInput& input = loaded->input;
     EXEMPLAR_RETURN_IF_ERROR(with_names(validate_input(input, options), *loaded));
-    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs_of(job), input.style, job.style));
     // Chosen now: the engine releases the inputs' images once it no longer needs them.
     const SaveOptions save = output_options(input.style, job.style, job.output);
+    EXEMPLAR_RETURN_IF_ERROR(check_output_formats(outputs_of(job), input.style, save));
 
     // Run.
     const bool quiet = job.quiet.value_or(false);

@@ -62,7 +62,19 @@ struct ChannelQuantizer {
     float offset = 0.0f;
     float step = 1.0f;
 
+    /// round((v - offset) / step) clamped to 0..255, rounding halves to even.
     std::uint8_t code(float v) const {
+        const float q = (v - offset) / step;
+        if (!(q > 0.0f)) return 0;
+        if (!(q < 255.5f)) return 255;
+        // std::nearbyint without its libm call (every feature value of every level passes here):
+        // q + 2^23 lies where floats are integers, so the sum is q rounded to nearest even
+        // (2^23 is even) and subtracting 2^23 again is exact.
+        constexpr float kInteger = 8388608.0f;
+        return static_cast<std::uint8_t>((q + kInteger) - kInteger);
+    }
+    /// The definition code() computes: the test oracle.
+    std::uint8_t code_reference(float v) const {
         const float q = std::nearbyint((v - offset) / step);
         return static_cast<std::uint8_t>(std::clamp(q, 0.0f, 255.0f));
     }

@@ -33,6 +33,9 @@ public:
                           pyramid_level_size(full.height(), ratio, depth), filter, threads);
     }
     const Image& get() const { return resized_.empty() ? *full_ : resized_; }
+    /// The image for a level to own: the resampled one moved out (no copy), else the input's
+    /// copy. get() is empty afterwards at depth > 0.
+    Image take() { return resized_.empty() ? *full_ : std::move(resized_); }
 
 private:
     const Image* full_;
@@ -231,7 +234,7 @@ Level LevelBuilder::build(int index, int patch_size) const {
     const auto at = [&](const Image& full, RF filter) {
         return AtDepth(full, d, ratio, filter, threads_);
     };
-    const AtDepth style_at = at(input_.style, RF::Gaussian);
+    AtDepth style_at = at(input_.style, RF::Gaussian);
     const AtDepth initial_at = at(input_.initial_target, RF::Gaussian);
     std::vector<AtDepth> source_guides, target_guides, weight_maps;
     for (const ReducedGuide& g : guides_) {
@@ -244,10 +247,10 @@ Level LevelBuilder::build(int index, int patch_size) const {
     L.index = index;
     L.patch_size = patch_size > 0 ? patch_size : options_.patch_size;
     L.radius = L.patch_size / 2;
-    const Image& style = style_at.get();
+    L.source_style = style_at.take();
+    const Image& style = L.source_style;
     L.sw = style.width();
     L.sh = style.height();
-    L.source_style = style;
     L.style_channels = style.channels();
     const bool rotated = !input_.source_orientation.empty();
 

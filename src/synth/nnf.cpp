@@ -2,40 +2,72 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "vote.hpp"
 
 namespace exemplar {
 
+namespace {
+
+// std::lround for |v| < 2^63 without the libm call: the cast truncates, the remainder v - t is
+// exact, and halves round away from zero.
+std::int64_t round_half_away(double v) {
+    const auto t = static_cast<std::int64_t>(v);
+    const double rest = v - static_cast<double>(t);
+    return rest >= 0.5 ? t + 1 : rest <= -0.5 ? t - 1 : t;
+}
+
+}  // namespace
+
 // The same relative database position, the offset within the patch kept (rotated with the
 // match). Serves the forward NNF (query = target, database = source) and the engine's reversed
-// field (query = source, database = target).
+// field (query = source, database = target). Runs between every two levels on one thread, so
+// the coarse pixel and offset of each column and row are computed once, and unrotated matches
+// skip the rotation (cos 0 = 1 and sin 0 = 0 exactly: the same sums).
 Nnf upsample_nnf(const Nnf& coarse, int coarse_db_w, int coarse_db_h, int fine_w, int fine_h,
                  int fine_db_w, int fine_db_h) {
     Nnf out(fine_w, fine_h);
-    const double qx_scale = static_cast<double>(coarse.width()) / fine_w;
-    const double qy_scale = static_cast<double>(coarse.height()) / fine_h;
     const double dx_scale = static_cast<double>(fine_db_w) / coarse_db_w;
     const double dy_scale = static_cast<double>(fine_db_h) / coarse_db_h;
+    // The nearest coarse index of fine index i, and the offset of i's centre from it.
+    const auto nearest = [](int coarse_n, int fine_n, std::vector<int>& index,
+                            std::vector<double>& offset) {
+        const double scale = static_cast<double>(coarse_n) / fine_n;
+        index.resize(static_cast<std::size_t>(fine_n));
+        offset.resize(static_cast<std::size_t>(fine_n));
+        for (int i = 0; i < fine_n; ++i) {
+            const double u = (i + 0.5) * scale - 0.5;
+            const int c = std::clamp(static_cast<int>(std::lround(u)), 0, coarse_n - 1);
+            index[static_cast<std::size_t>(i)] = c;
+            offset[static_cast<std::size_t>(i)] = u - c;
+        }
+    };
+    std::vector<int> cx, cy;
+    std::vector<double> du, dv;
+    nearest(coarse.width(), fine_w, cx, du);
+    nearest(coarse.height(), fine_h, cy, dv);
     for (int y = 0; y < fine_h; ++y) {
+        const double v = dv[static_cast<std::size_t>(y)];
         for (int x = 0; x < fine_w; ++x) {
-            const double u = (x + 0.5) * qx_scale - 0.5;
-            const double v = (y + 0.5) * qy_scale - 0.5;
-            const int cx = std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
-            const int cy = std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
-            const Match& m = coarse.at(cx, cy);
+            const Match& m =
+                coarse.at(cx[static_cast<std::size_t>(x)], cy[static_cast<std::size_t>(y)]);
             Match& o = out.at(x, y);
             if (m.x < 0) {
                 o = Match{-1, -1, 0.0f, 0.0f};
                 continue;
             }
-            const double du = u - cx, dv = v - cy;
-            const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
-            const double su = m.x + c * du - s * dv;
-            const double sv = m.y + s * du + c * dv;
-            o.x = static_cast<int>(std::lround((su + 0.5) * dx_scale - 0.5));
-            o.y = static_cast<int>(std::lround((sv + 0.5) * dy_scale - 0.5));
+            const double u = du[static_cast<std::size_t>(x)];
+            double su = m.x + u, sv = m.y + v;
+            if (m.angle_rad != 0.0f) {
+                const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
+                su = m.x + c * u - s * v;
+                sv = m.y + s * u + c * v;
+            }
+            o.x = static_cast<int>(round_half_away((su + 0.5) * dx_scale - 0.5));
+            o.y = static_cast<int>(round_half_away((sv + 0.5) * dy_scale - 0.5));
             o.angle_rad = m.angle_rad;
         }
     }

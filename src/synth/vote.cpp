@@ -139,24 +139,23 @@ std::vector<float> histogram_weights(const Image& source, const Image& target,
 
 namespace {
 
-// The vote with kChannels channels known at compile time (0 = any count, from the source), so
-// that the per-pixel sums of the common 1-4 channel cases stay in registers.
+// Per-channel sums of one pixel: a fixed array for kChannels > 0 (registers), else a vector.
 template <int kChannels>
-void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
-                   int threads) {
-    const int w = nnf.width();
-    const int h = nnf.height();
-    const int C = kChannels > 0 ? kChannels : source.channels();
-    const int patch_r = params.patch_size / 2;
-    const int vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
-    const bool blend_seams = params.blend_seams && vote_r < patch_r;
-    // Each rotated match's cosine and sine, once: every pixel reads its patch_size² neighbours'.
-    std::vector<std::array<float, 2>> rotation;
-    bool rotated = false;
-    for (std::size_t i = 0; i < nnf.pixel_count() && !rotated; ++i) {
-        rotated = nnf[i].angle_rad != 0.0f;
-    }
-    if (rotated) {
+using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
+                                std::vector<double>>;
+
+// What every vote of one NNF shares: the parameters, the source, each rotated match's cosine
+// and sine (once: every pixel reads its patch_size² neighbours').
+struct VoteSetup {
+    VoteSetup(const Nnf& nnf_, const Image& source_, const VoteParams& params_, int threads)
+        : nnf(nnf_), source(source_), params(params_), w(nnf_.width()), h(nnf_.height()) {
+        patch_r = params.patch_size / 2;
+        vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
+        blend_seams = params.blend_seams && vote_r < patch_r;
+        for (std::size_t i = 0; i < nnf.pixel_count() && !rotated; ++i) {
+            rotated = nnf[i].angle_rad != 0.0f;
+        }
+        if (!rotated) return;
         rotation.resize(nnf.pixel_count());
         parallel_for(0, h, threads, [&](int y) {
             for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
@@ -165,108 +164,268 @@ void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params
             }
         });
     }
-    parallel_for(0, h, threads, [&](int y) {
-        using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
-                                        std::vector<double>>;
-        Sums acc{};
-        if constexpr (kChannels == 0) acc.resize(static_cast<std::size_t>(C));
-        // The source pixel that the patch centred at (x - dx, y - dy) maps (x, y) to, or false
-        // if that pixel is no voting patch centre.
-        auto source_of = [&](int x, int dx, int dy, int& sx, int& sy) {
-            const int cx = x - dx, cy = y - dy;
-            if (cx < 0 || cx >= w || cy < 0 || cy >= h) return false;
-            const std::size_t ci = static_cast<std::size_t>(cy) * w + cx;
-            if (params.active != nullptr && !params.active[ci]) return false;
-            const Match& m = nnf[ci];
-            if (m.x < 0) return false;  // not a patch centre
-            const RotatedOffset o = m.angle_rad == 0.0f
-                                        ? RotatedOffset{dx, dy}
-                                        : rotate_offset(dx, dy, rotation[ci][0], rotation[ci][1]);
-            sx = m.x + o.dx;
-            sy = m.y + o.dy;
-            return true;
-        };
-        // Sum of the votes of the patches centred within r of (x, y), each weighing its patch
-        // weight unless `plain`; returns their total weight.
-        auto gather = [&](int x, int r, bool plain) {
-            std::fill(acc.begin(), acc.end(), 0.0);
-            double total = 0.0;
-            // The patch centred at (x - dx, y - dy) covers this pixel at its offset (dx, dy).
+
+    const Nnf& nnf;
+    const Image& source;
+    const VoteParams& params;
+    int w, h, patch_r = 0, vote_r = 0;
+    bool blend_seams = false, rotated = false;
+    std::vector<std::array<float, 2>> rotation;
+};
+
+// The vote's definition, one target pixel at a time (row y): the reference, and the fast row
+// vote's path for seams and for pixels its footprint leaves without votes.
+template <int kChannels>
+class PixelVote {
+public:
+    PixelVote(const VoteSetup& setup, int y) : v_(setup), y_(y) {
+        if constexpr (kChannels == 0) acc.resize(static_cast<std::size_t>(setup.source.channels()));
+    }
+
+    // The source pixel that the patch centred at (x - dx, y - dy) maps (x, y) to, or false if
+    // that pixel is no voting patch centre.
+    bool source_of(int x, int dx, int dy, int& sx, int& sy) const {
+        const int cx = x - dx, cy = y_ - dy;
+        if (cx < 0 || cx >= v_.w || cy < 0 || cy >= v_.h) return false;
+        const std::size_t ci = static_cast<std::size_t>(cy) * v_.w + cx;
+        if (v_.params.active != nullptr && !v_.params.active[ci]) return false;
+        const Match& m = v_.nnf[ci];
+        if (m.x < 0) return false;  // not a patch centre
+        const RotatedOffset o = m.angle_rad == 0.0f
+                                    ? RotatedOffset{dx, dy}
+                                    : rotate_offset(dx, dy, v_.rotation[ci][0], v_.rotation[ci][1]);
+        sx = m.x + o.dx;
+        sy = m.y + o.dy;
+        return true;
+    }
+
+    // Sum of the votes of the patches centred within r of (x, y) into `acc`, each weighing its
+    // patch weight unless `plain`; returns their total weight.
+    double gather(int x, int r, bool plain) {
+        const VoteParams& params = v_.params;
+        const Image& source = v_.source;
+        const int C = channels();
+        std::fill(acc.begin(), acc.end(), 0.0);
+        double total = 0.0;
+        // The patch centred at (x - dx, y - dy) covers this pixel at its offset (dx, dy).
+        for (int dy = -r; dy <= r; ++dy) {
+            for (int dx = -r; dx <= r; ++dx) {
+                int sx = 0, sy = 0;
+                if (!source_of(x, dx, dy, sx, sy)) continue;
+                const std::size_t ci = static_cast<std::size_t>(y_ - dy) * v_.w + (x - dx);
+                const float weight =
+                    params.patch_weights.empty() || plain ? 1.0f : params.patch_weights[ci];
+                if (!(weight > 0.0f)) continue;
+                if (params.clamp_source) {
+                    sx = std::clamp(sx, 0, source.width() - 1);
+                    sy = std::clamp(sy, 0, source.height() - 1);
+                }
+                EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < source.width() && sy < source.height());
+                const float* s = source.pixel(sx, sy);
+                const float vote_weight =
+                    params.source_weights.empty()
+                        ? weight
+                        : weight *
+                              params.source_weights[static_cast<std::size_t>(sy) * source.width() +
+                                                    sx];
+                for (int c = 0; c < C; ++c) acc[static_cast<std::size_t>(c)] += vote_weight * s[c];
+                total += vote_weight;
+            }
+        }
+        return total;
+    }
+
+    // Whether the patches centred within vote_r of (x, y) map it to different source pixels.
+    bool seam_at(int x) const {
+        int fx = 0, fy = 0;
+        bool first = true;
+        for (int dy = -v_.vote_r; dy <= v_.vote_r; ++dy) {
+            for (int dx = -v_.vote_r; dx <= v_.vote_r; ++dx) {
+                int sx = 0, sy = 0;
+                if (!source_of(x, dx, dy, sx, sy)) continue;
+                if (first) {
+                    fx = sx;
+                    fy = sy;
+                    first = false;
+                } else if (sx != fx || sy != fy) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    // Pixel x's total weight with its sums in `acc`: across a seam the plain average of the
+    // whole patches, else the footprint's weighted vote, else (no footprint patch) the whole
+    // patches'. `footprint_total` is the footprint's total if already summed (then in `acc`).
+    double vote_at(int x, const double* footprint_total = nullptr) {
+        if (v_.blend_seams && seam_at(x)) return gather(x, v_.patch_r, /*plain=*/true);
+        double total =
+            footprint_total != nullptr ? *footprint_total : gather(x, v_.vote_r, /*plain=*/false);
+        if (total <= 0.0 && v_.vote_r < v_.patch_r) total = gather(x, v_.patch_r, false);
+        return total;
+    }
+
+    int channels() const { return kChannels > 0 ? kChannels : v_.source.channels(); }
+
+    Sums<kChannels> acc{};
+
+private:
+    const VoteSetup& v_;
+    int y_;
+};
+
+template <int kChannels>
+void write_vote(const Sums<kChannels>& acc, double total, int channels, float* out) {
+    for (int c = 0; c < channels; ++c) {
+        out[c] = static_cast<float>(acc[static_cast<std::size_t>(c)] / total);
+    }
+}
+
+// The reference: every pixel gathers its votes on its own.
+template <int kChannels>
+void vote_pixels(const VoteSetup& v, Image& out, int threads) {
+    parallel_for(0, v.h, threads, [&](int y) {
+        PixelVote<kChannels> pixel(v, y);
+        for (int x = 0; x < v.w; ++x) {
+            const std::size_t qi = static_cast<std::size_t>(y) * v.w + x;
+            if (v.params.fixed != nullptr && v.params.fixed[qi]) continue;
+            const double total = pixel.vote_at(x);
+            if (total > 0.0)
+                write_vote<kChannels>(pixel.acc, total, pixel.channels(), out.pixel(x, y));
+        }
+    });
+}
+
+// A voting patch centre as the row vote reads it: its weight (0 = it does not vote: inactive,
+// no match, or a weight that is not positive) and its match's source pixel index when the
+// match's footprint lies inside the source, else -1 (clamped reads, from the NNF).
+struct Centre {
+    float weight;
+    std::int32_t index;
+};
+
+// Adds the vote of weight w read from source pixel s to a pixel's sums: kChannels channels
+// (0 = `channels`) and the total weight after them. The product is rounded to float before it
+// is added in double, as in PixelVote::gather.
+template <int kChannels>
+inline void add_vote(double* sums, const float* s, float w, int channels) {
+    const int C = kChannels > 0 ? kChannels : channels;
+    for (int k = 0; k < C; ++k) sums[k] += w * s[k];
+    sums[C] += w;
+}
+
+// The same sums as vote_pixels, with the loops turned inside out: a row's pixels take the votes
+// of one patch offset (dy, dx) after another, so every pixel adds the same terms in the same
+// order as the reference (exact to the bit), while its chain of dependent double additions no
+// longer stalls the loop: neighbouring pixels' additions are independent. Unrotated fields
+// without source weights (every engine vote but Brushables'); seams and pixels without a
+// footprint patch take the reference's per-pixel path.
+template <int kChannels>
+void vote_rows(const VoteSetup& v, Image& out, int threads) {
+    const VoteParams& params = v.params;
+    const int w = v.w, h = v.h, r = v.vote_r;
+    const int sw = v.source.width(), sh = v.source.height();
+    const float* source = v.source.data().data();
+    // Bands of output rows, each with the centres of its rows and r rows around them (a table
+    // of the whole field would add its size to the run's peak memory).
+    constexpr int kBand = 8;
+    parallel_for(0, (h + kBand - 1) / kBand, threads, [&](int band) {
+        const int y0 = band * kBand, y1 = std::min(h, y0 + kBand);
+        const int c0 = std::max(0, y0 - r), c1 = std::min(h, y1 + r);
+        std::vector<Centre> centres(static_cast<std::size_t>(c1 - c0) * w);
+        for (std::size_t i = static_cast<std::size_t>(c0) * w,
+                         end = static_cast<std::size_t>(c1) * w;
+             i < end; ++i) {
+            const Match& m = v.nnf[i];
+            float weight = params.patch_weights.empty() ? 1.0f : params.patch_weights[i];
+            if ((params.active != nullptr && !params.active[i]) || m.x < 0 || !(weight > 0.0f)) {
+                weight = 0.0f;
+            }
+            const bool inside = m.x - r >= 0 && m.y - r >= 0 && m.x + r < sw && m.y + r < sh;
+            centres[i - static_cast<std::size_t>(c0) * w] =
+                Centre{weight, inside ? m.y * sw + m.x : -1};
+        }
+        const int C = kChannels > 0 ? kChannels : v.source.channels();
+        const std::size_t stride = static_cast<std::size_t>(C) + 1;  // the sums, then the total
+        std::vector<double> sums(static_cast<std::size_t>(w) * stride);
+        for (int y = y0; y < y1; ++y) {
+            PixelVote<kChannels> pixel(v, y);
+            std::fill(sums.begin(), sums.end(), 0.0);
             for (int dy = -r; dy <= r; ++dy) {
+                const int cy = y - dy;
+                if (cy < 0 || cy >= h) continue;
+                const Centre* row = centres.data() + static_cast<std::size_t>(cy - c0) * w;
                 for (int dx = -r; dx <= r; ++dx) {
-                    int sx = 0, sy = 0;
-                    if (!source_of(x, dx, dy, sx, sy)) continue;
-                    const std::size_t ci = static_cast<std::size_t>(y - dy) * w + (x - dx);
-                    const float weight =
-                        params.patch_weights.empty() || plain ? 1.0f : params.patch_weights[ci];
-                    if (!(weight > 0.0f)) continue;
-                    if (params.clamp_source) {
-                        sx = std::clamp(sx, 0, source.width() - 1);
-                        sy = std::clamp(sy, 0, source.height() - 1);
-                    }
-                    EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < source.width() &&
-                                    sy < source.height());
-                    const float* s = source.pixel(sx, sy);
-                    const float vote_weight =
-                        params.source_weights.empty()
-                            ? weight
-                            : weight * params.source_weights[static_cast<std::size_t>(sy) *
-                                                                 source.width() +
-                                                             sx];
-                    for (int c = 0; c < C; ++c) {
-                        acc[static_cast<std::size_t>(c)] += vote_weight * s[c];
-                    }
-                    total += vote_weight;
-                }
-            }
-            return total;
-        };
-        // Whether the patches centred within vote_r of (x, y) map it to different source pixels.
-        auto seam_at = [&](int x) {
-            int fx = 0, fy = 0;
-            bool first = true;
-            for (int dy = -vote_r; dy <= vote_r; ++dy) {
-                for (int dx = -vote_r; dx <= vote_r; ++dx) {
-                    int sx = 0, sy = 0;
-                    if (!source_of(x, dx, dy, sx, sy)) continue;
-                    if (first) {
-                        fx = sx;
-                        fy = sy;
-                        first = false;
-                    } else if (sx != fx || sy != fy) {
-                        return true;
+                    const int offset = dy * sw + dx;
+                    // The pixels x whose patch centre x - dx lies in the row.
+                    for (int x = std::max(0, dx), x_end = std::min(w, w + dx); x < x_end; ++x) {
+                        const Centre& c = row[x - dx];
+                        if (!(c.weight > 0.0f)) continue;
+                        std::int32_t index = c.index + offset;
+                        if (c.index < 0) {
+                            const Match& m = v.nnf.at(x - dx, cy);
+                            int sx = m.x + dx, sy = m.y + dy;
+                            if (params.clamp_source) {
+                                sx = std::clamp(sx, 0, sw - 1);
+                                sy = std::clamp(sy, 0, sh - 1);
+                            }
+                            EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < sw && sy < sh);
+                            index = sy * sw + sx;
+                        }
+                        add_vote<kChannels>(sums.data() + static_cast<std::size_t>(x) * stride,
+                                            source + static_cast<std::size_t>(index) * C, c.weight,
+                                            C);
                     }
                 }
             }
-            return false;
-        };
-        for (int x = 0; x < w; ++x) {
-            const std::size_t qi = static_cast<std::size_t>(y) * w + x;
-            if (params.fixed != nullptr && params.fixed[qi]) continue;
-            double total = blend_seams && seam_at(x) ? gather(x, patch_r, /*plain=*/true)
-                                                     : gather(x, vote_r, /*plain=*/false);
-            if (total <= 0.0 && vote_r < patch_r) total = gather(x, patch_r, /*plain=*/false);
-            if (total <= 0.0) continue;
-            float* o = out.pixel(x, y);
-            for (int c = 0; c < C; ++c) {
-                o[c] = static_cast<float>(acc[static_cast<std::size_t>(c)] / total);
+            for (int x = 0; x < w; ++x) {
+                const std::size_t qi = static_cast<std::size_t>(y) * w + x;
+                if (params.fixed != nullptr && params.fixed[qi]) continue;
+                const double* s = sums.data() + static_cast<std::size_t>(x) * stride;
+                std::copy_n(s, C, pixel.acc.begin());
+                const double t = pixel.vote_at(x, &s[C]);
+                if (t > 0.0) write_vote<kChannels>(pixel.acc, t, C, out.pixel(x, y));
             }
         }
     });
 }
 
-}  // namespace
+template <int kChannels>
+void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
+                   int threads, bool reference) {
+    const VoteSetup setup(nnf, source, params, threads);
+    // The row vote's source indices are 32-bit.
+    const bool small = source.pixel_count() <= static_cast<std::size_t>(INT32_MAX);
+    if (reference || setup.rotated || !params.source_weights.empty() || !small) {
+        vote_pixels<kChannels>(setup, out, threads);
+    } else {
+        vote_rows<kChannels>(setup, out, threads);
+    }
+}
 
-void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads) {
+void vote_dispatch(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
+                   int threads, bool reference) {
     EXEMPLAR_CHECK_EQ(out.width(), nnf.width());
     EXEMPLAR_CHECK_EQ(out.height(), nnf.height());
     EXEMPLAR_CHECK_EQ(out.channels(), source.channels());
     switch (source.channels()) {
-        case 1: vote_channels<1>(nnf, source, params, out, threads); break;
-        case 3: vote_channels<3>(nnf, source, params, out, threads); break;
-        case 4: vote_channels<4>(nnf, source, params, out, threads); break;
-        default: vote_channels<0>(nnf, source, params, out, threads); break;
+        case 1: vote_channels<1>(nnf, source, params, out, threads, reference); break;
+        case 3: vote_channels<3>(nnf, source, params, out, threads, reference); break;
+        case 4: vote_channels<4>(nnf, source, params, out, threads, reference); break;
+        default: vote_channels<0>(nnf, source, params, out, threads, reference); break;
     }
+}
+
+}  // namespace
+
+void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads) {
+    vote_dispatch(nnf, source, params, out, threads, /*reference=*/false);
+}
+
+void vote_reference(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
+                    int threads) {
+    vote_dispatch(nnf, source, params, out, threads, /*reference=*/true);
 }
 
 }  // namespace exemplar::synth

@@ -77,4 +77,9 @@ private:
 /// count. Pixels that receive no vote (or are fixed) keep their value.
 void vote(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out, int threads);
 
+/// The same vote, each pixel gathering its patches on its own: the definition, and the oracle of
+/// the tests (vote accumulates row by row where it can, in the same order: the same bytes).
+void vote_reference(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
+                    int threads);
+
 }  // namespace exemplar::synth

@@ -339,6 +339,26 @@ TEST(Features, EightBitInputsAreCodedExactly) {
     EXPECT_EQ(flat.code(0.3f), 0);
 }
 
+TEST(Features, CodeEqualsNearbyintReference) {
+    // Every float of [-2, 258] step units around the grid (halves, their neighbouring floats,
+    // the clamps) codes as std::nearbyint and std::clamp do, for the 8-bit grid and a wide range.
+    for (const ChannelQuantizer q :
+         {quantizer_for_range(0.0f, 1.0f), quantizer_for_range(-2.0f, 6.0f)}) {
+        for (int k = -4; k <= 516; ++k) {
+            const float centre = q.offset + q.step * (0.5f * static_cast<float>(k));
+            float v = centre;
+            for (int i = 0; i < 8; ++i) v = std::nextafter(v, -1e9f);
+            for (int i = 0; i < 17; ++i, v = std::nextafter(v, 1e9f)) {
+                ASSERT_EQ(q.code(v), q.code_reference(v)) << "value " << v;
+            }
+        }
+        const float inf = std::numeric_limits<float>::infinity();
+        for (float v : {-1e30f, -0.0f, 0.0f, 1e30f, inf, -inf}) {
+            EXPECT_EQ(q.code(v), q.code_reference(v)) << "value " << v;
+        }
+    }
+}
+
 TEST(PatchDistance, EarlyTerminationExceedsBound) {
     const Level L = make_level(5, false, 0.0f, false);
     const float full = patch_distance(L, 10, 10, 8, 8, 0.0f);

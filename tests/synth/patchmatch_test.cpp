@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
 
 #include "level_builder.hpp"
@@ -98,6 +100,48 @@ TEST(PatchMatch, IdenticalForAnyThreadCount) {
             ASSERT_EQ(a[i].x, b[i].x);
             ASSERT_EQ(a[i].y, b[i].y);
             ASSERT_EQ(a[i].error, b[i].error);
+        }
+    }
+}
+
+// upsample_nnf's tables and integer rounding against its definition written per pixel: the
+// nearest coarse pixel, the offset within it rotated with the match, std::lround. Rotated and
+// unrotated matches, no-match entries, halves (2x) and odd ratios, up and down in source size.
+TEST(UpsampleNnf, EqualsThePerPixelDefinition) {
+    Nnf coarse(13, 9);
+    for (int y = 0; y < coarse.height(); ++y) {
+        for (int x = 0; x < coarse.width(); ++x) {
+            const int k = x * 7 + y * 3;
+            const float angle = k % 3 == 0 ? 0.0f : k % 3 == 1 ? 0.7f * (k % 5) : -2.1f;
+            coarse.at(x, y) = k % 11 == 0 ? Match{-1, -1, 0.0f, 0.0f}
+                                          : Match{(k * 5) % 20, (k * 3) % 15, angle, 0.0f};
+        }
+    }
+    for (const auto& [fw, fh, cdw, cdh, fdw, fdh] :
+         {std::array{26, 18, 20, 15, 40, 30}, std::array{31, 20, 20, 15, 47, 33},
+          std::array{13, 9, 20, 15, 20, 15}, std::array{27, 19, 21, 16, 43, 31}}) {
+        const Nnf fine = upsample_nnf(coarse, cdw, cdh, fw, fh, fdw, fdh);
+        for (int y = 0; y < fh; ++y) {
+            for (int x = 0; x < fw; ++x) {
+                const double u = (x + 0.5) * (static_cast<double>(coarse.width()) / fw) - 0.5;
+                const double v = (y + 0.5) * (static_cast<double>(coarse.height()) / fh) - 0.5;
+                const int cx = std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
+                const int cy = std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
+                const Match& m = coarse.at(cx, cy);
+                const Match& o = fine.at(x, y);
+                if (m.x < 0) {
+                    ASSERT_EQ(o.x, -1);
+                    continue;
+                }
+                const double du = u - cx, dv = v - cy;
+                const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
+                const double su = m.x + c * du - s * dv, sv = m.y + s * du + c * dv;
+                ASSERT_EQ(o.x, std::lround((su + 0.5) * (static_cast<double>(fdw) / cdw) - 0.5))
+                    << x << "," << y;
+                ASSERT_EQ(o.y, std::lround((sv + 0.5) * (static_cast<double>(fdh) / cdh) - 0.5))
+                    << x << "," << y;
+                ASSERT_EQ(o.angle_rad, m.angle_rad);
+            }
         }
     }
 }
