@@ -389,10 +389,10 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
 }
 
 // Of the sources no target uses yet, a late round queries one in this many, a subset that
-// rotates from round to round (every such source queries every this many rounds). They are about
-// 80% of a late round's queries and win about 25% of its targets (texbynum's finest level); the
-// sources near a free target's match win the rest. With 4: 16-24% less CPU on the four examples,
-// texture and patch fidelity within the seeds' spread (docs/PERFORMANCE.md).
+// rotates from round to round (every such source queries every this many rounds). They are
+// 47-80% of a late round's queries and win 11-25% of its targets (texbynum's finest level); the
+// sources near a free target's match win the rest. With 4: 13-26% less CPU on the four examples,
+// texture and patch fidelity within the seeds' spread (docs/performance-history.md).
 constexpr int kUnusedQueryStride = 4;
 
 // Late error-budget rounds: most sources' best free target is one that another source takes
