@@ -388,12 +388,21 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     return stats;
 }
 
+// Of the sources no target uses yet, a late round queries one in this many, a subset that
+// rotates from round to round (every such source queries every this many rounds). They are
+// 47-80% of a late round's queries and win 11-25% of its targets (texbynum's finest level); the
+// sources near a free target's match win the rest. With 4: 13-26% less CPU on the four examples,
+// texture and patch fidelity within the seeds' spread (docs/performance-history.md).
+constexpr int kUnusedQueryStride = 4;
+
 // Late error-budget rounds: most sources' best free target is one that another source takes
 // first, so searching from every source again is mostly wasted. A free target t is most likely
 // won by a source close to its current (forward) match, or by a source no target uses yet (which
-// keeps the usage diverse); `query` keeps only those.
+// keeps the usage diverse); `query` keeps those, the unused ones on the rotating subset of round
+// `round` (kUnusedQueryStride).
 void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nnf& nnf,
-                 const std::vector<std::uint8_t>& used, std::vector<std::uint8_t>& query) {
+                 const std::vector<std::uint8_t>& used, int round,
+                 std::vector<std::uint8_t>& query) {
     std::vector<std::uint8_t> near(query.size(), 0);
     for (std::size_t t = 0; t < free.size(); ++t) {
         if (!free[t]) continue;
@@ -405,7 +414,15 @@ void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nn
             }
         }
     }
-    for (std::size_t s = 0; s < query.size(); ++s) query[s] = query[s] && (near[s] || !used[s]);
+    for (int y = 0; y < L.sh; ++y) {
+        for (int x = 0; x < L.sw; ++x) {
+            const std::size_t s = L.source_index(x, y);
+            // Diagonal lines (x + 3y + round) mod stride = 0: spread over the source, shifted
+            // by one every round.
+            const bool in_turn = (x + 3 * y + round) % kUnusedQueryStride == 0;
+            query[s] = query[s] && (near[s] || (!used[s] && in_turn));
+        }
+    }
 }
 
 // A target pixel whose match continues the source region of fewer than this many of its four
@@ -609,6 +626,62 @@ void merge_uniform_strays(const SearchSetup& setup, Nnf& nnf,
     }
 }
 
+// On the finest level, a free target next to targets the budget just assigned takes the best of
+// their matches shifted by one step (continuing their exemplar piece) if its error is at most this
+// fraction of the round's largest assigned error. With half, at `default`: 11-19% less CPU on
+// facestyle, texbynum and guided2 (fewer and smaller late rounds), 3% on stylit; facestyle keeps
+// 2% more texture, patch fidelity within 3%. With the round's largest error as the bound the
+// mean patch error rose 5-9%. On the coarse levels too it let a region grow over another
+// (RenderStylit's cow 0.898 -> 0.869 blue). docs/performance-history.md, "Late budget rounds".
+constexpr float kGrowErrorFraction = 0.5f;
+
+// After a round of the error budget on the finest level: every free target next to an assigned
+// one proposes the best shifted match of its assigned 4-neighbours within `bound`
+// (kGrowErrorFraction); the proposals, found in parallel from the state before any is applied, are
+// all assigned. A piece the round laid grows by one pixel where the exemplar continues it closely
+// enough, which the reversed retrieval would otherwise find only rounds later, from a source placed
+// anywhere. Returns how many targets it assigned.
+std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const Nnf& nnf,
+                          float bound, std::vector<std::uint8_t>& used) {
+    constexpr std::array<std::array<int, 2>, 4> kSteps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+    const Level& L = setup.level;
+    const std::vector<std::uint8_t>& free = rr.free_mask();
+    std::vector<Candidate> proposals(free.size(), Candidate{kInf, -1, -1, 0.0f});
+    parallel_for(0, L.th, setup.threads, [&](int y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const std::size_t t = L.target_index(x, y);
+            if (!free[t]) continue;
+            Candidate best{kInf, -1, -1, 0.0f};
+            for (const auto& [dx, dy] : kSteps) {
+                const int nx = x + dx, ny = y + dy;
+                if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) continue;
+                const std::size_t n = L.target_index(nx, ny);
+                if (free[n] || !L.target_active[n]) continue;
+                const Match& m = nnf[n];
+                const RotatedOffset o = rotated_step(m.angle_rad, -dx, -dy);
+                const int cx = m.x + o.dx, cy = m.y + o.dy;
+                if (cx < 0 || cy < 0 || cx >= L.sw || cy >= L.sh) continue;
+                const std::size_t c = L.source_index(cx, cy);
+                if (!L.source_valid[c] || !L.compatible(t, cx, cy)) continue;
+                const float angle = L.angle_for(t, cx, cy);
+                const float d = patch_distance(L, x, y, cx, cy, angle, std::min(best.error, bound));
+                if (d < best.error && d <= bound) {
+                    best = Candidate{d, static_cast<int>(c), static_cast<int>(t), angle};
+                }
+            }
+            proposals[t] = best;
+        }
+    });
+    std::size_t grown = 0;
+    for (const Candidate& c : proposals) {
+        if (c.source < 0) continue;
+        used[static_cast<std::size_t>(c.source)] = 1;
+        rr.assign(c);
+        ++grown;
+    }
+    return grown;
+}
+
 // StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
 // whose summed error stays within the budget T estimated at the knee of the sorted errors; once
 // `budget_coverage` of the targets are covered the rest take forward nearest neighbours.
@@ -624,7 +697,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         rr.select_queries([](std::size_t) { return true; });
         if (stats.rounds > 0 &&
             static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
-            focus_query(L, rr.free_mask(), rr.nnf(), used, rr.query_mask());
+            focus_query(L, rr.free_mask(), rr.nnf(), used, stats.rounds, rr.query_mask());
         }
         const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
         ++stats.rounds;
@@ -646,6 +719,10 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
             ++assigned;
         }
         stats.reverse_assigned += assigned;
+        if (setup.finest) {
+            stats.reverse_assigned += grow_assigned(
+                setup, rr, nnf, kGrowErrorFraction * candidates[assigned - 1].error, used);
+        }
         rr.rebuild_free_lists();
     }
     if (rr.free_count() > 0) {

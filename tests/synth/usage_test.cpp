@@ -179,9 +179,15 @@ TEST(UniformUsage, PerLabelSegment) {
     expect_uniform(f);
 }
 
-TEST(ErrorBudget, CoversEveryTargetAndPrefersLowErrors) {
+// On the finest level the budget's pieces also grow between rounds (grow_assigned): the grown
+// matches count as the rounds' and must be as exact and as compatible as the others.
+class ErrorBudgetOnLevel : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ErrorBudgetOnLevel, CoversEveryTargetAndPrefersLowErrors) {
     UsageFixture f = make(24, 24, 40, 36, UsageStrategy::ErrorBudget, false);
-    const SearchStats stats = search(SearchSetup{f.L, f.opt, 3, 2}, f.nnf);
+    SearchSetup setup{f.L, f.opt, 3, 2};
+    setup.finest = GetParam();
+    const SearchStats stats = search(setup, f.nnf);
     EXPECT_GE(stats.rounds, 2);  // the target is larger: patches must be reused
     EXPECT_GT(stats.reverse_assigned, 0u);
     const auto active =
@@ -201,6 +207,11 @@ TEST(ErrorBudget, CoversEveryTargetAndPrefersLowErrors) {
         static_cast<double>(stats.reverse_assigned) / static_cast<double>(active);
     EXPECT_TRUE(covered >= 0.95 || stats.rounds == f.opt.budget_max_rounds) << covered;
 }
+
+INSTANTIATE_TEST_SUITE_P(ErrorBudget, ErrorBudgetOnLevel, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& level) {
+                             return level.param ? "FinestLevel" : "CoarserLevel";
+                         });
 
 // Stray matches: those continuing the source region of fewer than 2 of their 4 neighbours, and
 // those of pieces (targets connected through neighbours that continue each other's source
@@ -366,11 +377,15 @@ TEST(Usage, StrategiesAreDeterministicAcrossThreadCounts) {
                             UsageStrategy::OccurrencePenalty}) {
         UsageFixture a = make(26, 22, 33, 29, s, true);
         UsageFixture b = make(26, 22, 33, 29, s, true);
-        search(SearchSetup{a.L, a.opt, 12, 1}, a.nnf);
-        search(SearchSetup{b.L, b.opt, 12, 2}, b.nnf);
-        for (std::size_t i = 0; i < a.nnf.pixel_count(); ++i) {
-            ASSERT_EQ(a.nnf[i].x, b.nnf[i].x) << to_string(s);
-            ASSERT_EQ(a.nnf[i].y, b.nnf[i].y) << to_string(s);
+        for (bool finest : {false, true}) {  // the finest level's budget grows its pieces
+            SearchSetup one{a.L, a.opt, 12, 1}, two{b.L, b.opt, 12, 2};
+            one.finest = two.finest = finest;
+            search(one, a.nnf);
+            search(two, b.nnf);
+            for (std::size_t i = 0; i < a.nnf.pixel_count(); ++i) {
+                ASSERT_EQ(a.nnf[i].x, b.nnf[i].x) << to_string(s) << " finest " << finest;
+                ASSERT_EQ(a.nnf[i].y, b.nnf[i].y) << to_string(s) << " finest " << finest;
+            }
         }
     }
 }
