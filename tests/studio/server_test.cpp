@@ -7,11 +7,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -31,6 +34,7 @@
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/stylit/stylit.hpp"
 #include "exemplar/video/frame_sequence.hpp"
+#include "sessions.hpp"
 #include "studio.hpp"
 
 namespace exemplar::studio {
@@ -491,6 +495,217 @@ TEST_F(StudioTest, PaintPreviewArrivesFirstAndTheFinalIsTheLibrarysRepaint) {
         400);
 }
 
+// The rectangle of an RGBA answer (its X-Rect header).
+paint::PixelRect rect_of(const httplib::Result& answer) {
+    paint::PixelRect rect;
+    std::sscanf(answer->get_header_value("X-Rect").c_str(), "%d,%d,%d,%d", &rect.x0, &rect.y0,
+                &rect.x1, &rect.y1);
+    return rect;
+}
+
+// Three overlapping strokes across a 160x120 canvas.
+const std::vector<std::vector<paint::StrokePoint>> kCrossing = {
+    {{10, 60}, {80, 50}, {150, 64}}, {{20, 10}, {80, 60}, {140, 110}}, {{90, 8}, {84, 112}}};
+
+// The largest difference between two images of the same shape (infinity otherwise).
+float max_difference(const Image& a, const Image& b) {
+    if (a.width() != b.width() || a.height() != b.height() || a.channels() != b.channels())
+        return INFINITY;
+    float most = 0.0f;
+    for (int y = 0; y < a.height(); ++y) {
+        for (int x = 0; x < a.width(); ++x) {
+            for (int c = 0; c < a.channels(); ++c)
+                most = std::max(most, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+        }
+    }
+    return most;
+}
+
+// The library's finals of strokes applied one by one with repaint, each from the one before.
+std::vector<Image> sequential_repaints(const Image& exemplar, int width, int height,
+                                       const std::vector<paint::Stroke>& strokes,
+                                       const paint::PaintOptions& options) {
+    const paint::PaintSource source = paint_source_of(exemplar);
+    paint::PaintCanvas canvas(width, height);
+    std::vector<Image> finals;
+    Image previous(width, height, 4);
+    for (const paint::Stroke& stroke : strokes) {
+        auto changed = canvas.add_stroke(stroke);
+        EXPECT_TRUE(changed.ok());
+        auto painted = paint::repaint(source, canvas, previous, *changed, options, RunContext(1));
+        EXPECT_TRUE(painted.ok());
+        previous = painted->image;
+        finals.push_back(previous);
+    }
+    return finals;
+}
+
+TEST_F(StudioTest, QuickStrokesAreFinalInOrderAndPreviewsShowNothingOlder) {
+    start();
+    ASSERT_EQ(post("/api/paint/start",
+                   {{"exemplar", "tex.png"}, {"width", 160}, {"height", 120}, {"seed", 5}})
+                  ->status,
+              200);
+    // As the page does on each pen-up: the preview, then the final posted without waiting for
+    // it (on its own connection); the next stroke follows at once. The test waits only until
+    // the server has queued each final (GET /api/paint), so the order is the strokes'.
+    std::vector<paint::Stroke> strokes;
+    std::vector<httplib::Result> previews;
+    std::vector<std::optional<httplib::Result>> finals(kCrossing.size());
+    std::vector<std::thread> posting;
+    for (std::size_t k = 0; k < kCrossing.size(); ++k) {
+        strokes.push_back(stroke_of(kCrossing[k], 18.0f));
+        json points = json::array();
+        for (const paint::StrokePoint& p : kCrossing[k]) points.push_back({p.x, p.y});
+        const json stroke = {{"points", points}, {"width", 18}};
+        previews.push_back(post("/api/paint/preview", stroke));
+        ASSERT_EQ(previews.back()->status, 200) << previews.back()->body;
+        posting.emplace_back([this, k, stroke, &finals] {
+            httplib::Client own("127.0.0.1", server_->port());
+            own.set_default_headers({{"X-Studio-Client", "tab1"}});
+            own.set_read_timeout(60, 0);
+            finals[k].emplace(own.Post("/api/paint/stroke", stroke.dump(), "application/json"));
+        });
+        for (;;) {
+            auto state = client_->Get("/api/paint");
+            ASSERT_EQ(state->status, 200);
+            if (body_of(state)["strokes"] == k + 1) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    for (std::thread& t : posting) t.join();
+
+    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(exemplar.ok());
+    paint::PaintOptions options;
+    options.seed = 5;
+    const std::vector<Image> expected = sequential_repaints(*exemplar, 160, 120, strokes, options);
+    for (std::size_t k = 0; k < strokes.size(); ++k) {
+        // Each final is the library's repaint from the one before: identical bytes.
+        ASSERT_TRUE(finals[k] && *finals[k]);
+        const httplib::Result& final_ = *finals[k];
+        ASSERT_EQ(final_->status, 200) << final_->body;
+        EXPECT_EQ(compare_rgba(final_->body, rect_of(final_), expected[k]).first, 0) << k;
+        if (k == 0) continue;
+        // A preview shows no pixel older than the stroke before it: wherever that stroke
+        // painted, the preview holds paint (its final or its preview), never the blank canvas
+        // from before it.
+        const paint::PixelRect r = rect_of(previews[k]);
+        int older = 0, overlap = 0;
+        for (int y = r.y0; y < r.y1; ++y) {
+            for (int x = r.x0; x < r.x1; ++x) {
+                if (expected[k - 1].at(x, y, 3) < 0.5f) continue;
+                ++overlap;
+                const auto alpha =
+                    static_cast<unsigned char>(previews[k]->body[static_cast<std::size_t>(
+                        ((y - r.y0) * (r.x1 - r.x0) + x - r.x0) * 4 + 3)]);
+                older += alpha == 0;
+            }
+        }
+        EXPECT_GT(overlap, 100) << k;
+        EXPECT_EQ(older, 0) << k;
+    }
+    // The whole painting is the third final; undo steps back to the second.
+    auto undone = post("/api/paint/undo", json::object());
+    EXPECT_EQ(compare_rgba(undone->body, {0, 0, 160, 120}, expected[1]).first, 0);
+    auto redone = post("/api/paint/redo", json::object());
+    EXPECT_EQ(compare_rgba(redone->body, {0, 0, 160, 120}, expected[2]).first, 0);
+}
+
+// The painting pipeline itself, where a test can act in the middle of a repaint (its progress).
+class PaintPipelineTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        auto session = PaintSession::start(texture(64, 48), 160, 120, options(), 2);
+        ASSERT_TRUE(session.ok()) << session.status().message();
+        pipeline_ = std::make_unique<PaintPipeline>(std::move(*session));
+        for (const auto& points : kCrossing) strokes_.push_back(stroke_of(points, 18.0f));
+    }
+    static paint::PaintOptions options() {
+        paint::PaintOptions o;
+        o.seed = 5;
+        return o;
+    }
+    // The whole painting as an undo or redo answers it.
+    static PaintPipeline::Answer keep(Image& into) {
+        return [&into](const Image& image, const paint::PixelRect&) { into = image; };
+    }
+    std::unique_ptr<PaintPipeline> pipeline_;
+    std::vector<paint::Stroke> strokes_;
+};
+
+TEST_F(PaintPipelineTest, UndoStopsTheRunningRepaintAndKeepsThePaintingBefore) {
+    const std::vector<Image> expected =
+        sequential_repaints(texture(64, 48), 160, 120, strokes_, options());
+    ASSERT_TRUE(pipeline_->stroke(strokes_[0], RunContext(2), {}).is_ok());
+    // The second stroke is undone at its repaint's first progress event: the repaint stops and
+    // the stroke answers Cancelled; nothing of it is kept (redo has nothing to bring back).
+    Image after_undo;
+    std::thread undoing;
+    RunContext context(2);
+    bool undone_first = false;
+    context.progress = [&](const ProgressEvent&) {
+        if (undoing.joinable()) return;
+        undoing = std::thread([&] { pipeline_->undo(keep(after_undo)); });
+        while (pipeline_->counts().pending != 0) std::this_thread::yield();
+        undone_first = true;
+    };
+    const Status second = pipeline_->stroke(strokes_[1], context, {});
+    undoing.join();
+    EXPECT_TRUE(undone_first);
+    EXPECT_EQ(second.code(), ErrorCode::Cancelled) << second.message();
+    ASSERT_EQ(after_undo.width(), 160);
+    EXPECT_EQ(max_difference(after_undo, expected[0]), 0.0f);
+    Image after_redo;
+    pipeline_->redo(keep(after_redo));
+    EXPECT_EQ(max_difference(after_redo, expected[0]), 0.0f);
+    // The painting goes on from there as if the stroke had never been sent.
+    Image last;
+    ASSERT_TRUE(pipeline_->stroke(strokes_[1], RunContext(2), keep(last)).is_ok());
+    EXPECT_EQ(max_difference(last, expected[1]), 0.0f);
+}
+
+TEST_F(PaintPipelineTest, UndoDropsTheNewestQueuedStrokeAndCancelStopsAll) {
+    const std::vector<Image> expected =
+        sequential_repaints(texture(64, 48), 160, 120, strokes_, options());
+    // While the first stroke repaints, the second is queued behind it and undone: it never
+    // runs and answers Cancelled; the first ends as the library's, which undo then answers.
+    Status second;
+    std::thread queued, undoing;
+    Image first_final, after_undo;
+    RunContext context(2);
+    context.progress = [&](const ProgressEvent&) {
+        if (queued.joinable()) return;
+        queued = std::thread([&] { second = pipeline_->stroke(strokes_[1], RunContext(2), {}); });
+        while (pipeline_->counts().pending != 2) std::this_thread::yield();
+        undoing = std::thread([&] { pipeline_->undo(keep(after_undo)); });
+        while (pipeline_->counts().pending != 1) std::this_thread::yield();
+    };
+    EXPECT_TRUE(pipeline_->stroke(strokes_[0], context, keep(first_final)).is_ok());
+    queued.join();
+    undoing.join();
+    EXPECT_EQ(second.code(), ErrorCode::Cancelled);
+    EXPECT_EQ(max_difference(first_final, expected[0]), 0.0f);
+    EXPECT_EQ(max_difference(after_undo, expected[0]), 0.0f);
+
+    // cancel() (a new painting replaces this one) stops the running repaint and the queued
+    // stroke alike, and refuses new ones; the painting keeps its last final.
+    context.progress = [&](const ProgressEvent&) {
+        if (queued.joinable()) return;
+        queued = std::thread([&] { second = pipeline_->stroke(strokes_[2], RunContext(2), {}); });
+        while (pipeline_->counts().pending != 2) std::this_thread::yield();
+        pipeline_->cancel();
+    };
+    const Status running = pipeline_->stroke(strokes_[1], context, {});
+    queued.join();
+    EXPECT_EQ(running.code(), ErrorCode::Cancelled);
+    EXPECT_EQ(second.code(), ErrorCode::Cancelled);
+    EXPECT_EQ(pipeline_->stroke(strokes_[2], RunContext(2), {}).code(), ErrorCode::Cancelled);
+    Image last;
+    pipeline_->settled(keep(last));
+    EXPECT_EQ(max_difference(last, expected[0]), 0.0f);
+}
+
 Image band_palette() {
     Image image(200, 64, 3);
     for (int y = 0; y < 64; ++y) {
@@ -504,6 +719,31 @@ Image band_palette() {
         }
     }
     return image;
+}
+
+TEST(StepSlotTest, UndoCancelsTheNewestStepAndACancelledStepKeepsNothing) {
+    StepSlot slot;
+    const auto first = slot.begin();
+    const auto second = slot.begin();
+    EXPECT_TRUE(slot.cancel_newest());
+    EXPECT_TRUE(second->cancelled());
+    EXPECT_FALSE(first->cancelled());
+    EXPECT_FALSE(slot.finish(second));
+    EXPECT_TRUE(slot.finish(first));
+    EXPECT_FALSE(slot.cancel_newest());  // nothing left to stop: undo steps back instead
+    const auto third = slot.begin();
+    slot.cancel_all();
+    EXPECT_FALSE(slot.finish(third));
+
+    // A brush stroke whose token is set stops and leaves the painting as it was.
+    auto session = BrushSession::start(band_palette(), stroke_of({{20, 32}, {180, 32}}, 24.0f), 160,
+                                       80, {}, true, 1);
+    ASSERT_TRUE(session.ok()) << session.status().message();
+    RunContext context(1);
+    context.cancel = third.get();
+    auto stopped = session->stroke(stroke_of({{10, 40}, {150, 44}}, 24.0f), context);
+    EXPECT_EQ(stopped.status().code(), ErrorCode::Cancelled);
+    EXPECT_EQ(max_difference(session->image(), Image(160, 80, 4)), 0.0f);
 }
 
 TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
