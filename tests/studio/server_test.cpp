@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -34,6 +36,7 @@
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/stylit/stylit.hpp"
 #include "exemplar/video/frame_sequence.hpp"
+#include "jobs.hpp"
 #include "sessions.hpp"
 #include "studio.hpp"
 
@@ -1579,6 +1582,37 @@ TEST_F(StudioJobTest, StylitRunsPostedAtOnceLeaveOneRunning) {
         EXPECT_EQ(end["state"], k + 1 < kPosts ? "cancelled" : "done") << end.dump();
     }
     EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+}
+
+TEST(JobManagerTest, OneClientsReplaceWaitDoesNotHoldUpAnothers) {
+    JobManager jobs(1, 1);
+    // Client a's run ends only when the test lets it (it notices no cancel before).
+    std::mutex gate_mutex;
+    std::condition_variable gate_changed;
+    bool open = false;
+    const JobWork slow = [&](const RunContext&, const OutputSink&) -> Status {
+        std::unique_lock lock(gate_mutex);
+        gate_changed.wait(lock, [&] { return open; });
+        return Status::ok();
+    };
+    const JobWork quick = [](const RunContext&, const OutputSink&) { return Status::ok(); };
+    auto first = jobs.replace("a", "stylit", "a1.png", slow);
+    ASSERT_TRUE(first.ok());
+    // A second run of a: it cancels the first and waits for it, holding a's replace lock.
+    std::thread waiting([&] { EXPECT_TRUE(jobs.replace("a", "stylit", "a2.png", quick).ok()); });
+    while (!(*first)->cancel.cancelled()) std::this_thread::yield();
+    // Meanwhile client b replaces its own run at once, without waiting for a's.
+    auto other = std::async(std::launch::async,
+                            [&] { return jobs.replace("b", "stylit", "b1.png", quick); });
+    const bool returned = other.wait_for(std::chrono::seconds(60)) == std::future_status::ready;
+    EXPECT_TRUE(returned) << "b's replace waited for a's cancelled run";
+    {
+        std::lock_guard lock(gate_mutex);
+        open = true;
+    }
+    gate_changed.notify_all();
+    waiting.join();
+    EXPECT_TRUE(other.get().ok());
 }
 
 TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {
