@@ -1126,6 +1126,8 @@ Result<JobWork> StudioServer::Impl::fluid_simulate_work(const json& body, const 
 // whose output and motion exist is the first frame's previous output (a range continued).
 Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths& paths) {
     fluid::FluidOptions fluid_options;
+    bool resume = false;  // a job runs again with other options: it rewrites its frames
+    std::string motion_layer;
     for (const auto& [key, value] : body.items()) {
         if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
             key == "seed") {
@@ -1137,9 +1139,14 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
             fluid_options.uniform_usage = value == "uniform";
             continue;
         }
-        if (key == "rotations") {
-            if (!value.is_boolean()) return invalid_argument("rotations: must be true or false");
-            fluid_options.rotations = value.get<bool>();
+        if (key == "rotations" || key == "resume") {
+            if (!value.is_boolean()) return invalid_argument(key + ": must be true or false");
+            (key == "rotations" ? fluid_options.rotations : resume) = value.get<bool>();
+            continue;
+        }
+        if (key == "motion-layer") {
+            if (!value.is_string()) return invalid_argument("motion-layer: must be a string");
+            motion_layer = value.get<std::string>();
             continue;
         }
         const auto set = set_table_key(fluid_options, fluid::fluid_option_specs(), key, value);
@@ -1148,10 +1155,17 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
     }
     EXEMPLAR_RETURN_IF_ERROR(read_seed(body, fluid_options.synthesis.seed));
     EXEMPLAR_RETURN_IF_ERROR(fluid::validate(fluid_options));
-    auto exemplar = load_image(paths.at("exemplar").string());
+    // A still or a folder of frames, with its alpha apart or not, as exemplar fluid opens it;
+    // every file it reads lies in the workspace.
+    auto exemplar = fluid::FluidExemplar::open(
+        paths.at("exemplar").string(),
+        paths.contains("exemplar-alpha") ? paths.at("exemplar-alpha").string() : "");
     if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
-    if (exemplar->channels() != 4)
-        return invalid_argument("exemplar: needs an alpha channel (RGBA)");
+    for (const std::string& file : exemplar->files()) {
+        const auto inside =
+            workspace.resolve(std::filesystem::relative(file, workspace.root()).generic_string());
+        if (!inside.ok()) return invalid_argument("exemplar: " + inside.status().message());
+    }
     const FrameFiles& alpha = paths.patterns.at("alpha");
     const FrameFiles& motion = paths.patterns.at("motion");
     const FrameFiles& outputs = paths.patterns.at("output");
@@ -1186,11 +1200,13 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
     range.alpha_file = namer("alpha", alpha);
     range.motion_file = namer("motion", motion);
     range.output_file = namer("output", outputs);
-    range.resume = false;  // a job runs again with other options: it rewrites its frames
-    return JobWork([exemplar = std::move(*exemplar), fluid_options, range, outputs](
-                       const RunContext& context, const OutputSink& wrote) -> Status {
+    range.resume = resume;
+    range.motion_layer = motion_layer;
+    return JobWork([exemplar = std::make_shared<fluid::FluidExemplar>(std::move(*exemplar)),
+                    fluid_options, range,
+                    outputs](const RunContext& context, const OutputSink& wrote) -> Status {
         fluid::FluidRange job_range = range;
-        job_range.exemplar = [&exemplar](int) -> Result<Image> { return exemplar; };
+        exemplar->use_in(job_range);
         job_range.on_frame = [&](int n, const Image&, bool) -> Status {
             wrote(n, outputs.relative[static_cast<std::size_t>(n - outputs.first)]);
             return Status::ok();
@@ -1339,6 +1355,7 @@ void StudioServer::Impl::add_job_routes() {
             Fields files;       ///< One path each.
             Fields file_lists;  ///< A path or a list of paths each.
             Result<JobWork> (Impl::*work)(const json&, const JobPaths&);
+            Fields optional_files = {};  ///< One path each, when given.
         };
         // Frame patterns (range jobs): "frames", "output" formatted for first..last.
         using Patterns = std::vector<const char*>;
@@ -1352,7 +1369,7 @@ void StudioServer::Impl::add_job_routes() {
             {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
             {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
             {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
-            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}},
+            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work, {"exemplar-alpha"}}},
             {"npr", {{"pattern"}, {}, &Impl::npr_work}}};
         const auto found = kinds.find(kind);
         if (found == kinds.end()) {
@@ -1369,6 +1386,14 @@ void StudioServer::Impl::add_job_routes() {
             return path;
         };
         for (const char* field : found->second.files) {
+            auto name = text_field(*body, field);
+            if (!name.ok()) return fail(res, name.status());
+            auto path = resolve(field, *name);
+            if (!path.ok()) return;
+            paths.one[field] = *path;
+        }
+        for (const char* field : found->second.optional_files) {
+            if (!body->contains(field)) continue;
             auto name = text_field(*body, field);
             if (!name.ok()) return fail(res, name.status());
             auto path = resolve(field, *name);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/fluid_range.hpp"
 #include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/fluid/simulate.hpp"
 #include "exemplar/io/flow_io.hpp"
@@ -1257,6 +1258,99 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
                                  {"motion", "m%d.flo"}})
                   ->status,
               400);
+}
+
+TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
+    // Targets: the plume, 48 x 48, frames 0..3, written here.
+    fs::create_directories(base_ / "ws" / "sim");
+    ASSERT_TRUE(fluid::simulate(
+                    fluid::plume_scene(48, 48), 4,
+                    [&](int frame, const Image& alpha, const Image& motion) -> Status {
+                        const auto name = [&](const char* pattern) {
+                            return (base_ / "ws" / "sim" /
+                                    *video::format_frame_path(pattern, frame))
+                                .string();
+                        };
+                        EXEMPLAR_RETURN_IF_ERROR(save_image(alpha, name("a%04d.png")));
+                        return save_flow(motion, name("m%04d.flo"));
+                    },
+                    RunContext(1))
+                    .is_ok());
+    // An exemplar sequence of two RGB frames with its alpha in a folder beside it.
+    fs::create_directories(base_ / "ws" / "ink" / "rgb");
+    fs::create_directories(base_ / "ws" / "ink" / "alpha");
+    for (int k = 0; k < 2; ++k) {
+        Image rgba = ink_exemplar(40);
+        for (int y = 0; y < 40 && k == 1; ++y) {
+            for (int x = 0; x < 40; ++x) rgba.at(x, y, 1) *= 0.6f;  // frame 1: another colour
+        }
+        const std::string name = *video::format_frame_path("f%d.png", k);
+        ASSERT_TRUE(
+            save_image(extract_channels(rgba, 0, 3), (base_ / "ws" / "ink" / "rgb" / name).string())
+                .is_ok());
+        ASSERT_TRUE(save_image(extract_channels(rgba, 3, 1),
+                               (base_ / "ws" / "ink" / "alpha" / name).string())
+                        .is_ok());
+    }
+    start();
+    const json good = {{"kind", "fluid"},
+                       {"exemplar", "ink/rgb"},
+                       {"exemplar-alpha", "ink/alpha"},
+                       {"alpha", "sim/a%04d.png"},
+                       {"motion", "sim/m%04d.flo"},
+                       {"motion-layer", ""},
+                       {"first", 1},
+                       {"last", 3},
+                       {"output", "outputs/%04d.png"},
+                       {"seed", 4},
+                       {"patch-size", 3},
+                       {"resume", false}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+
+    // The library's range driver on the same files, as exemplar fluid calls it: the same bytes.
+    auto exemplar = fluid::FluidExemplar::open((base_ / "ws" / "ink" / "rgb").string(),
+                                               (base_ / "ws" / "ink" / "alpha").string());
+    ASSERT_TRUE(exemplar.ok()) << exemplar.status().message();
+    EXPECT_EQ(exemplar->size(), 2);
+    fluid::FluidRange range;
+    range.first = 1;
+    range.last = 3;
+    const auto in = [&](const fs::path& folder, const char* pattern) {
+        return [folder, pattern](int n) -> Result<std::string> {
+            auto name = video::format_frame_path(pattern, n);
+            if (!name.ok()) return name.status();
+            return (folder / *name).string();
+        };
+    };
+    range.alpha_file = in(base_ / "ws" / "sim", "a%04d.png");
+    range.motion_file = in(base_ / "ws" / "sim", "m%04d.flo");
+    range.output_file = in(base_ / "mine", "%04d.png");
+    range.resume = false;
+    exemplar->use_in(range);
+    EXPECT_TRUE(range.exemplar_sequence);
+    fs::create_directories(base_ / "mine");
+    fluid::FluidOptions options;
+    options.synthesis.seed = 4;
+    options.patch_size = 3;
+    ASSERT_TRUE(fluid::synthesize_fluid_range(range, options, RunContext(1)).is_ok());
+    for (int n = 1; n <= 3; ++n) {
+        const std::string name = *video::format_frame_path("%04d.png", n);
+        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / name) ==
+                    file_bytes(base_ / "mine" / name))
+            << name;
+    }
+    // Refusals: one line naming the key (400); an alpha outside the workspace (403).
+    expect_refused("/api/jobs", good,
+                   {{"resume", 1, "resume: "},
+                    {"motion-layer", 3, "motion-layer: "},
+                    {"exemplar-alpha", "tex.png", "exemplar: "}});
+    json outside = good;
+    outside["exemplar-alpha"] = "../outside/alpha";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
 }
 
 TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
