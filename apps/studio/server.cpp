@@ -1385,20 +1385,15 @@ void StudioServer::Impl::add_job_routes() {
             if (!path.ok()) fail(res, 403, std::string(field) + ": " + path.status().message());
             return path;
         };
-        for (const char* field : found->second.files) {
-            auto name = text_field(*body, field);
-            if (!name.ok()) return fail(res, name.status());
-            auto path = resolve(field, *name);
-            if (!path.ok()) return;
-            paths.one[field] = *path;
-        }
-        for (const char* field : found->second.optional_files) {
-            if (!body->contains(field)) continue;
-            auto name = text_field(*body, field);
-            if (!name.ok()) return fail(res, name.status());
-            auto path = resolve(field, *name);
-            if (!path.ok()) return;
-            paths.one[field] = *path;
+        for (const Fields* fields : {&found->second.files, &found->second.optional_files}) {
+            for (const char* field : *fields) {
+                if (fields == &found->second.optional_files && !body->contains(field)) continue;
+                auto name = text_field(*body, field);
+                if (!name.ok()) return fail(res, name.status());
+                auto path = resolve(field, *name);
+                if (!path.ok()) return;
+                paths.one[field] = *path;
+            }
         }
         for (const char* field : found->second.file_lists) {
             auto names = path_list_field(*body, field);
