@@ -43,103 +43,6 @@ Result<std::string> frame_file(const std::string& flag, const std::string& patte
     return path;
 }
 
-// The exemplar: a still (RGBA, or RGB with a separate alpha) or a folder of frames.
-class Exemplar {
-public:
-    static Result<Exemplar> open(const std::string& path, const std::string& alpha_path) {
-        Exemplar ex;
-        std::error_code ec;
-        if (fs::is_directory(path, ec)) {
-            auto seq = video::FrameSequence::from_folder(path);
-            if (!seq.ok()) return seq.status();
-            ex.frames_.emplace(std::move(seq).value());
-            if (!alpha_path.empty()) {
-                auto alpha = video::FrameSequence::from_folder(alpha_path);
-                if (!alpha.ok()) return alpha.status();
-                if (alpha->size() != ex.frames_->size()) {
-                    return invalid_argument("--exemplar-alpha: " + alpha_path + " has " +
-                                            std::to_string(alpha->size()) + " frames but " + path +
-                                            " has " + std::to_string(ex.frames_->size()));
-                }
-                ex.alpha_frames_.emplace(std::move(alpha).value());
-            }
-            ex.path_ = path;
-            ex.alpha_path_ = alpha_path;
-            // Check the first frame now (channels, alpha), so a bad exemplar fails up front.
-            auto first = ex.frame(0);
-            if (!first.ok()) return first.status();
-            return ex;
-        }
-        ex.path_ = path;
-        ex.alpha_path_ = alpha_path;
-        auto still = ex.load(path, alpha_path);
-        if (!still.ok()) return still.status();
-        ex.still_ = std::move(still).value();
-        return ex;
-    }
-
-    int size() const { return frames_ ? frames_->size() : 1; }
-
-    // Exemplar frame for output frame number n: frame n mod the sequence's length.
-    Result<Image> frame(int n) {
-        if (!frames_) return still_;
-        const int m = frames_->size();
-        const int index = ((n % m) + m) % m;
-        auto image = frames_->read(index);
-        if (!image.ok()) return image.status();
-        std::optional<Image> alpha;
-        if (alpha_frames_) {
-            auto a = alpha_frames_->read(index);
-            if (!a.ok()) return a.status();
-            alpha = std::move(a).value();
-        }
-        return combine(std::move(image).value(), alpha, frames_->frame_name(index),
-                       alpha_frames_ ? alpha_frames_->frame_name(index) : "");
-    }
-
-private:
-    Result<Image> load(const std::string& path, const std::string& alpha_path) {
-        auto image = load_image(path);
-        if (!image.ok()) return image.status();
-        std::optional<Image> alpha;
-        if (!alpha_path.empty()) {
-            auto a = load_image(alpha_path);
-            if (!a.ok()) return a.status();
-            alpha = std::move(a).value();
-        }
-        return combine(std::move(image).value(), alpha, path, alpha_path);
-    }
-
-    static Result<Image> combine(Image image, const std::optional<Image>& alpha,
-                                 const std::string& name, const std::string& alpha_name) {
-        if (alpha) {
-            if (alpha->width() != image.width() || alpha->height() != image.height()) {
-                return invalid_argument(alpha_name + ": alpha is " + size_str(*alpha) +
-                                        " but the exemplar is " + size_str(image));
-            }
-            if (image.channels() == 4) image = extract_channels(image, 0, 3);
-            if (image.channels() == 1) {
-                const Image grey = image;
-                image = concat_channels({&grey, &grey, &grey});
-            }
-            const Image a = extract_channels(*alpha, 0, 1);
-            return concat_channels({&image, &a});
-        }
-        if (image.channels() != 4) {
-            return invalid_argument(name + ": the exemplar has " +
-                                    std::to_string(image.channels()) +
-                                    " channels but needs an alpha channel (RGBA), or give "
-                                    "--exemplar-alpha");
-        }
-        return image;
-    }
-
-    std::string path_, alpha_path_;
-    Image still_;
-    std::optional<video::FrameSequence> frames_;
-    std::optional<video::FrameSequence> alpha_frames_;
-};
-
 // A scene JSON file: {"width":..,"height":..,"emitters":[{"position":[x,y],"radius":r,
 // "rate":q,"velocity":[u,v]}],"obstacles":[{"position":[x,y],"radius":r}],"gravity":[gx,gy],
 // "buoyancy":b,"vorticity":e,"viscosity":n,"diffusion":k,"density-decay":d,
@@ -472,11 +375,11 @@ Status FluidCommand::run_transfer(const Streams& streams) {
     range.output_file = [&](int n) { return frame_file("--output", output_, n); };
     range.motion_layer = motion_layer_;
     range.resume = resume_;
-    auto exemplar = Exemplar::open(exemplar_, exemplar_alpha_);
-    range.exemplar = [&](int n) { return exemplar->frame(n); };
+    auto exemplar = fluid::FluidExemplar::open(exemplar_, exemplar_alpha_);
+    range.exemplar = [](int) -> Result<Image> { return Image(); };  // set below, once opened
     EXEMPLAR_RETURN_IF_ERROR(fluid::check_fluid_range(range));
     if (!exemplar.ok()) return exemplar.status();
-    range.exemplar_sequence = exemplar->size() > 1;
+    exemplar->use_in(range);
     std::optional<video::Mp4Writer> mp4;
     if (!mp4_.empty()) {
         auto first_alpha_path = frame_file("--alpha", alpha_, first);

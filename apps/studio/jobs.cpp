@@ -160,10 +160,28 @@ void JobManager::supersede(const std::string& client, const std::string& kind) {
 
 Result<std::shared_ptr<Job>> JobManager::replace(const std::string& client, const std::string& kind,
                                                  const std::string& output, JobWork work) {
-    // Without the lock two posts could both cancel the old run and then both start.
-    std::lock_guard lock(replace_mutex_);
-    supersede(client, kind);
-    return start(client, kind, output, std::move(work));
+    // Without the client's lock two posts could both cancel the old run and then both start;
+    // with one lock for all clients, one client's wait for its cancelled run would hold up
+    // every other client's replacement.
+    std::shared_ptr<std::mutex> client_mutex;
+    {
+        std::lock_guard lock(mutex_);
+        auto& slot = replace_mutexes_[client];
+        if (!slot) slot = std::make_shared<std::mutex>();
+        client_mutex = slot;
+    }
+    auto job = [&] {
+        std::lock_guard lock(*client_mutex);
+        supersede(client, kind);
+        return start(client, kind, output, std::move(work));
+    }();
+    // The client's lock is forgotten when no other replacement holds it (copies are only made
+    // under mutex_, so the count is settled here): the map stays as small as the clients
+    // replacing at the moment.
+    std::lock_guard lock(mutex_);
+    const auto it = replace_mutexes_.find(client);
+    if (it != replace_mutexes_.end() && it->second.use_count() == 2) replace_mutexes_.erase(it);
+    return job;
 }
 
 void JobManager::shutdown() {

@@ -67,8 +67,9 @@ public:
     Result<std::shared_ptr<Job>> start(const std::string& client, const std::string& kind,
                                        const std::string& output, JobWork work);
     /// Cancels `client`'s running jobs of `kind`, waits until they have ended and starts `work`
-    /// as start() does, as one step: of replacements posted at the same moment one runs, the
-    /// last, and the others end cancelled. A tool that runs again on every change (StyLit) keeps
+    /// as start() does, as one step per client: of a client's replacements posted at the same
+    /// moment one runs, the last, and the others end cancelled; other clients' replacements do
+    /// not wait for it. A tool that runs again on every change (StyLit) keeps
     /// one run, the latest.
     Result<std::shared_ptr<Job>> replace(const std::string& client, const std::string& kind,
                                          const std::string& output, JobWork work);
@@ -90,8 +91,9 @@ private:
     const int threads_;
     const std::size_t kept_finished_;
     mutable std::mutex mutex_;
-    /// Held across replace()'s cancel, wait and start (not mutex_, which listings need meanwhile).
-    std::mutex replace_mutex_;
+    /// Per client, held across replace()'s cancel, wait and start (not mutex_, which listings
+    /// need meanwhile), so one client's wait does not delay another's. Under mutex_.
+    std::map<std::string, std::shared_ptr<std::mutex>> replace_mutexes_;
     /// By id: numbers in the order of creation.
     std::map<std::size_t, std::shared_ptr<Job>> jobs_;
     std::size_t next_id_ = 1;

@@ -55,13 +55,14 @@ void fail(Response& res, int http_status, const std::string& message) {
     answer(res, http_status, {{"error", message}});
 }
 
-// A library Status as an HTTP answer: bad input 400, missing or unreadable file 404, refused
-// (too many jobs, shutting down) 429, anything else 500.
+// A library Status as an HTTP answer: bad input 400, missing or unreadable file 404, cancelled
+// (undone, superseded) 409, refused (too many jobs, shutting down) 429, anything else 500.
 void fail(Response& res, const Status& status) {
     switch (status.code()) {
         case ErrorCode::InvalidArgument: return fail(res, 400, status.message());
         case ErrorCode::IoError: return fail(res, 404, status.message());
         case ErrorCode::Unsupported: return fail(res, 429, status.message());
+        case ErrorCode::Cancelled: return fail(res, 409, status.message());
         default: return fail(res, 500, status.message());
     }
 }
@@ -250,8 +251,11 @@ struct ClientState {
     std::mutex mutex;
     std::uint64_t used = 0;  ///< When it was last asked for (the server's request count).
     SketchSession sketch;
-    std::optional<PaintSession> paint;
+    /// Shared: a request keeps using the painting it found while a new start replaces it.
+    std::shared_ptr<PaintPipeline> paint;
     std::optional<BrushSession> brush;
+    /// The brush's strokes and fills in flight: undo and a new start cancel them.
+    StepSlot brush_steps;
 };
 
 }  // namespace
@@ -322,6 +326,31 @@ struct StudioServer::Impl {
         handler(*state);
     }
 
+    /// Runs a brush step, `step(session, context)` → the rectangle it changed, under the
+    /// client's lock with its own cancel token (StepSlot), and answers that rectangle. A step
+    /// that undo or a new start cancels answers 409 and keeps nothing (one that had finished
+    /// goes to redo).
+    template <typename Step>
+    void brush_step(const Request& req, Response& res, Step step) {
+        const std::string id = client_id(req, res);
+        if (id.empty()) return;
+        const auto state = client(id);
+        const auto token = state->brush_steps.begin();
+        std::lock_guard lock(state->mutex);
+        RunContext context(options.threads);
+        context.cancel = token.get();
+        auto changed =
+            state->brush ? step(*state->brush, context) : Result<paint::PixelRect>(unsupported(""));
+        const bool kept = state->brush_steps.finish(token);
+        if (!state->brush) return fail(res, 409, "no painting: POST /api/brush/start first");
+        if (!changed.ok()) return fail(res, changed.status());
+        if (!kept) {
+            state->brush->undo();
+            return fail(res, 409, "stroke: cancelled (undone, or the painting was replaced)");
+        }
+        answer_rgba(res, state->brush->image(), *changed);
+    }
+
     /// Why a request comes from elsewhere than the studio's own page ("" if it does not). The
     /// app has no login, so (1) on a loopback address the Host header must name that address
     /// or localhost, which defeats DNS rebinding (a page whose name resolves to 127.0.0.1
@@ -362,8 +391,12 @@ struct StudioServer::Impl {
     void add_paint_routes();
     void add_brush_routes();
     void add_fill_route();
-    template <class Session>
-    void add_canvas_routes(const std::string& tool, std::optional<Session> ClientState::*session);
+    void add_paint_canvas_routes();
+    void add_brush_canvas_routes();
+    /// The client's painting, or null after answering (400 for a bad client id, 409 without one).
+    std::shared_ptr<PaintPipeline> painting(const Request& req, Response& res);
+    /// Cancels every client's pending paint strokes and brush steps (shutdown).
+    void cancel_paintings();
     void add_job_routes();
     /// A job's files by field, resolved in the workspace by the route: one path per field
     /// (stylize: style, source, target, output; noisy: exemplar, reference, output; stylit:
@@ -424,8 +457,8 @@ void StudioServer::Impl::add_routes() {
     add_sketch_routes();
     add_paint_routes();
     add_brush_routes();
-    add_canvas_routes("paint", &ClientState::paint);
-    add_canvas_routes("brush", &ClientState::brush);
+    add_paint_canvas_routes();
+    add_brush_canvas_routes();
     add_fill_route();
     add_job_routes();
 }
@@ -560,7 +593,9 @@ void StudioServer::Impl::add_paint_routes() {
                                            paint_options, options.threads);
         if (!session.ok()) return fail(res, session.status());
         with_client(req, res, [&](ClientState& c) {
-            c.paint.emplace(std::move(*session));
+            // The strokes still pending on the old painting stop.
+            if (c.paint) c.paint->cancel();
+            c.paint = std::make_shared<PaintPipeline>(std::move(*session));
             answer(res, 200, {{"width", c.paint->width()}, {"height", c.paint->height()}});
         });
     });
@@ -573,71 +608,155 @@ void StudioServer::Impl::add_paint_routes() {
         if (!stroke.ok()) return fail(res, stroke.status());
         auto reduction = number_field(*body, "reduction", 4.0, 1.0, 16.0);
         if (!reduction.ok()) return fail(res, reduction.status());
-        with_client(req, res, [&](ClientState& c) {
-            if (!c.paint) return fail(res, 409, "no painting: POST /api/paint/start first");
-            auto preview =
-                c.paint->preview(*stroke, static_cast<int>(*reduction), interactive_context());
-            if (!preview.ok()) return fail(res, preview.status());
-            answer_rgba(res, preview->image, preview->changed);
+        const auto paint = painting(req, res);
+        if (!paint) return;
+        const Status previewed =
+            paint->preview(*stroke, static_cast<int>(*reduction), interactive_context(),
+                           [&res](const Image& image, const paint::PixelRect& rect) {
+                               answer_rgba(res, image, rect);
+                           });
+        if (!previewed.is_ok()) return fail(res, previewed);
+    });
+}
+
+namespace {
+
+// The "output" of a save request: a .png path in the workspace, or nullopt after answering.
+std::optional<std::filesystem::path> png_output(const json& body, const Workspace& workspace,
+                                                Response& res) {
+    auto output = text_field(body, "output");
+    if (!output.ok()) {
+        fail(res, output.status());
+        return std::nullopt;
+    }
+    if (content_type_of(*output) != "image/png") {
+        fail(res, 400, "output: " + *output + " must end in .png");
+        return std::nullopt;
+    }
+    auto path = workspace.resolve(*output);
+    if (!path.ok()) {
+        fail(res, 403, path.status().message());
+        return std::nullopt;
+    }
+    return *path;
+}
+
+}  // namespace
+
+std::shared_ptr<PaintPipeline> StudioServer::Impl::painting(const Request& req, Response& res) {
+    const std::string id = client_id(req, res);
+    if (id.empty()) return nullptr;
+    const auto state = client(id);
+    std::lock_guard lock(state->mutex);
+    if (!state->paint) fail(res, 409, "no painting: POST /api/paint/start first");
+    return state->paint;
+}
+
+void StudioServer::Impl::cancel_paintings() {
+    std::lock_guard lock(clients_mutex);
+    for (const auto& [id, state] : clients) {
+        state->brush_steps.cancel_all();
+        std::lock_guard client_lock(state->mutex);
+        if (state->paint) state->paint->cancel();
+    }
+}
+
+// A painting's stroke, undo, redo and save, through its pipeline (PaintPipeline): a stroke
+// answers the rectangle it changed as RGBA once the strokes before it are final, undo and redo
+// the whole canvas; save writes it as a PNG into the workspace. None holds the client's lock
+// while it waits, so previews and other tools go on.
+void StudioServer::Impl::add_paint_canvas_routes() {
+    const auto answer_with = [](Response& res) {
+        return [&res](const Image& image, const paint::PixelRect& rect) {
+            answer_rgba(res, image, rect);
+        };
+    };
+    http->route(
+        "POST", "/api/paint/stroke", [this, answer_with](const Request& req, Response& res) {
+            const auto body = json_body(req, res);
+            if (!body) return;
+            auto stroke = stroke_field(*body);
+            if (!stroke.ok()) return fail(res, stroke.status());
+            const auto paint = painting(req, res);
+            if (!paint) return;
+            const Status painted = paint->stroke(*stroke, interactive_context(), answer_with(res));
+            if (!painted.is_ok()) return fail(res, painted);
+        });
+    http->route("POST", "/api/paint/undo", [this, answer_with](const Request& req, Response& res) {
+        if (const auto paint = painting(req, res)) paint->undo(answer_with(res));
+    });
+    http->route("POST", "/api/paint/redo", [this, answer_with](const Request& req, Response& res) {
+        if (const auto paint = painting(req, res)) paint->redo(answer_with(res));
+    });
+    http->route("GET", "/api/paint", [this](const Request& req, Response& res) {
+        const auto paint = painting(req, res);
+        if (!paint) return;
+        const PaintPipeline::Counts counts = paint->counts();
+        answer(res, 200,
+               {{"width", paint->width()},
+                {"height", paint->height()},
+                {"strokes", counts.strokes},
+                {"pending", counts.pending}});
+    });
+    http->route("POST", "/api/paint/save", [this](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        const auto path = png_output(*body, workspace, res);
+        if (!path) return;
+        const auto paint = painting(req, res);
+        if (!paint) return;
+        paint->settled([&](const Image& image, const paint::PixelRect&) {
+            const Status saved = save_image(image, path->string());
+            if (!saved.is_ok()) return fail(res, 500, saved.message());
+            answer(res, 200, {{"path", body->value("output", std::string())}});
         });
     });
 }
 
-// Stroke, undo, redo and save of a tool whose state is a painting (paint, brush): a stroke
-// answers the rectangle it changed as RGBA, undo and redo the whole canvas; save writes it as a
-// PNG into the workspace.
-template <class Session>
-void StudioServer::Impl::add_canvas_routes(const std::string& tool,
-                                           std::optional<Session> ClientState::*session) {
-    const std::string missing = "no painting: POST /api/" + tool + "/start first";
-    http->route("POST", "/api/" + tool + "/stroke",
-                [this, session, missing](const Request& req, Response& res) {
-                    const auto body = json_body(req, res);
-                    if (!body) return;
-                    auto stroke = stroke_field(*body);
-                    if (!stroke.ok()) return fail(res, stroke.status());
-                    with_client(req, res, [&](ClientState& c) {
-                        auto& s = c.*session;
-                        if (!s) return fail(res, 409, missing);
-                        auto changed = s->stroke(*stroke, interactive_context());
-                        if (!changed.ok()) return fail(res, changed.status());
-                        answer_rgba(res, s->image(), *changed);
-                    });
-                });
+// The brush painting's stroke, undo, redo and save: a stroke answers the rectangle it changed
+// as RGBA, undo and redo the whole canvas; save writes it as a PNG into the workspace.
+void StudioServer::Impl::add_brush_canvas_routes() {
+    const std::string missing = "no painting: POST /api/brush/start first";
+    http->route("POST", "/api/brush/stroke", [this, missing](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        auto stroke = stroke_field(*body);
+        if (!stroke.ok()) return fail(res, stroke.status());
+        brush_step(req, res, [&](BrushSession& brush, const RunContext& context) {
+            return brush.stroke(*stroke, context);
+        });
+    });
     for (const std::string action : {"undo", "redo"}) {
-        http->route("POST", "/api/" + tool + "/" + action,
-                    [this, action, session, missing](const Request& req, Response& res) {
-                        with_client(req, res, [&](ClientState& c) {
-                            auto& s = c.*session;
-                            if (!s) return fail(res, 409, missing);
-                            if (action == "undo") {
-                                s->undo();
-                            } else {
-                                s->redo();
-                            }
-                            answer_rgba(res, s->image(), {0, 0, s->width(), s->height()});
-                        });
-                    });
-    }
-    http->route("POST", "/api/" + tool + "/save",
-                [this, session, missing](const Request& req, Response& res) {
-                    const auto body = json_body(req, res);
-                    if (!body) return;
-                    auto output = text_field(*body, "output");
-                    if (!output.ok()) return fail(res, output.status());
-                    if (content_type_of(*output) != "image/png") {
-                        return fail(res, 400, "output: " + *output + " must end in .png");
+        http->route(
+            "POST", "/api/brush/" + action,
+            [this, action, missing](const Request& req, Response& res) {
+                // Undo takes back the newest stroke or fill: one still running stops.
+                const std::string id = client_id(req, res);
+                if (id.empty()) return;
+                const bool stopped = action == "undo" && client(id)->brush_steps.cancel_newest();
+                with_client(req, res, [&](ClientState& c) {
+                    if (!c.brush) return fail(res, 409, missing);
+                    if (action == "redo") {
+                        c.brush->redo();
+                    } else if (!stopped) {
+                        c.brush->undo();
                     }
-                    auto path = workspace.resolve(*output);
-                    if (!path.ok()) return fail(res, 403, path.status().message());
-                    with_client(req, res, [&](ClientState& c) {
-                        auto& s = c.*session;
-                        if (!s) return fail(res, 409, missing);
-                        const Status saved = save_image(s->image(), path->string());
-                        if (!saved.is_ok()) return fail(res, 500, saved.message());
-                        answer(res, 200, {{"path", *output}});
-                    });
+                    answer_rgba(res, c.brush->image(), {0, 0, c.brush->width(), c.brush->height()});
                 });
+            });
+    }
+    http->route("POST", "/api/brush/save", [this, missing](const Request& req, Response& res) {
+        const auto body = json_body(req, res);
+        if (!body) return;
+        const auto path = png_output(*body, workspace, res);
+        if (!path) return;
+        with_client(req, res, [&](ClientState& c) {
+            if (!c.brush) return fail(res, 409, missing);
+            const Status saved = save_image(c.brush->image(), path->string());
+            if (!saved.is_ok()) return fail(res, 500, saved.message());
+            answer(res, 200, {{"path", body->value("output", std::string())}});
+        });
+    });
 }
 
 void StudioServer::Impl::add_brush_routes() {
@@ -663,6 +782,10 @@ void StudioServer::Impl::add_brush_routes() {
             BrushSession::start(start->image, *selection, start->width, start->height,
                                 brush_options, body->value("snap", true), options.threads);
         if (!session.ok()) return fail(res, session.status());
+        // Strokes and fills running or waiting on the old painting stop.
+        const std::string id = client_id(req, res);
+        if (id.empty()) return;
+        client(id)->brush_steps.cancel_all();
         with_client(req, res, [&](ClientState& c) {
             c.brush.emplace(std::move(*session));
             json line = json::array();
@@ -697,17 +820,15 @@ void StudioServer::Impl::add_fill_route() {
             if (!set) return fail(res, 400, key + ": unknown option of the fill");
             if (!set->is_ok()) return fail(res, *set);
         }
-        with_client(req, res, [&](ClientState& c) {
-            if (!c.brush) return fail(res, 409, "no painting: POST /api/brush/start first");
-            auto source = region_field(*body, "source", c.brush->palette().width(),
-                                       c.brush->palette().height());
-            if (!source.ok()) return fail(res, source.status());
-            auto target = region_field(*body, "target", c.brush->width(), c.brush->height());
-            if (!target.ok()) return fail(res, target.status());
-            auto changed = c.brush->fill(*source, *target, fill_options, interactive_context());
-            if (!changed.ok()) return fail(res, changed.status());
-            answer_rgba(res, c.brush->image(), *changed);
-        });
+        brush_step(req, res,
+                   [&](BrushSession& brush, const RunContext& context) -> Result<paint::PixelRect> {
+                       auto source = region_field(*body, "source", brush.palette().width(),
+                                                  brush.palette().height());
+                       if (!source.ok()) return source.status();
+                       auto target = region_field(*body, "target", brush.width(), brush.height());
+                       if (!target.ok()) return target.status();
+                       return brush.fill(*source, *target, fill_options, context);
+                   });
     });
 }
 
@@ -1026,6 +1147,8 @@ Result<JobWork> StudioServer::Impl::fluid_simulate_work(const json& body, const 
 // whose output and motion exist is the first frame's previous output (a range continued).
 Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths& paths) {
     fluid::FluidOptions fluid_options;
+    bool resume = false;  // a job runs again with other options: it rewrites its frames
+    std::string motion_layer;
     for (const auto& [key, value] : body.items()) {
         if (key == "kind" || paths.contains(key) || key == "first" || key == "last" ||
             key == "seed") {
@@ -1037,9 +1160,14 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
             fluid_options.uniform_usage = value == "uniform";
             continue;
         }
-        if (key == "rotations") {
-            if (!value.is_boolean()) return invalid_argument("rotations: must be true or false");
-            fluid_options.rotations = value.get<bool>();
+        if (key == "rotations" || key == "resume") {
+            if (!value.is_boolean()) return invalid_argument(key + ": must be true or false");
+            (key == "rotations" ? fluid_options.rotations : resume) = value.get<bool>();
+            continue;
+        }
+        if (key == "motion-layer") {
+            if (!value.is_string()) return invalid_argument("motion-layer: must be a string");
+            motion_layer = value.get<std::string>();
             continue;
         }
         const auto set = set_table_key(fluid_options, fluid::fluid_option_specs(), key, value);
@@ -1048,10 +1176,17 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
     }
     EXEMPLAR_RETURN_IF_ERROR(read_seed(body, fluid_options.synthesis.seed));
     EXEMPLAR_RETURN_IF_ERROR(fluid::validate(fluid_options));
-    auto exemplar = load_image(paths.at("exemplar").string());
+    // A still or a folder of frames, with its alpha apart or not, as exemplar fluid opens it;
+    // every file it reads lies in the workspace.
+    auto exemplar = fluid::FluidExemplar::open(
+        paths.at("exemplar").string(),
+        paths.contains("exemplar-alpha") ? paths.at("exemplar-alpha").string() : "");
     if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
-    if (exemplar->channels() != 4)
-        return invalid_argument("exemplar: needs an alpha channel (RGBA)");
+    for (const std::string& file : exemplar->files()) {
+        const auto inside =
+            workspace.resolve(std::filesystem::relative(file, workspace.root()).generic_string());
+        if (!inside.ok()) return invalid_argument("exemplar: " + inside.status().message());
+    }
     const FrameFiles& alpha = paths.patterns.at("alpha");
     const FrameFiles& motion = paths.patterns.at("motion");
     const FrameFiles& outputs = paths.patterns.at("output");
@@ -1069,11 +1204,13 @@ Result<JobWork> StudioServer::Impl::fluid_work(const json& body, const JobPaths&
     range.alpha_file = frame_namer(workspace, body, "alpha", alpha.first, alpha.absolute);
     range.motion_file = frame_namer(workspace, body, "motion", motion.first, motion.absolute);
     range.output_file = frame_namer(workspace, body, "output", outputs.first, outputs.absolute);
-    range.resume = false;  // a job runs again with other options: it rewrites its frames
-    return JobWork([exemplar = std::move(*exemplar), fluid_options, range, outputs](
-                       const RunContext& context, const OutputSink& wrote) -> Status {
+    range.resume = resume;
+    range.motion_layer = motion_layer;
+    return JobWork([exemplar = std::make_shared<fluid::FluidExemplar>(std::move(*exemplar)),
+                    fluid_options, range,
+                    outputs](const RunContext& context, const OutputSink& wrote) -> Status {
         fluid::FluidRange job_range = range;
-        job_range.exemplar = [&exemplar](int) -> Result<Image> { return exemplar; };
+        exemplar->use_in(job_range);
         job_range.on_frame = [&](int n, const Image&, bool) -> Status {
             wrote(n, outputs.relative[static_cast<std::size_t>(n - outputs.first)]);
             return Status::ok();
@@ -1193,9 +1330,10 @@ void StudioServer::Impl::add_job_routes() {
         const std::string kind = body->value("kind", std::string());
         using Fields = std::vector<const char*>;
         struct Kind {
-            Fields files;       ///< One path each ("NAME?": optional).
+            Fields files;       ///< One path each.
             Fields file_lists;  ///< A path or a list of paths each.
             Result<JobWork> (Impl::*work)(const json&, const JobPaths&);
+            Fields optional_files = {};  ///< One path each, when given.
         };
         // Frame patterns (range jobs): "frames", "output" formatted for first..last.
         using Patterns = std::vector<const char*>;
@@ -1209,8 +1347,8 @@ void StudioServer::Impl::add_job_routes() {
             {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
             {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
             {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
-            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work}},
-            {"npr", {{"pattern", "paper?"}, {}, &Impl::npr_work}}};
+            {"fluid", {{"exemplar"}, {}, &Impl::fluid_work, {"exemplar-alpha"}}},
+            {"npr", {{"pattern"}, {}, &Impl::npr_work, {"paper"}}}};
         const auto found = kinds.find(kind);
         if (found == kinds.end()) {
             return fail(res, 400,
@@ -1225,16 +1363,15 @@ void StudioServer::Impl::add_job_routes() {
             if (!path.ok()) fail(res, 403, std::string(field) + ": " + path.status().message());
             return path;
         };
-        for (std::string_view spec : found->second.files) {
-            // "NAME?": an optional file, resolved when given
-            const bool optional = spec.ends_with('?');
-            const std::string field(spec.substr(0, spec.size() - (optional ? 1 : 0)));
-            if (optional && !body->contains(field)) continue;
-            auto name = text_field(*body, field.c_str());
-            if (!name.ok()) return fail(res, name.status());
-            auto path = resolve(field.c_str(), *name);
-            if (!path.ok()) return;
-            paths.one[field] = *path;
+        for (const Fields* fields : {&found->second.files, &found->second.optional_files}) {
+            for (const char* field : *fields) {
+                if (fields == &found->second.optional_files && !body->contains(field)) continue;
+                auto name = text_field(*body, field);
+                if (!name.ok()) return fail(res, name.status());
+                auto path = resolve(field, *name);
+                if (!path.ok()) return;
+                paths.one[field] = *path;
+            }
         }
         for (const char* field : found->second.file_lists) {
             auto names = path_list_field(*body, field);
@@ -1350,6 +1487,7 @@ void StudioServer::run() {
 void StudioServer::shutdown() {
     if (impl_->stopping.exchange(true)) return;
     impl_->interactive_cancel.cancel();
+    impl_->cancel_paintings();
     impl_->jobs.shutdown();
     impl_->http->stop();
 }

@@ -2,7 +2,12 @@
 // Per-client tool state of the studio: a ShipShape sketch and a Brushables painting, each with
 // undo/redo. Both only call the library (sketch::suggest/accept, paint::PaintCanvas/repaint).
 
+#include <condition_variable>
 #include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "exemplar/core/image.hpp"
@@ -67,7 +72,8 @@ private:
 };
 
 /// A Brushables painting: strokes add to a PaintCanvas and only the touched rectangle is
-/// synthesized again (paint::repaint). Undo/redo step over strokes by snapshots.
+/// synthesized again (paint::repaint). Undo/redo step over strokes by snapshots. Not
+/// thread-safe: PaintPipeline orders the calls of a client's requests.
 class PaintSession {
 public:
     /// Most strokes that can be undone.
@@ -78,22 +84,26 @@ public:
     static Result<PaintSession> start(Image exemplar, int width, int height,
                                       const paint::PaintOptions& options, int threads);
 
-    /// Applies a painting or combing stroke and repaints what it touched; returns that
-    /// rectangle. The painting is unchanged on error.
-    Result<paint::PixelRect> stroke(const paint::Stroke& stroke, const RunContext& context);
-    /// What `stroke` would give, quickly (paint::preview_repaint, reduced `reduction` times):
-    /// the painting with the stroke previewed and the rectangle it touched. The session is
-    /// unchanged, so undo/redo never see a preview; `stroke` paints the final pixels after.
-    struct Preview {
-        Image image;
-        paint::PixelRect changed;
-    };
-    Result<Preview> preview(const paint::Stroke& stroke, int reduction,
-                            const RunContext& context) const;
+    /// The final pixels of `canvas` (the current canvas with strokes added, which changed
+    /// `changed`): paint::repaint from the current painting. Changes nothing; `push` keeps it.
+    Result<Image> repaint(const paint::PaintCanvas& canvas, const paint::PixelRect& changed,
+                          const RunContext& context) const;
+    /// A quick look at the same (paint::preview_repaint, reduced `reduction` times) over
+    /// `previous`, the image the page shows. Changes nothing (undo/redo never see a preview).
+    Result<Image> preview(const paint::PaintCanvas& canvas, const Image& previous,
+                          const paint::PixelRect& changed, int reduction,
+                          const RunContext& context) const;
+    /// Makes a repainted canvas and its painting the current state (one undo step).
+    void push(paint::PaintCanvas canvas, Image image) {
+        history_.push(State{std::move(canvas), std::move(image)});
+    }
     bool undo() { return history_.undo(); }
     bool redo() { return history_.redo(); }
+    bool can_undo() const { return history_.can_undo(); }
+    bool can_redo() const { return history_.can_redo(); }
     /// The painting: RGBA, straight alpha, transparent where nothing is painted.
     const Image& image() const { return history_.current().image; }
+    const paint::PaintCanvas& canvas() const { return history_.current().canvas; }
     int width() const { return image().width(); }
     int height() const { return image().height(); }
 
@@ -107,6 +117,97 @@ private:
     paint::PaintSource source_;
     paint::PaintOptions options_;
     History<State> history_;
+};
+
+/// A client's painting as a pipeline (docs/studio.md, "The paint pipeline"): strokes are
+/// applied in the order they arrive, each final repaint from the previous stroke's final, so
+/// the painting is the one paint::repaint gives applying the strokes one by one, however
+/// quickly they come; a preview does not wait for the finals in flight and is composed over the
+/// newest image the page was sent (a final, or the preview of a stroke still pending), so it
+/// never shows older pixels than the page displays. Undo drops the newest pending stroke and
+/// stops its repaint; `cancel` stops them all (a new painting, shutdown). Thread-safe.
+class PaintPipeline {
+public:
+    /// What a request answers: a rectangle of an image (RGBA), called under the pipeline's lock
+    /// (may be empty).
+    using Answer = std::function<void(const Image& image, const paint::PixelRect& rect)>;
+
+    explicit PaintPipeline(PaintSession session);
+
+    /// Queues a painting or combing stroke, waits for the strokes queued before it, repaints
+    /// and answers the rectangle it changed. Cancelled when undone or cancelled meanwhile (the
+    /// painting is then as if it had not been sent); a stroke that fails takes the strokes
+    /// queued after it along (their canvases hold it). `context`: threads and progress.
+    Status stroke(const paint::Stroke& stroke, const RunContext& context, const Answer& answer);
+    /// Answers the stroke's coarse preview (PaintSession::preview) over the newest state: every
+    /// stroke queued so far, over the image last answered. Changes no painting.
+    Status preview(const paint::Stroke& stroke, int reduction, const RunContext& context,
+                   const Answer& answer);
+    /// Drops the newest pending stroke (stopping its repaint), or else steps back; then, once
+    /// the strokes before it are final, answers the whole painting.
+    void undo(const Answer& answer);
+    /// Once no stroke is pending, steps forward and answers the whole painting.
+    void redo(const Answer& answer);
+    /// Once no stroke is pending, answers the whole painting (save).
+    void settled(const Answer& answer);
+    /// Stops every pending stroke (their requests answer Cancelled) and refuses new ones.
+    void cancel();
+    /// Strokes queued since the start, and those of them neither final nor dropped yet.
+    struct Counts {
+        std::uint64_t strokes = 0;
+        std::size_t pending = 0;
+    };
+    Counts counts() const;
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+private:
+    struct Pending {
+        explicit Pending(paint::PaintCanvas c) : canvas(std::move(c)) {}
+        paint::PaintCanvas canvas;  ///< The previous stroke's canvas with this one added.
+        paint::PixelRect changed;
+        CancelToken cancel;
+        bool dropped = false;  ///< Undone or cancelled: nothing of it is kept.
+    };
+    /// Drops `pending_` from `from` on (under mutex_): cancels them and makes tip_ the canvas
+    /// of the last one kept.
+    void drop_from(std::size_t from);
+    /// The whole painting after the pending strokes are final (under `lock`).
+    void answer_settled(std::unique_lock<std::mutex>& lock, const Answer& answer);
+
+    const int width_, height_;
+    mutable std::mutex mutex_;
+    std::condition_variable changed_;
+    /// The finals. Only the front pending stroke changes it (after its repaint); undo, redo and
+    /// save wait until nothing is pending.
+    PaintSession session_;
+    /// Queued strokes in order; the front one is repainting.
+    std::deque<std::shared_ptr<Pending>> pending_;
+    /// The canvas with every queued stroke: where the next one is added.
+    paint::PaintCanvas tip_;
+    /// The newest image the page was sent: finals and previews, in the order answered.
+    Image shown_;
+    std::uint64_t strokes_ = 0;
+    bool cancelled_ = false;
+};
+
+/// The steps of a tool that runs them one at a time under the client's lock (a brush stroke, a
+/// fill), each with its own cancel token, so undo and a new start stop the newest running or
+/// waiting step instead of waiting behind it. Thread-safe.
+class StepSlot {
+public:
+    /// The token of a new step, taken before the client's lock.
+    std::shared_ptr<CancelToken> begin();
+    /// Ends the step of `token`: true when its result stays (it was not cancelled meanwhile).
+    bool finish(const std::shared_ptr<CancelToken>& token);
+    /// Cancels the newest step not cancelled yet; false when there is none.
+    bool cancel_newest();
+    /// Cancels every step (a new start, shutdown).
+    void cancel_all();
+
+private:
+    std::mutex mutex_;
+    std::vector<std::shared_ptr<CancelToken>> running_;
 };
 
 /// Painting by Feature's line-feature brush and area fill: a feature picked once in a palette,
@@ -126,8 +227,8 @@ public:
                                       int threads);
 
     /// Paints one stroke along `path` (its width_px is the brush width) over the painting;
-    /// returns the rectangle it changed. The painting is unchanged on error. Only the context's
-    /// thread count is used: the library's brush reports no progress and cannot be cancelled.
+    /// returns the rectangle it changed. The painting is unchanged on error (Cancelled when the
+    /// context's token is set). The library's brush reports no progress.
     Result<paint::PixelRect> stroke(const paint::Stroke& path, const RunContext& context);
     /// Fills the inside of `target_region` (a region image of the painting's size) with the
     /// texture of the inside of `source_region` (the palette's size) by the content-aware fill

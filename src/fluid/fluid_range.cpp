@@ -10,6 +10,7 @@
 
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/video/frame_sequence.hpp"
 
 namespace exemplar::fluid {
 
@@ -44,6 +45,124 @@ Result<std::optional<Image>> output_before(const FluidRange& range) {
 }
 
 }  // namespace
+
+struct FluidExemplar::Impl {
+    std::string path, alpha_path;
+    Image still;
+    std::optional<video::FrameSequence> frames, alpha_frames;
+
+    // An exemplar image with its separate alpha, if any, as RGBA.
+    static Result<Image> combine(Image image, const std::optional<Image>& alpha,
+                                 const std::string& name, const std::string& alpha_name) {
+        if (alpha) {
+            if (alpha->width() != image.width() || alpha->height() != image.height()) {
+                return invalid_argument(alpha_name + ": alpha is " + size_str(*alpha) +
+                                        " but the exemplar is " + size_str(image));
+            }
+            if (image.channels() == 4) image = extract_channels(image, 0, 3);
+            if (image.channels() == 1) {
+                const Image grey = image;
+                image = concat_channels({&grey, &grey, &grey});
+            }
+            const Image a = extract_channels(*alpha, 0, 1);
+            return concat_channels({&image, &a});
+        }
+        if (image.channels() != 4) {
+            return invalid_argument(name + ": the exemplar has " +
+                                    std::to_string(image.channels()) +
+                                    " channels but needs an alpha channel (RGBA), or give "
+                                    "exemplar-alpha");
+        }
+        return image;
+    }
+
+    Result<Image> load_still() const {
+        auto image = load_image(path);
+        if (!image.ok()) return image.status();
+        std::optional<Image> alpha;
+        if (!alpha_path.empty()) {
+            auto a = load_image(alpha_path);
+            if (!a.ok()) return a.status();
+            alpha = std::move(a).value();
+        }
+        return combine(std::move(image).value(), alpha, path, alpha_path);
+    }
+};
+
+FluidExemplar::FluidExemplar(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+FluidExemplar::FluidExemplar(FluidExemplar&&) noexcept = default;
+FluidExemplar& FluidExemplar::operator=(FluidExemplar&&) noexcept = default;
+FluidExemplar::~FluidExemplar() = default;
+
+Result<FluidExemplar> FluidExemplar::open(const std::string& path, const std::string& alpha_path) {
+    auto impl = std::make_unique<Impl>();
+    impl->path = path;
+    impl->alpha_path = alpha_path;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(path, ec)) {
+        auto still = impl->load_still();
+        if (!still.ok()) return still.status();
+        impl->still = std::move(still).value();
+        return FluidExemplar(std::move(impl));
+    }
+    auto frames = video::FrameSequence::from_folder(path);
+    if (!frames.ok()) return frames.status();
+    impl->frames.emplace(std::move(frames).value());
+    if (!alpha_path.empty()) {
+        auto alpha = video::FrameSequence::from_folder(alpha_path);
+        if (!alpha.ok()) return alpha.status();
+        if (alpha->size() != impl->frames->size()) {
+            return invalid_argument("exemplar-alpha: " + alpha_path + " has " +
+                                    std::to_string(alpha->size()) + " frames but " + path +
+                                    " has " + std::to_string(impl->frames->size()));
+        }
+        impl->alpha_frames.emplace(std::move(alpha).value());
+    }
+    FluidExemplar exemplar(std::move(impl));
+    // The first frame now (channels, alpha), so a bad exemplar fails up front.
+    auto first = exemplar.frame(0);
+    if (!first.ok()) return first.status();
+    return exemplar;
+}
+
+int FluidExemplar::size() const {
+    return impl_->frames ? impl_->frames->size() : 1;
+}
+
+std::vector<std::string> FluidExemplar::files() const {
+    if (!impl_->frames) {
+        std::vector<std::string> files{impl_->path};
+        if (!impl_->alpha_path.empty()) files.push_back(impl_->alpha_path);
+        return files;
+    }
+    std::vector<std::string> files;
+    for (const auto* sequence : {&impl_->frames, &impl_->alpha_frames}) {
+        if (!*sequence) continue;
+        for (int k = 0; k < (*sequence)->size(); ++k) files.push_back((*sequence)->frame_name(k));
+    }
+    return files;
+}
+
+Result<Image> FluidExemplar::frame(int n) {
+    if (!impl_->frames) return impl_->still;
+    const int m = impl_->frames->size();
+    const int index = ((n % m) + m) % m;
+    auto image = impl_->frames->read(index);
+    if (!image.ok()) return image.status();
+    std::optional<Image> alpha;
+    if (impl_->alpha_frames) {
+        auto a = impl_->alpha_frames->read(index);
+        if (!a.ok()) return a.status();
+        alpha = std::move(a).value();
+    }
+    return Impl::combine(std::move(image).value(), alpha, impl_->frames->frame_name(index),
+                         impl_->alpha_frames ? impl_->alpha_frames->frame_name(index) : "");
+}
+
+void FluidExemplar::use_in(FluidRange& range) {
+    range.exemplar = [this](int n) { return frame(n); };
+    range.exemplar_sequence = size() > 1;
+}
 
 Status check_fluid_range(const FluidRange& range) {
     if (range.last < range.first) {

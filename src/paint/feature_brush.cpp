@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -149,11 +150,14 @@ int BrushStroke::nearest_sample(int x, int y) const {
     return owner_[static_cast<std::size_t>(y) * layer_.width() + x];
 }
 
-Result<PixelRect> BrushStroke::add_points(std::span<const StrokePoint> points) {
+Result<PixelRect> BrushStroke::add_points(std::span<const StrokePoint> points,
+                                          const CancelToken* cancel) {
     for (StrokePoint p : points) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y))
             return invalid_argument("path: a point is not finite");
     }
+    const auto stopped = [cancel] { return cancel != nullptr && cancel->cancelled(); };
+    if (stopped()) return cancelled();
     const int first_dirty = settled_samples();
     const int before = samples();
     for (StrokePoint p : points) sampler_->add(p, targets_);
@@ -178,6 +182,7 @@ Result<PixelRect> BrushStroke::add_points(std::span<const StrokePoint> points) {
     };
     PixelRect changed;
     for (int k = rasterized_; k < n; ++k) {
+        if (stopped()) return cancelled();
         const PathSample& s = frames_[static_cast<std::size_t>(k)];
         const PixelRect r = disc(k);
         for (int y = r.y0; y < r.y1; ++y) {
@@ -196,11 +201,11 @@ Result<PixelRect> BrushStroke::add_points(std::span<const StrokePoint> points) {
     }
     rasterized_ = n;
     for (int k = first_dirty; k < n; ++k) include(changed, disc(k));
-    shade(changed, first_dirty);
+    if (!shade(changed, first_dirty, cancel)) return cancelled();
     return changed;
 }
 
-void BrushStroke::shade(const PixelRect& rect, int first_dirty) {
+bool BrushStroke::shade(const PixelRect& rect, int first_dirty, const CancelToken* cancel) {
     const LineFeature& f = *feature_;
     const int n = samples();
     const int source_n = f.size();
@@ -227,7 +232,10 @@ void BrushStroke::shade(const PixelRect& rect, int first_dirty) {
         return walk_[static_cast<std::size_t>(b)] != walk_[static_cast<std::size_t>(b - 1)] + 1;
     };
 
+    std::atomic<bool> stopped{false};
     parallel_for(rect.y0, rect.y1, threads_, [&](int y) {
+        if (cancel != nullptr && cancel->cancelled()) stopped = true;
+        if (stopped) return;
         std::array<float, 4> colour{}, base{}, base_a{}, base_b{};
         for (int x = rect.x0; x < rect.x1; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * w + x;
@@ -292,6 +300,7 @@ void BrushStroke::shade(const PixelRect& rect, int first_dirty) {
             out[3] = channels == 4 ? alpha * std::clamp(colour[3], 0.0f, 1.0f) : alpha;
         }
     });
+    return !stopped;
 }
 
 Result<LineFeature> pick_line_feature(const Image& palette, Stroke rough,

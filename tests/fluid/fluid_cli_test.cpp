@@ -234,7 +234,7 @@ TEST_F(FluidCli, ExemplarWithoutAlphaNeedsExemplarAlpha) {
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, "exemplar: " + path("fire_rgb.png") +
                          ": the exemplar has 3 channels but needs an alpha channel (RGBA), or "
-                         "give --exemplar-alpha\n");
+                         "give exemplar-alpha\n");
     EXPECT_FALSE(fs::exists(path("rgb")));
 
     a.insert(a.end(), {"--exemplar-alpha", path("fire_alpha.png")});

@@ -224,6 +224,24 @@ TEST(BrushStroke, ExtendingTheStrokeChangesNoSettledPixel) {
               0);
 }
 
+TEST(BrushStroke, ACancelTokenStopsItAndLeavesTheBytesAloneUnset) {
+    auto feature = LineFeature::create(line_palette(), selection(), {}, 2);
+    ASSERT_TRUE(feature.ok());
+    const std::vector<StrokePoint> points = wave(20.0f, 940.0f);
+    BrushStroke plain(*feature, 1060, 140, 32.0f, 0, 2),
+        with_token(*feature, 1060, 140, 32.0f, 0, 2);
+    CancelToken token;
+    auto a = plain.add_points(points);
+    auto b = with_token.add_points(points, &token);
+    ASSERT_TRUE(a.ok() && b.ok());
+    EXPECT_EQ(std::memcmp(plain.layer().data().data(), with_token.layer().data().data(),
+                          plain.layer().size() * sizeof(float)),
+              0);
+    token.cancel();
+    BrushStroke stopped(*feature, 1060, 140, 32.0f, 0, 2);
+    EXPECT_EQ(stopped.add_points(points, &token).status().code(), ErrorCode::Cancelled);
+}
+
 TEST(BrushStroke, ChangedRectangleHoldsEveryChange) {
     auto feature = LineFeature::create(line_palette(), selection(), {}, 1);
     ASSERT_TRUE(feature.ok());

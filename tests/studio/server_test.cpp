@@ -7,17 +7,23 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <tuple>
 #include <vector>
 
 #include "exemplar/animate/animate.hpp"
+#include "exemplar/fluid/fluid_range.hpp"
 #include "exemplar/fluid/lazy_fluids.hpp"
 #include "exemplar/fluid/simulate.hpp"
 #include "exemplar/io/flow_io.hpp"
@@ -32,6 +38,8 @@
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/stylit/stylit.hpp"
 #include "exemplar/video/frame_sequence.hpp"
+#include "jobs.hpp"
+#include "sessions.hpp"
 #include "studio.hpp"
 
 namespace exemplar::studio {
@@ -512,6 +520,217 @@ TEST_F(StudioTest, PaintPreviewArrivesFirstAndTheFinalIsTheLibrarysRepaint) {
         400);
 }
 
+// The rectangle of an RGBA answer (its X-Rect header).
+paint::PixelRect rect_of(const httplib::Result& answer) {
+    paint::PixelRect rect;
+    std::sscanf(answer->get_header_value("X-Rect").c_str(), "%d,%d,%d,%d", &rect.x0, &rect.y0,
+                &rect.x1, &rect.y1);
+    return rect;
+}
+
+// Three overlapping strokes across a 160x120 canvas.
+const std::vector<std::vector<paint::StrokePoint>> kCrossing = {
+    {{10, 60}, {80, 50}, {150, 64}}, {{20, 10}, {80, 60}, {140, 110}}, {{90, 8}, {84, 112}}};
+
+// The largest difference between two images of the same shape (infinity otherwise).
+float max_difference(const Image& a, const Image& b) {
+    if (a.width() != b.width() || a.height() != b.height() || a.channels() != b.channels())
+        return INFINITY;
+    float most = 0.0f;
+    for (int y = 0; y < a.height(); ++y) {
+        for (int x = 0; x < a.width(); ++x) {
+            for (int c = 0; c < a.channels(); ++c)
+                most = std::max(most, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+        }
+    }
+    return most;
+}
+
+// The library's finals of strokes applied one by one with repaint, each from the one before.
+std::vector<Image> sequential_repaints(const Image& exemplar, int width, int height,
+                                       const std::vector<paint::Stroke>& strokes,
+                                       const paint::PaintOptions& options) {
+    const paint::PaintSource source = paint_source_of(exemplar);
+    paint::PaintCanvas canvas(width, height);
+    std::vector<Image> finals;
+    Image previous(width, height, 4);
+    for (const paint::Stroke& stroke : strokes) {
+        auto changed = canvas.add_stroke(stroke);
+        EXPECT_TRUE(changed.ok());
+        auto painted = paint::repaint(source, canvas, previous, *changed, options, RunContext(1));
+        EXPECT_TRUE(painted.ok());
+        previous = painted->image;
+        finals.push_back(previous);
+    }
+    return finals;
+}
+
+TEST_F(StudioTest, QuickStrokesAreFinalInOrderAndPreviewsShowNothingOlder) {
+    start();
+    ASSERT_EQ(post("/api/paint/start",
+                   {{"exemplar", "tex.png"}, {"width", 160}, {"height", 120}, {"seed", 5}})
+                  ->status,
+              200);
+    // As the page does on each pen-up: the preview, then the final posted without waiting for
+    // it (on its own connection); the next stroke follows at once. The test waits only until
+    // the server has queued each final (GET /api/paint), so the order is the strokes'.
+    std::vector<paint::Stroke> strokes;
+    std::vector<httplib::Result> previews;
+    std::vector<std::optional<httplib::Result>> finals(kCrossing.size());
+    std::vector<std::thread> posting;
+    for (std::size_t k = 0; k < kCrossing.size(); ++k) {
+        strokes.push_back(stroke_of(kCrossing[k], 18.0f));
+        json points = json::array();
+        for (const paint::StrokePoint& p : kCrossing[k]) points.push_back({p.x, p.y});
+        const json stroke = {{"points", points}, {"width", 18}};
+        previews.push_back(post("/api/paint/preview", stroke));
+        ASSERT_EQ(previews.back()->status, 200) << previews.back()->body;
+        posting.emplace_back([this, k, stroke, &finals] {
+            httplib::Client own("127.0.0.1", server_->port());
+            own.set_default_headers({{"X-Studio-Client", "tab1"}});
+            own.set_read_timeout(60, 0);
+            finals[k].emplace(own.Post("/api/paint/stroke", stroke.dump(), "application/json"));
+        });
+        for (;;) {
+            auto state = client_->Get("/api/paint");
+            ASSERT_EQ(state->status, 200);
+            if (body_of(state)["strokes"] == k + 1) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    for (std::thread& t : posting) t.join();
+
+    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    ASSERT_TRUE(exemplar.ok());
+    paint::PaintOptions options;
+    options.seed = 5;
+    const std::vector<Image> expected = sequential_repaints(*exemplar, 160, 120, strokes, options);
+    for (std::size_t k = 0; k < strokes.size(); ++k) {
+        // Each final is the library's repaint from the one before: identical bytes.
+        ASSERT_TRUE(finals[k] && *finals[k]);
+        const httplib::Result& final_ = *finals[k];
+        ASSERT_EQ(final_->status, 200) << final_->body;
+        EXPECT_EQ(compare_rgba(final_->body, rect_of(final_), expected[k]).first, 0) << k;
+        if (k == 0) continue;
+        // A preview shows no pixel older than the stroke before it: wherever that stroke
+        // painted, the preview holds paint (its final or its preview), never the blank canvas
+        // from before it.
+        const paint::PixelRect r = rect_of(previews[k]);
+        int older = 0, overlap = 0;
+        for (int y = r.y0; y < r.y1; ++y) {
+            for (int x = r.x0; x < r.x1; ++x) {
+                if (expected[k - 1].at(x, y, 3) < 0.5f) continue;
+                ++overlap;
+                const auto alpha =
+                    static_cast<unsigned char>(previews[k]->body[static_cast<std::size_t>(
+                        ((y - r.y0) * (r.x1 - r.x0) + x - r.x0) * 4 + 3)]);
+                older += alpha == 0;
+            }
+        }
+        EXPECT_GT(overlap, 100) << k;
+        EXPECT_EQ(older, 0) << k;
+    }
+    // The whole painting is the third final; undo steps back to the second.
+    auto undone = post("/api/paint/undo", json::object());
+    EXPECT_EQ(compare_rgba(undone->body, {0, 0, 160, 120}, expected[1]).first, 0);
+    auto redone = post("/api/paint/redo", json::object());
+    EXPECT_EQ(compare_rgba(redone->body, {0, 0, 160, 120}, expected[2]).first, 0);
+}
+
+// The painting pipeline itself, where a test can act in the middle of a repaint (its progress).
+class PaintPipelineTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        auto session = PaintSession::start(texture(64, 48), 160, 120, options(), 2);
+        ASSERT_TRUE(session.ok()) << session.status().message();
+        pipeline_ = std::make_unique<PaintPipeline>(std::move(*session));
+        for (const auto& points : kCrossing) strokes_.push_back(stroke_of(points, 18.0f));
+    }
+    static paint::PaintOptions options() {
+        paint::PaintOptions o;
+        o.seed = 5;
+        return o;
+    }
+    // The whole painting as an undo or redo answers it.
+    static PaintPipeline::Answer keep(Image& into) {
+        return [&into](const Image& image, const paint::PixelRect&) { into = image; };
+    }
+    std::unique_ptr<PaintPipeline> pipeline_;
+    std::vector<paint::Stroke> strokes_;
+};
+
+TEST_F(PaintPipelineTest, UndoStopsTheRunningRepaintAndKeepsThePaintingBefore) {
+    const std::vector<Image> expected =
+        sequential_repaints(texture(64, 48), 160, 120, strokes_, options());
+    ASSERT_TRUE(pipeline_->stroke(strokes_[0], RunContext(2), {}).is_ok());
+    // The second stroke is undone at its repaint's first progress event: the repaint stops and
+    // the stroke answers Cancelled; nothing of it is kept (redo has nothing to bring back).
+    Image after_undo;
+    std::thread undoing;
+    RunContext context(2);
+    bool undone_first = false;
+    context.progress = [&](const ProgressEvent&) {
+        if (undoing.joinable()) return;
+        undoing = std::thread([&] { pipeline_->undo(keep(after_undo)); });
+        while (pipeline_->counts().pending != 0) std::this_thread::yield();
+        undone_first = true;
+    };
+    const Status second = pipeline_->stroke(strokes_[1], context, {});
+    undoing.join();
+    EXPECT_TRUE(undone_first);
+    EXPECT_EQ(second.code(), ErrorCode::Cancelled) << second.message();
+    ASSERT_EQ(after_undo.width(), 160);
+    EXPECT_EQ(max_difference(after_undo, expected[0]), 0.0f);
+    Image after_redo;
+    pipeline_->redo(keep(after_redo));
+    EXPECT_EQ(max_difference(after_redo, expected[0]), 0.0f);
+    // The painting goes on from there as if the stroke had never been sent.
+    Image last;
+    ASSERT_TRUE(pipeline_->stroke(strokes_[1], RunContext(2), keep(last)).is_ok());
+    EXPECT_EQ(max_difference(last, expected[1]), 0.0f);
+}
+
+TEST_F(PaintPipelineTest, UndoDropsTheNewestQueuedStrokeAndCancelStopsAll) {
+    const std::vector<Image> expected =
+        sequential_repaints(texture(64, 48), 160, 120, strokes_, options());
+    // While the first stroke repaints, the second is queued behind it and undone: it never
+    // runs and answers Cancelled; the first ends as the library's, which undo then answers.
+    Status second;
+    std::thread queued, undoing;
+    Image first_final, after_undo;
+    RunContext context(2);
+    context.progress = [&](const ProgressEvent&) {
+        if (queued.joinable()) return;
+        queued = std::thread([&] { second = pipeline_->stroke(strokes_[1], RunContext(2), {}); });
+        while (pipeline_->counts().pending != 2) std::this_thread::yield();
+        undoing = std::thread([&] { pipeline_->undo(keep(after_undo)); });
+        while (pipeline_->counts().pending != 1) std::this_thread::yield();
+    };
+    EXPECT_TRUE(pipeline_->stroke(strokes_[0], context, keep(first_final)).is_ok());
+    queued.join();
+    undoing.join();
+    EXPECT_EQ(second.code(), ErrorCode::Cancelled);
+    EXPECT_EQ(max_difference(first_final, expected[0]), 0.0f);
+    EXPECT_EQ(max_difference(after_undo, expected[0]), 0.0f);
+
+    // cancel() (a new painting replaces this one) stops the running repaint and the queued
+    // stroke alike, and refuses new ones; the painting keeps its last final.
+    context.progress = [&](const ProgressEvent&) {
+        if (queued.joinable()) return;
+        queued = std::thread([&] { second = pipeline_->stroke(strokes_[2], RunContext(2), {}); });
+        while (pipeline_->counts().pending != 2) std::this_thread::yield();
+        pipeline_->cancel();
+    };
+    const Status running = pipeline_->stroke(strokes_[1], context, {});
+    queued.join();
+    EXPECT_EQ(running.code(), ErrorCode::Cancelled);
+    EXPECT_EQ(second.code(), ErrorCode::Cancelled);
+    EXPECT_EQ(pipeline_->stroke(strokes_[2], RunContext(2), {}).code(), ErrorCode::Cancelled);
+    Image last;
+    pipeline_->settled(keep(last));
+    EXPECT_EQ(max_difference(last, expected[0]), 0.0f);
+}
+
 Image band_palette() {
     Image image(200, 64, 3);
     for (int y = 0; y < 64; ++y) {
@@ -525,6 +744,31 @@ Image band_palette() {
         }
     }
     return image;
+}
+
+TEST(StepSlotTest, UndoCancelsTheNewestStepAndACancelledStepKeepsNothing) {
+    StepSlot slot;
+    const auto first = slot.begin();
+    const auto second = slot.begin();
+    EXPECT_TRUE(slot.cancel_newest());
+    EXPECT_TRUE(second->cancelled());
+    EXPECT_FALSE(first->cancelled());
+    EXPECT_FALSE(slot.finish(second));
+    EXPECT_TRUE(slot.finish(first));
+    EXPECT_FALSE(slot.cancel_newest());  // nothing left to stop: undo steps back instead
+    const auto third = slot.begin();
+    slot.cancel_all();
+    EXPECT_FALSE(slot.finish(third));
+
+    // A brush stroke whose token is set stops and leaves the painting as it was.
+    auto session = BrushSession::start(band_palette(), stroke_of({{20, 32}, {180, 32}}, 24.0f), 160,
+                                       80, {}, true, 1);
+    ASSERT_TRUE(session.ok()) << session.status().message();
+    RunContext context(1);
+    context.cancel = third.get();
+    auto stopped = session->stroke(stroke_of({{10, 40}, {150, 44}}, 24.0f), context);
+    EXPECT_EQ(stopped.status().code(), ErrorCode::Cancelled);
+    EXPECT_EQ(max_difference(session->image(), Image(160, 80, 4)), 0.0f);
 }
 
 TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
@@ -1037,6 +1281,99 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
               400);
 }
 
+TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
+    // Targets: the plume, 48 x 48, frames 0..3, written here.
+    fs::create_directories(base_ / "ws" / "sim");
+    ASSERT_TRUE(fluid::simulate(
+                    fluid::plume_scene(48, 48), 4,
+                    [&](int frame, const Image& alpha, const Image& motion) -> Status {
+                        const auto name = [&](const char* pattern) {
+                            return (base_ / "ws" / "sim" /
+                                    *video::format_frame_path(pattern, frame))
+                                .string();
+                        };
+                        EXEMPLAR_RETURN_IF_ERROR(save_image(alpha, name("a%04d.png")));
+                        return save_flow(motion, name("m%04d.flo"));
+                    },
+                    RunContext(1))
+                    .is_ok());
+    // An exemplar sequence of two RGB frames with its alpha in a folder beside it.
+    fs::create_directories(base_ / "ws" / "ink" / "rgb");
+    fs::create_directories(base_ / "ws" / "ink" / "alpha");
+    for (int k = 0; k < 2; ++k) {
+        Image rgba = ink_exemplar(40);
+        for (int y = 0; y < 40 && k == 1; ++y) {
+            for (int x = 0; x < 40; ++x) rgba.at(x, y, 1) *= 0.6f;  // frame 1: another colour
+        }
+        const std::string name = *video::format_frame_path("f%d.png", k);
+        ASSERT_TRUE(
+            save_image(extract_channels(rgba, 0, 3), (base_ / "ws" / "ink" / "rgb" / name).string())
+                .is_ok());
+        ASSERT_TRUE(save_image(extract_channels(rgba, 3, 1),
+                               (base_ / "ws" / "ink" / "alpha" / name).string())
+                        .is_ok());
+    }
+    start();
+    const json good = {{"kind", "fluid"},
+                       {"exemplar", "ink/rgb"},
+                       {"exemplar-alpha", "ink/alpha"},
+                       {"alpha", "sim/a%04d.png"},
+                       {"motion", "sim/m%04d.flo"},
+                       {"motion-layer", ""},
+                       {"first", 1},
+                       {"last", 3},
+                       {"output", "outputs/%04d.png"},
+                       {"seed", 4},
+                       {"patch-size", 3},
+                       {"resume", false}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+
+    // The library's range driver on the same files, as exemplar fluid calls it: the same bytes.
+    auto exemplar = fluid::FluidExemplar::open((base_ / "ws" / "ink" / "rgb").string(),
+                                               (base_ / "ws" / "ink" / "alpha").string());
+    ASSERT_TRUE(exemplar.ok()) << exemplar.status().message();
+    EXPECT_EQ(exemplar->size(), 2);
+    fluid::FluidRange range;
+    range.first = 1;
+    range.last = 3;
+    const auto in = [&](const fs::path& folder, const char* pattern) {
+        return [folder, pattern](int n) -> Result<std::string> {
+            auto name = video::format_frame_path(pattern, n);
+            if (!name.ok()) return name.status();
+            return (folder / *name).string();
+        };
+    };
+    range.alpha_file = in(base_ / "ws" / "sim", "a%04d.png");
+    range.motion_file = in(base_ / "ws" / "sim", "m%04d.flo");
+    range.output_file = in(base_ / "mine", "%04d.png");
+    range.resume = false;
+    exemplar->use_in(range);
+    EXPECT_TRUE(range.exemplar_sequence);
+    fs::create_directories(base_ / "mine");
+    fluid::FluidOptions options;
+    options.synthesis.seed = 4;
+    options.patch_size = 3;
+    ASSERT_TRUE(fluid::synthesize_fluid_range(range, options, RunContext(1)).is_ok());
+    for (int n = 1; n <= 3; ++n) {
+        const std::string name = *video::format_frame_path("%04d.png", n);
+        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / name) ==
+                    file_bytes(base_ / "mine" / name))
+            << name;
+    }
+    // Refusals: one line naming the key (400); an alpha outside the workspace (403).
+    expect_refused("/api/jobs", good,
+                   {{"resume", 1, "resume: "},
+                    {"motion-layer", 3, "motion-layer: "},
+                    {"exemplar-alpha", "tex.png", "exemplar: "}});
+    json outside = good;
+    outside["exemplar-alpha"] = "../outside/alpha";
+    EXPECT_EQ(post("/api/jobs", outside)->status, 403);
+}
+
 TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
     // Three render frame folders of 64 x 48: a tone ramp moving right, no lines, the motion.
     write_render_frames(base_ / "ws" / "render", 3, 64, 48);
@@ -1453,6 +1790,37 @@ TEST_F(StudioJobTest, StylitRunsPostedAtOnceLeaveOneRunning) {
         EXPECT_EQ(end["state"], k + 1 < kPosts ? "cancelled" : "done") << end.dump();
     }
     EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+}
+
+TEST(JobManagerTest, OneClientsReplaceWaitDoesNotHoldUpAnothers) {
+    JobManager jobs(1, 1);
+    // Client a's run ends only when the test lets it (it notices no cancel before).
+    std::mutex gate_mutex;
+    std::condition_variable gate_changed;
+    bool open = false;
+    const JobWork slow = [&](const RunContext&, const OutputSink&) -> Status {
+        std::unique_lock lock(gate_mutex);
+        gate_changed.wait(lock, [&] { return open; });
+        return Status::ok();
+    };
+    const JobWork quick = [](const RunContext&, const OutputSink&) { return Status::ok(); };
+    auto first = jobs.replace("a", "stylit", "a1.png", slow);
+    ASSERT_TRUE(first.ok());
+    // A second run of a: it cancels the first and waits for it, holding a's replace lock.
+    std::thread waiting([&] { EXPECT_TRUE(jobs.replace("a", "stylit", "a2.png", quick).ok()); });
+    while (!(*first)->cancel.cancelled()) std::this_thread::yield();
+    // Meanwhile client b replaces its own run at once, without waiting for a's.
+    auto other = std::async(std::launch::async,
+                            [&] { return jobs.replace("b", "stylit", "b1.png", quick); });
+    const bool returned = other.wait_for(std::chrono::seconds(60)) == std::future_status::ready;
+    EXPECT_TRUE(returned) << "b's replace waited for a's cancelled run";
+    {
+        std::lock_guard lock(gate_mutex);
+        open = true;
+    }
+    gate_changed.notify_all();
+    waiting.join();
+    EXPECT_TRUE(other.get().ok());
 }
 
 TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {

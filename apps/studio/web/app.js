@@ -7,7 +7,7 @@ const client = sessionStorage.getItem('studio-client') ||
 sessionStorage.setItem('studio-client', client);
 
 // What the browser test reads: timings and counts of the last answers.
-const studio = { client, lastPaintMs: null, lastPreviewMs: null, paintPreviews: 0, lastSketchMs: null, paintSent: 0, paintStrokes: 0, sketch: null };
+const studio = { client, lastPaintMs: null, lastPreviewMs: null, previewTimes: [], paintTimes: [], paintPreviews: 0, lastSketchMs: null, paintSent: 0, paintStrokes: 0, sketch: null };
 window.studio = studio;
 
 const $ = (id) => document.getElementById(id);
@@ -122,6 +122,8 @@ const paintCanvas = $('paint-canvas');
 const paintOverlay = $('paint-overlay');
 const paintContext = paintCanvas.getContext('2d');
 const overlayContext = paintOverlay.getContext('2d');
+// Settles when the last stroke's final is posted: the next stroke's requests go after it.
+let paintTurn = Promise.resolve();
 
 // An answer of RGBA bytes for the rectangle in its X-Rect header, put into `context`.
 async function putRgba(res, context = paintContext) {
@@ -163,27 +165,51 @@ $('paint-start').addEventListener('click', async () => {
     say(`painting ${answer.width}×${answer.height}`);
   } catch (e) { fail(e); }
 });
+// The overlay shows the stroke being drawn; an earlier stroke's answers clear it only between
+// strokes.
+let paintDrawing = false;
+const clearOverlay = () => {
+  if (!paintDrawing) overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
+};
 strokes(paintOverlay, (points) => {
+  paintDrawing = points.length > 0;
   drawPreview(overlayContext, points, Number($('paint-brush').value),
     $('paint-comb').checked ? 'rgba(40,110,200,0.6)' : 'rgba(200,60,40,0.35)');
 }, async (points) => {
+  paintDrawing = false;
   const started = performance.now();
   studio.paintSent += 1;
+  // Strokes go to the server in the order drawn: this stroke's requests wait until the one
+  // before has posted its final (the server queues finals in the order they arrive and composes
+  // each preview over every stroke queued so far, docs/studio.md, "The paint pipeline").
+  const turn = paintTurn;
+  let posted;
+  paintTurn = new Promise((resolve) => { posted = resolve; });
   try {
-    // Pen-up: a coarse preview of the stroke at once (the server keeps no state for it), then
-    // the final repaint over it (docs/studio.md, "Pen-up latency").
+    await turn;
+    // Pen-up: a coarse preview of the stroke at once, then the final repaint over it
+    // (docs/studio.md, "Pen-up latency").
     const stroke = { points, width: Number($('paint-brush').value), comb: $('paint-comb').checked };
     await putRgba(await api('POST', '/api/paint/preview', stroke, true));
     studio.lastPreviewMs = performance.now() - started;
+    studio.previewTimes.push(studio.lastPreviewMs);
     studio.paintPreviews += 1;
-    overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
-    const res = await api('POST', '/api/paint/stroke', stroke, true);
+    clearOverlay();
+    const final = api('POST', '/api/paint/stroke', stroke, true);
+    posted();
+    const res = await final;
     await putRgba(res);
     studio.lastPaintMs = performance.now() - started;
+    studio.paintTimes.push(studio.lastPaintMs);
     studio.paintStrokes += 1;
     say(`stroke ${studio.paintStrokes}: preview ${studio.lastPreviewMs.toFixed(0)} ms, final ${studio.lastPaintMs.toFixed(0)} ms`);
-  } catch (e) { fail(e); }
-  overlayContext.clearRect(0, 0, paintOverlay.width, paintOverlay.height);
+  } catch (e) {
+    // 409: undone (or a new painting started) before its final; undo answered the canvas.
+    if (e.message.includes('cancelled')) say('stroke undone'); else fail(e);
+  } finally {
+    posted();
+  }
+  clearOverlay();
 });
 // The buttons of a painting tool (paint, brush): undo, redo and save.
 function canvasButtons(tool, context) {

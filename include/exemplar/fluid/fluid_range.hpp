@@ -12,7 +12,9 @@
 /// memory does not grow with the range.
 
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "exemplar/core/image.hpp"
 #include "exemplar/core/run_context.hpp"
@@ -42,6 +44,37 @@ struct FluidRange {
     /// Called after each frame with its number, its output as stored, and whether this run wrote
     /// it (false: resumed). A non-ok status stops the range.
     std::function<Status(int n, const Image& stored, bool written)> on_frame;
+};
+
+/// The exemplar of a range as `exemplar fluid --exemplar EX [--exemplar-alpha A]` and the
+/// studio's fluid job open it: a still or a folder of frames (FrameSequence::from_folder), each
+/// RGBA, or RGB, RGBA or grey with its alpha from `alpha_path` (an image, or a folder of as many
+/// frames; channel 0). Output frame n uses frame n mod the count.
+class FluidExemplar {
+public:
+    /// Opens `path` (and `alpha_path`, "" for none) and loads the first frame, so a bad exemplar
+    /// fails here. InvalidArgument naming the file: an alpha folder of another count, an alpha of
+    /// another size, an exemplar without alpha ("needs an alpha channel (RGBA), or give
+    /// exemplar-alpha"); IoError for unreadable files.
+    static Result<FluidExemplar> open(const std::string& path, const std::string& alpha_path = "");
+    FluidExemplar(FluidExemplar&&) noexcept;
+    FluidExemplar& operator=(FluidExemplar&&) noexcept;
+    ~FluidExemplar();
+
+    /// Frames: 1 for a still.
+    int size() const;
+    /// The files read: the exemplar's frames, then the alpha's (for sandbox checks).
+    std::vector<std::string> files() const;
+    /// Z^n: the frame for output frame n (RGBA, straight alpha).
+    Result<Image> frame(int n);
+    /// Sets `range`'s exemplar callback and exemplar_sequence to this exemplar (which must
+    /// outlive the range's run).
+    void use_in(FluidRange& range);
+
+private:
+    struct Impl;
+    explicit FluidExemplar(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
 };
 
 /// Checks the range before anything runs: first ≤ last, the callbacks given, every alpha mask of

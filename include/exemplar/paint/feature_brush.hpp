@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "exemplar/core/image.hpp"
+#include "exemplar/core/run_context.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/paint/strokes.hpp"
 
@@ -204,8 +205,11 @@ public:
 
     /// Appends points to the target path and draws what they add. Returns the rectangle of
     /// pixels that may have changed (empty if none), or InvalidArgument for a non-finite point
-    /// (the stroke is then unchanged).
-    Result<PixelRect> add_points(std::span<const StrokePoint> points);
+    /// (the stroke is then unchanged). `cancel` (optional) stops the drawing: Cancelled once it
+    /// is set, and the stroke, partly drawn, is only good for discarding; unset, the pixels are
+    /// those drawn without it.
+    Result<PixelRect> add_points(std::span<const StrokePoint> points,
+                                 const CancelToken* cancel = nullptr);
     Result<PixelRect> add_point(StrokePoint point) { return add_points({&point, 1}); }
 
     /// The stroke's layer: RGBA (straight alpha), the canvas size, transparent outside it.
@@ -229,7 +233,8 @@ public:
     ~BrushStroke();
 
 private:
-    void shade(const PixelRect& rect, int first_dirty);
+    /// Shades `rect`; false when `cancel` stopped it (rows left undrawn).
+    bool shade(const PixelRect& rect, int first_dirty, const CancelToken* cancel);
 
     const LineFeature* feature_;
     float width_px_;
