@@ -139,26 +139,24 @@ Status synthesize_range(std::span<const NoisySource> sources, const NoisyRange& 
                                     " is " + std::to_string(width) + "x" + std::to_string(height));
         }
         NoisyFrame frame{std::move(*image), fixed_noise, fixed_orientation, fixed_sources};
-        std::string map_name;
-        if (range.orientation.file && range.orientation.per_frame) {
-            auto angles = load_input(range.orientation, n, map_name, load_angles);
-            if (!angles.ok()) return angles.status();
-            frame.orientation = std::move(*angles);
-        }
-        map_name = noise_name;
-        if (range.noise_map.file && range.noise_map.per_frame) {
-            auto map = load_input(range.noise_map, n, map_name, load_noise);
-            if (!map.ok()) return map.status();
-            frame.noise_map = std::move(*map);
-        }
-        EXEMPLAR_RETURN_IF_ERROR(check_map_size(frame.noise_map, map_name, frame.reference, name));
-        map_name = sources_name;
-        if (range.source_map.file && range.source_map.per_frame) {
-            auto map = load_input(range.source_map, n, map_name, load_sources);
-            if (!map.ok()) return map.status();
-            frame.source_map = std::move(*map);
-        }
-        EXEMPLAR_RETURN_IF_ERROR(check_map_size(frame.source_map, map_name, frame.reference, name));
+        // A per-frame input's file of this frame into `target` (`fixed_name`: the range's one
+        // file); a map must have the frame's size.
+        const auto frame_input = [&](const RangeInput& input, const std::string& fixed_name,
+                                     auto&& load, Image& target, bool map) -> Status {
+            std::string file = fixed_name;
+            if (input.file && input.per_frame) {
+                auto loaded = load_input(input, n, file, load);
+                if (!loaded.ok()) return loaded.status();
+                target = std::move(*loaded);
+            }
+            return map ? check_map_size(target, file, frame.reference, name) : Status::ok();
+        };
+        EXEMPLAR_RETURN_IF_ERROR(frame_input(range.orientation, orientation_name, load_angles,
+                                             frame.orientation, false));
+        EXEMPLAR_RETURN_IF_ERROR(
+            frame_input(range.noise_map, noise_name, load_noise, frame.noise_map, true));
+        EXEMPLAR_RETURN_IF_ERROR(
+            frame_input(range.source_map, sources_name, load_sources, frame.source_map, true));
         return frame;
     };
 
