@@ -821,8 +821,7 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
     }
     if (range_form && body.contains("frame")) {
         return invalid_argument(
-            "frame: only with reference (a range's frames are keyed by their "
-            "numbers)");
+            "frame: only with reference (a range's frames are keyed by their numbers)");
     }
     noisy::NoisyOptions noisy_options;
     for (const auto& [key, value] : body.items()) {
