@@ -1,8 +1,7 @@
-// `exemplar noisy`: Color Me Noisy (Fišer et al. 2014) over a frame range. Frames are
-// independent, so a range runs frames in parallel (one thread each) when there are at least as
-// many frames left as threads, else one frame at a time with the threads inside it; either way
-// every frame is the same bytes. Finished frames are skipped (resume), each output is written
-// atomically, and --mp4 collects the range once every frame exists.
+// `exemplar noisy`: Color Me Noisy (Fišer et al. 2014) over a frame range. The frames are the
+// library's range driver's (noisy::synthesize_range: batches of parallel frames, resume, atomic
+// writes); this command parses the flags and the job file, reads the media and the reference
+// sequence (a pattern or a video) and collects the range into --mp4 once every frame exists.
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +10,9 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "exemplar/core/parallel.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/noisy/noisy_range.hpp"
 #include "exemplar/video/frame_sequence.hpp"
 #include "json_file.hpp"
 #include "output_files.hpp"
@@ -221,66 +220,39 @@ Status NoisyCommand::run(const Streams& streams) {
             " given for " + std::to_string(exemplars_.size()) +
             " --exemplar (give one per exemplar, in their order)");
     }
-    // Angles in radians need a float format (an 8-bit PNG stores only 0..1).
-    auto load_angles = [](const std::string& flag, const std::string& path) -> Result<Image> {
-        const std::string ext = lowercase_extension(path);
-        if (ext != ".exr" && ext != ".tif" && ext != ".tiff") {
-            return invalid_argument(flag + " " + path +
-                                    ": an orientation field holds angles in radians and needs "
-                                    "a float format (EXR or float TIFF)");
-        }
-        auto image = load_image(path);
-        if (!image.ok()) return image.status();
-        if (image->channels() == 1) return image;
-        Image first(image->width(), image->height(), 1);
-        for (int y = 0; y < first.height(); ++y) {
-            for (int x = 0; x < first.width(); ++x) first.at(x, y, 0) = image->at(x, y, 0);
-        }
-        return first;
+    // The media's orientation fields (angles in radians need a float format); a frame
+    // pattern's extension is checked now, not at its first frame.
+    const auto flagged = [](const std::string& flag, const Status& status) {
+        return status.is_ok() ? status : Status(status.code(), flag + " " + status.message());
     };
     for (std::size_t k = 0; k < exemplar_orientations_.size(); ++k) {
-        auto angles = load_angles("--exemplar-orientation", exemplar_orientations_[k]);
-        if (!angles.ok()) return angles.status();
+        auto angles = noisy::load_orientation_field(exemplar_orientations_[k]);
+        if (!angles.ok()) return flagged("--exemplar-orientation", angles.status());
         sources[k].orientation = std::move(*angles);
     }
-    const bool orientation_is_pattern = frame_orientation_.find('%') != std::string::npos;
-    Image fixed_orientation;
-    if (!frame_orientation_.empty() && !orientation_is_pattern) {
-        auto angles = load_angles("--frame-orientation", frame_orientation_);
-        if (!angles.ok()) return angles.status();
-        fixed_orientation = std::move(*angles);
+    // A per-pixel input (--noise-map, --source-map, --frame-orientation): one file for the
+    // range or a frame pattern with the reference's numbers.
+    const auto range_input = [](const std::string& value) {
+        noisy::RangeInput input;
+        if (value.empty()) return input;
+        input.per_frame = value.find('%') != std::string::npos;
+        input.file = [value, per_frame = input.per_frame](int n) -> Result<std::string> {
+            return per_frame ? video::format_frame_path(value, n) : Result<std::string>(value);
+        };
+        return input;
+    };
+    noisy::NoisyRange range;
+    range.first = lo;
+    range.last = hi;
+    range.noise_map = range_input(noise_map_);
+    range.source_map = range_input(source_map_);
+    range.orientation = range_input(frame_orientation_);
+    if (range.orientation.file) {
+        auto first_file = range.orientation.file(lo);
+        if (!first_file.ok()) return first_file.status();
+        EXEMPLAR_RETURN_IF_ERROR(
+            flagged("--frame-orientation", noisy::check_orientation_file(*first_file)));
     }
-    // A per-pixel map (--noise-map, --source-map): one image for the range or a frame
-    // pattern; a grey image saved as RGB(A) gives its first channel.
-    auto load_map = [](const std::string& path) -> Result<Image> {
-        auto map = load_image(path);
-        if (!map.ok() || map->channels() == 1) return map;
-        Image grey(map->width(), map->height(), 1);
-        for (int y = 0; y < grey.height(); ++y) {
-            for (int x = 0; x < grey.width(); ++x) grey.at(x, y, 0) = map->at(x, y, 0);
-        }
-        return grey;
-    };
-    // Grey level k (of 255) names the k-th --exemplar.
-    auto load_source_map = [&](const std::string& path) -> Result<Image> {
-        auto map = load_map(path);
-        if (!map.ok()) return map;
-        for (float& v : map->data()) v = std::round(v * 255.0f);
-        const Status checked = noisy::check_source_map(*map, sources.size());
-        if (!checked.is_ok()) return Status(checked.code(), path + ": " + checked.message());
-        return map;
-    };
-    // A map given as one file is read once; a pattern's files per frame (read_frame).
-    auto range_map = [](const std::string& value, auto&& load) -> Result<Image> {
-        if (value.empty() || value.find('%') != std::string::npos) return Image();
-        return load(value);
-    };
-    const bool map_is_pattern = noise_map_.find('%') != std::string::npos;
-    auto fixed_map = range_map(noise_map_, load_map);
-    if (!fixed_map.ok()) return fixed_map.status();
-    const bool source_map_is_pattern = source_map_.find('%') != std::string::npos;
-    auto fixed_source_map = range_map(source_map_, load_source_map);
-    if (!fixed_source_map.ok()) return fixed_source_map.status();
     auto output_path = [&](int number) { return video::format_frame_path(output_, number); };
     {
         auto probe = output_path(lo);
@@ -291,100 +263,33 @@ Status NoisyCommand::run(const Streams& streams) {
     }
     if (!mp4_.empty()) EXEMPLAR_RETURN_IF_ERROR(video::check_video_support(mp4_));
 
-    // The frames to make.
-    std::vector<int> todo;
-    for (int n = lo; n <= hi; ++n) {
-        std::error_code ec;
-        if (resume_ && fs::exists(*output_path(n), ec)) continue;
-        todo.push_back(n);
-    }
-    if (todo.empty() && !quiet_) streams.err << "exemplar noisy: every frame of the range exists\n";
-
-    // Reads frame `number` and its noise map; the size of the first frame read is the range's.
-    int width = 0, height = 0;
-    std::string first_name;
-    auto read_frame = [&](int number) -> Result<noisy::NoisyFrame> {
-        auto image = sequence->read(number - base);
-        if (!image.ok()) return image.status();
-        const std::string name = sequence->frame_name(number - base);
-        if (width == 0) {
-            width = image->width();
-            height = image->height();
-            first_name = name;
-        } else if (image->width() != width || image->height() != height) {
-            return invalid_argument(name + ": is " + std::to_string(image->width()) + "x" +
-                                    std::to_string(image->height()) + " but " + first_name +
-                                    " is " + std::to_string(width) + "x" + std::to_string(height));
-        }
-        noisy::NoisyFrame frame{std::move(*image), *fixed_map, fixed_orientation,
-                                *fixed_source_map};
-        if (orientation_is_pattern) {
-            auto path = video::format_frame_path(frame_orientation_, number);
-            if (!path.ok()) return path.status();
-            auto angles = load_angles("--frame-orientation", *path);
-            if (!angles.ok()) return angles.status();
-            frame.orientation = std::move(*angles);
-        }
-        // Each map: this frame's file of a pattern, the same size as the frame.
-        auto frame_map = [&](const std::string& flag_value, bool per_frame, auto&& load,
-                             Image& map) -> Status {
-            std::string map_name = flag_value;
-            if (per_frame) {
-                auto path = video::format_frame_path(flag_value, number);
-                if (!path.ok()) return path.status();
-                auto loaded = load(*path);
-                if (!loaded.ok()) return loaded.status();
-                map = std::move(*loaded);
-                map_name = *path;
-            }
-            if (map.empty() || map.same_size(frame.reference)) return Status::ok();
-            return invalid_argument(map_name + ": is " + std::to_string(map.width()) + "x" +
-                                    std::to_string(map.height()) + " but " + name + " is " +
-                                    std::to_string(frame.reference.width()) + "x" +
-                                    std::to_string(frame.reference.height()));
-        };
-        EXEMPLAR_RETURN_IF_ERROR(frame_map(noise_map_, map_is_pattern, load_map, frame.noise_map));
-        EXEMPLAR_RETURN_IF_ERROR(
-            frame_map(source_map_, source_map_is_pattern, load_source_map, frame.source_map));
-        return frame;
+    // The frames: the library's range driver (resume, batches of parallel frames, atomic
+    // writes); the reference frames are read from the sequence on this thread.
+    range.reference = [&](int n) { return sequence->read(n - base); };
+    range.reference_name = [&](int n) { return sequence->frame_name(n - base); };
+    range.output_file = output_path;
+    range.save = output_options(source, exemplars_.front(), *output_path(lo));
+    range.resume = resume_;
+    int written = 0, last_written = lo;
+    range.on_frame = [&](int n, const std::string&) {
+        ++written;
+        last_written = n;
+        return Status::ok();
     };
-
-    // Batches of frames in parallel (one thread each), or one frame with all threads.
-    const int threads = resolve_threads(threads_);
-    const int batch = static_cast<int>(todo.size()) >= threads ? threads : 1;
-    const SaveOptions save = output_options(source, exemplars_.front(), *output_path(lo));
     ProgressBar bar(streams.err, "noisy", streams.err_is_terminal && !quiet_);
-    for (std::size_t start = 0; start < todo.size(); start += static_cast<std::size_t>(batch)) {
-        const std::size_t end = std::min(todo.size(), start + static_cast<std::size_t>(batch));
-        std::vector<noisy::NoisyFrame> inputs;
-        for (std::size_t i = start; i < end; ++i) {
-            auto frame = read_frame(todo[i]);
-            if (!frame.ok()) return frame.status();
-            inputs.push_back(std::move(*frame));
-        }
-        std::vector<Status> statuses(inputs.size());
-        const int inner = batch > 1 ? 1 : threads_;
-        parallel_for(0, static_cast<int>(inputs.size()), batch > 1 ? threads : 1, [&](int i) {
-            const int number = todo[start + static_cast<std::size_t>(i)];
-            auto image = noisy::synthesize_frame(sources, inputs[static_cast<std::size_t>(i)],
-                                                 options, number, RunContext(inner));
-            if (!image.ok()) {
-                statuses[static_cast<std::size_t>(i)] =
-                    Status(image.status().code(),
-                           sequence->frame_name(number - base) + ": " + image.status().message());
-                return;
-            }
-            statuses[static_cast<std::size_t>(i)] =
-                video::write_frame(*image, output_, number, save);
-        });
-        for (const Status& status : statuses) EXEMPLAR_RETURN_IF_ERROR(status);
-        bar.update(static_cast<double>(end) / static_cast<double>(todo.size()),
-                   "frame " + std::to_string(todo[end - 1]));
-    }
+    RunContext context(threads_);
+    context.progress = [&](const ProgressEvent& e) {
+        bar.update(e.fraction, "frame " + std::to_string(last_written));
+    };
+    EXEMPLAR_RETURN_IF_ERROR(noisy::synthesize_range(sources, range, options, context));
     bar.finish();
-    if (!quiet_ && !todo.empty()) {
-        streams.out << output_ << " (" << todo.size() << " frame" << (todo.size() == 1 ? "" : "s")
-                    << ")\n";
+    if (!quiet_) {
+        if (written == 0) {
+            streams.err << "exemplar noisy: every frame of the range exists\n";
+        } else {
+            streams.out << output_ << " (" << written << " frame" << (written == 1 ? "" : "s")
+                        << ")\n";
+        }
     }
 
     if (!mp4_.empty()) {

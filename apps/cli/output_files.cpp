@@ -60,13 +60,6 @@ int png_bit_depth(const std::string& path) {
 
 }  // namespace
 
-std::string lowercase_extension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
 Status check_output_path(std::string_view flag, const std::string& path) {
     if (path.empty()) return invalid_argument(std::string(flag) + ": is empty");
     std::error_code ec;

@@ -72,8 +72,8 @@ std::string unlabelled_levels_note(const SynthesisResult& result);
 /// True if both paths name the same file (after resolving `.`, `..` and symbolic links).
 bool same_file(const std::string& a, const std::string& b);
 
-/// Lower-case extension with the dot (".png"), or "".
-std::string lowercase_extension(const std::string& path);
+/// Lower-case extension with the dot (".png"), or "" (the io module's).
+using exemplar::lowercase_extension;
 
 /// The end of a per-frame verb's range: closes the MP4 when one was opened and, unless `quiet`,
 /// prints its path and "N frames written, M already done" (`count` frames in the range).

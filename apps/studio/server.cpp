@@ -19,6 +19,7 @@
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/noisy/noisy.hpp"
+#include "exemplar/noisy/noisy_range.hpp"
 #include "exemplar/npr/npr.hpp"
 #include "exemplar/npr/npr_range.hpp"
 #include "exemplar/paint/vectorize_style.hpp"
@@ -874,16 +875,82 @@ Result<JobWork> StudioServer::Impl::stylize_work(const json& body, const JobPath
     });
 }
 
-// A noisy job (Color Me Noisy, one frame; the call `exemplar noisy` makes per frame): the keys
-// are the noisy option table's (noise required, as on the command line), `seed`, `filter` and
-// `frame` (the frame index the randomness is keyed by); any other key is refused.
+namespace {
+
+// The noisy job's path fields, by its form (docs/studio.md, "noisy"), for the route to resolve in
+// the workspace before noisy_work runs. One frame (`reference`) has one output; a range
+// (`frames`: a pattern, or a folder of images) has an output pattern, and each of its per-pixel
+// inputs is one file or a pattern with the frames' numbers.
+constexpr const char* kNoisyMaps[] = {"noise-map", "source-map", "frame-orientation"};
+
+bool noisy_range_form(const json& body) {
+    return body.contains("frames");
+}
+
+bool pattern_value(const json& body, const char* field) {
+    const auto it = body.find(field);
+    return it != body.end() && it->is_string() &&
+           it->get<std::string>().find('%') != std::string::npos;
+}
+
+// One path each.
+std::vector<const char*> noisy_files(const json& body) {
+    const bool range = noisy_range_form(body);
+    std::vector<const char*> files;
+    if (!range) files = {"reference", "output"};
+    if (range && !pattern_value(body, "frames")) files.push_back("frames");  // a folder
+    for (const char* map : kNoisyMaps) {
+        if (body.contains(map) && !(range && pattern_value(body, map))) files.push_back(map);
+    }
+    return files;
+}
+
+// A path or a list of paths each.
+std::vector<const char*> noisy_file_lists(const json& body) {
+    if (body.contains("exemplar-orientation")) return {"exemplar", "exemplar-orientation"};
+    return {"exemplar"};
+}
+
+// Frame patterns, formatted for first..last.
+std::vector<const char*> noisy_patterns(const json& body) {
+    if (!noisy_range_form(body)) return {};
+    std::vector<const char*> patterns = {"output"};
+    if (pattern_value(body, "frames")) patterns.push_back("frames");
+    for (const char* map : kNoisyMaps) {
+        if (pattern_value(body, map)) patterns.push_back(map);
+    }
+    return patterns;
+}
+
+}  // namespace
+
+// A noisy job (Color Me Noisy): what `exemplar noisy` does, through the same range driver
+// (noisy::synthesize_range). One frame: the medium (or media) over `reference`, keyed by `frame`
+// (default 0), to `output`. A range: the frames `frames` (a pattern, or a folder whose images in
+// name order are frames 0, 1, ...) first..last to the pattern `output`, each reported as it is
+// written. Either takes several media (`exemplar` as an array) with `source-map`, `noise-map`,
+// and `exemplar-orientation` with `frame-orientation`; `seed`, `filter` and the noisy option
+// table's keys (noise required, as on the command line). Every input is checked here; frame and
+// map sizes are the driver's, so a bad one fails the job at its frame.
 Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths& paths) {
-    noisy::NoisyOptions noisy_options;
+    const bool range_form = noisy_range_form(body);
     if (!body.contains("noise")) {
         return invalid_argument("noise: missing (the low-pass strength f in pixels)");
     }
+    if (range_form && body.contains("reference")) {
+        return invalid_argument(
+            "reference: give reference (one frame) or frames (a range), not both");
+    }
+    if (range_form && body.contains("frame")) {
+        return invalid_argument(
+            "frame: only with reference (a range's frames are keyed by their numbers)");
+    }
+    noisy::NoisyOptions noisy_options;
     for (const auto& [key, value] : body.items()) {
-        if (key == "kind" || paths.contains(key) || key == "seed" || key == "frame") continue;
+        if (key == "kind" || paths.contains(key) || key == "seed" || key == "frame" ||
+            (range_form && (key == "first" || key == "last"))) {
+            continue;
+        }
         if (key == "filter") {
             if (!value.is_string()) return invalid_argument("filter: must be a string");
             auto filter = noisy::parse_low_pass_filter(value.get<std::string>());
@@ -896,23 +963,158 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
         EXEMPLAR_RETURN_IF_ERROR(*set);
     }
     EXEMPLAR_RETURN_IF_ERROR(read_seed(body, noisy_options.seed));
-    auto frame = number_field(body, "frame", 0.0, 0.0, 1e9);
-    if (!frame.ok()) return frame.status();
-    if (*frame != std::floor(*frame)) return invalid_argument("frame: must be an integer");
     EXEMPLAR_RETURN_IF_ERROR(noisy::validate(noisy_options));
-    noisy::NoisyFrame input;
-    auto exemplar = load_image(paths.at("exemplar").string());
-    if (!exemplar.ok()) return invalid_argument("exemplar: " + exemplar.status().message());
-    auto reference = load_image(paths.at("reference").string());
-    if (!reference.ok()) return invalid_argument("reference: " + reference.status().message());
-    input.reference = std::move(*reference);
-    EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
-    return JobWork([exemplar = std::move(*exemplar), input = std::move(input), noisy_options,
-                    index = static_cast<std::int64_t>(*frame), path = paths.at("output").string()](
-                       const RunContext& context, const OutputSink&) -> Status {
-        auto image = noisy::synthesize_frame(exemplar, input, noisy_options, index, context);
-        if (!image.ok()) return image.status();
-        return save_image(*image, path);
+
+    // The media and their orientation fields.
+    std::vector<noisy::NoisySource> sources;
+    for (const std::string& file : paths.lists.at("exemplar")) {
+        auto medium = load_image(file);
+        if (!medium.ok()) return invalid_argument("exemplar: " + medium.status().message());
+        sources.push_back({std::move(*medium), Image()});
+    }
+    const bool oriented = paths.lists.contains("exemplar-orientation");
+    if (oriented != paths.contains("frame-orientation")) {
+        return invalid_argument(
+            "exemplar-orientation and frame-orientation: give both, or neither");
+    }
+    if (oriented) {
+        const std::vector<std::string>& files = paths.lists.at("exemplar-orientation");
+        if (files.size() != sources.size()) {
+            return invalid_argument("exemplar-orientation: " + std::to_string(files.size()) +
+                                    " given for " + std::to_string(sources.size()) +
+                                    " exemplars (give one per exemplar, in their order)");
+        }
+        for (std::size_t k = 0; k < files.size(); ++k) {
+            auto angles = noisy::load_orientation_field(files[k]);
+            if (!angles.ok())
+                return invalid_argument("exemplar-orientation: " + angles.status().message());
+            sources[k].orientation = std::move(*angles);
+        }
+    }
+    if (sources.size() > 1 && !paths.contains("source-map")) {
+        return invalid_argument("source-map: is required with " + std::to_string(sources.size()) +
+                                " exemplars (it chooses the medium of every pixel)");
+    }
+
+    // The frames and their outputs.
+    noisy::NoisyRange range;
+    range.resume = false;  // a job runs again with other options: it rewrites its frames
+    std::vector<std::string> reported;  // a range's outputs as the client names them
+    if (!range_form) {
+        auto frame = number_field(body, "frame", 0.0, 0.0, 1e9);
+        if (!frame.ok()) return frame.status();
+        if (*frame != std::floor(*frame)) return invalid_argument("frame: must be an integer");
+        range.first = range.last = static_cast<int>(*frame);
+        auto reference = load_image(paths.at("reference").string());
+        if (!reference.ok()) return invalid_argument("reference: " + reference.status().message());
+        EXEMPLAR_RETURN_IF_ERROR(check_image_output(paths.at("output")));
+        range.reference = [image = std::move(*reference)](int) -> Result<Image> { return image; };
+        range.reference_name = [name = body.value("reference", std::string())](int) {
+            return name;
+        };
+        range.output_file = [file = paths.at("output").string()](int) -> Result<std::string> {
+            return file;
+        };
+    } else {
+        const FrameFiles& outputs = paths.patterns.at("output");
+        EXEMPLAR_RETURN_IF_ERROR(check_image_output(outputs.absolute.front()));
+        range.first = outputs.first;
+        range.last = outputs.first + static_cast<int>(outputs.absolute.size()) - 1;
+        reported = outputs.relative;
+        FrameFiles frames;
+        if (paths.patterns.contains("frames")) {
+            frames = paths.patterns.at("frames");
+            for (std::size_t k = 0; k < frames.absolute.size(); ++k) {
+                if (!std::filesystem::is_regular_file(frames.absolute[k]))
+                    return invalid_argument("frames: " + frames.relative[k] + ": no such file");
+            }
+        } else {
+            // A folder: its images in name order, each resolved in the workspace.
+            const std::string folder = body.value("frames", std::string());
+            auto sequence = video::FrameSequence::from_folder(paths.at("frames").string());
+            if (!sequence.ok()) return invalid_argument("frames: " + sequence.status().message());
+            if (range.last >= sequence->size()) {
+                return invalid_argument("last: " + std::to_string(range.last) +
+                                        " is invalid (the folder " + folder + " has frames 0.." +
+                                        std::to_string(sequence->size() - 1) + ")");
+            }
+            frames.first = range.first;
+            for (int n = range.first; n <= range.last; ++n) {
+                const std::string name =
+                    folder + "/" +
+                    std::filesystem::path(sequence->frame_name(n)).filename().string();
+                auto path = workspace.resolve(name);
+                if (!path.ok()) return invalid_argument("frames: " + path.status().message());
+                frames.relative.push_back(name);
+                frames.absolute.push_back(path->string());
+            }
+        }
+        range.reference = [files = frames.absolute, first = range.first](int n) {
+            return load_image(files[static_cast<std::size_t>(n - first)]);
+        };
+        range.reference_name = [names = frames.relative, first = range.first](int n) {
+            return names[static_cast<std::size_t>(n - first)];
+        };
+        range.output_file = [files = outputs.absolute,
+                             first = range.first](int n) -> Result<std::string> {
+            return files[static_cast<std::size_t>(n - first)];
+        };
+    }
+
+    // The per-pixel inputs: one file (checked now) or a file per frame (each must exist).
+    const auto range_input = [&](const char* field,
+                                 const auto& check) -> Result<noisy::RangeInput> {
+        noisy::RangeInput input;
+        if (paths.one.contains(field)) {
+            const std::string file = paths.at(field).string();
+            const Status checked = check(file);
+            if (!checked.is_ok())
+                return invalid_argument(std::string(field) + ": " + checked.message());
+            input.file = [file](int) -> Result<std::string> { return file; };
+        } else if (paths.patterns.contains(field)) {
+            const FrameFiles& files = paths.patterns.at(field);
+            for (std::size_t k = 0; k < files.absolute.size(); ++k) {
+                if (!std::filesystem::is_regular_file(files.absolute[k]))
+                    return invalid_argument(std::string(field) + ": " + files.relative[k] +
+                                            ": no such file");
+            }
+            input.per_frame = true;
+            input.file = [files = files.absolute,
+                          first = files.first](int n) -> Result<std::string> {
+                return files[static_cast<std::size_t>(n - first)];
+            };
+        }
+        return input;
+    };
+    auto noise_map = range_input(
+        "noise-map", [](const std::string& file) { return noisy::load_noise_map(file).status(); });
+    if (!noise_map.ok()) return noise_map.status();
+    range.noise_map = std::move(*noise_map);
+    auto source_map = range_input("source-map", [&](const std::string& file) {
+        return noisy::load_source_map(file, sources.size()).status();
+    });
+    if (!source_map.ok()) return source_map.status();
+    range.source_map = std::move(*source_map);
+    auto orientation = range_input("frame-orientation", [](const std::string& file) {
+        return noisy::load_orientation_field(file).status();
+    });
+    if (!orientation.ok()) return orientation.status();
+    range.orientation = std::move(*orientation);
+    if (range.orientation.per_frame) {
+        const Status checked = noisy::check_orientation_file(*range.orientation.file(range.first));
+        if (!checked.is_ok()) return invalid_argument("frame-orientation: " + checked.message());
+    }
+
+    return JobWork([sources = std::move(sources), range, noisy_options, reported](
+                       const RunContext& context, const OutputSink& wrote) -> Status {
+        noisy::NoisyRange job_range = range;
+        if (!reported.empty()) {
+            job_range.on_frame = [&](int n, const std::string&) {
+                wrote(n, reported[static_cast<std::size_t>(n - job_range.first)]);
+                return Status::ok();
+            };
+        }
+        return noisy::synthesize_range(sources, job_range, noisy_options, context);
     });
 }
 
@@ -1340,10 +1542,11 @@ void StudioServer::Impl::add_job_routes() {
         const std::map<std::string, Patterns> patterns = {{"animate", {"frames", "output"}},
                                                           {"fluid-simulate", {"alpha", "motion"}},
                                                           {"fluid", {"alpha", "motion", "output"}},
-                                                          {"npr", {"frames", "output"}}};
+                                                          {"npr", {"frames", "output"}},
+                                                          {"noisy", noisy_patterns(*body)}};
         const std::map<std::string, Kind> kinds = {
             {"stylize", {{"style", "source", "target", "output"}, {}, &Impl::stylize_work}},
-            {"noisy", {{"exemplar", "reference", "output"}, {}, &Impl::noisy_work}},
+            {"noisy", {noisy_files(*body), noisy_file_lists(*body), &Impl::noisy_work}},
             {"stylit", {{"exemplar", "output"}, {"source", "target"}, &Impl::stylit_work}},
             {"animate", {{"style-input", "style-output"}, {}, &Impl::animate_work}},
             {"fluid-simulate", {{}, {}, &Impl::fluid_simulate_work}},
@@ -1382,7 +1585,7 @@ void StudioServer::Impl::add_job_routes() {
                 paths.lists[field].push_back(path->string());
             }
         }
-        if (const auto p = patterns.find(kind); p != patterns.end()) {
+        if (const auto p = patterns.find(kind); p != patterns.end() && !p->second.empty()) {
             auto range = frame_range(*body);
             if (!range.ok()) return fail(res, range.status());
             for (const char* field : p->second) {

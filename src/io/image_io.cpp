@@ -62,13 +62,6 @@ std::string one_line(const std::string& text) {
     return out;
 }
 
-std::string lowercase_extension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    return ext;
-}
-
 // Runs `body`, turning any exception into an error naming `path`: the public functions never
 // throw.
 template <typename Body>
@@ -327,6 +320,13 @@ Status write_file(const Image& image, const std::string& path, const SaveOptions
 }
 
 }  // namespace
+
+std::string lowercase_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    return ext;
+}
 
 Result<Image> load_image(const std::string& path) {
     return guarded(path, [&]() -> Result<Image> {

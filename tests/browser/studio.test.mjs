@@ -2,8 +2,9 @@
 // "Tests"): upload an exemplar (file picker, drag and drop, a refused fake), paint two strokes
 // with the mouse and compare the server's painting with a stored reference, pick a line feature
 // and brush with it, sketch a stroke and cycle/accept/undo its suggestions, start a job and
-// cancel it, run a noisy frame, three animate frames, fluid targets and frames, three npr
-// frames and three more with a paper and the bidirectional loop, run StyLit and paint over its
+// cancel it, run a noisy frame, three animate frames, three noisy frames of them, fluid targets
+// and frames, three npr frames and three more with a paper and the bidirectional loop, run
+// StyLit and paint over its
 // exemplar (the result follows),
 // then stop the server with SIGINT while a job runs.
 //
@@ -367,6 +368,31 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
         .equals(fs.readFileSync(path.join(artifacts, 'animate-cli', f))), `animate frame ${f} differs from the command's`);
     }
     await page.screenshot({ path: path.join(artifacts, 'jobs-animate.png') });
+
+    // A noisy range from the second form: the animate frames 0..2 with a noise map (frame 0's
+    // grey), each frame linked as it is written; `exemplar noisy`'s bytes.
+    await page.fill('#noisy-form input[name=frames]', '%04d.png');
+    await page.fill('#noisy-form input[name=first]', '0');
+    await page.fill('#noisy-form input[name=last]', '2');
+    await page.fill('#noisy-form input[name="noise-map"]', '0000.png');
+    await page.fill('#noisy-form input[name=output]', 'outputs/noisy/%04d.png');
+    await page.click('#noisy-form button[type=submit]');
+    await page.waitForFunction(() => {
+      const li = document.querySelector('#job-list li');
+      return li.textContent.includes('outputs/noisy/') && li.dataset.state === 'done' && li.querySelector('img');
+    }, null, { timeout: 120000 });
+    assert.deepEqual(await page.locator('#job-list li:first-child .job-frames a').allTextContents(),
+      ['0', '1', '2']);
+    fs.rmSync(path.join(artifacts, 'noisy-cli'), { recursive: true, force: true });
+    const noisyCli = spawnSync(exemplarCli, ['noisy', '-q', '-j', '2', '--exemplar',
+      path.join(workspace, 'texbynum/source_photo.png'), '--frames', path.join(workspace, '%04d.png'),
+      '--first', '0', '--last', '2', '--noise', '2', '--noise-map', path.join(workspace, '0000.png'),
+      '--seed', '1', '-o', path.join(artifacts, 'noisy-cli', '%04d.png')]);
+    assert.equal(noisyCli.status, 0, `exemplar noisy: ${noisyCli.stderr}`);
+    for (const f of animFrames) {
+      assert.ok(fs.readFileSync(path.join(workspace, 'outputs', 'noisy', f))
+        .equals(fs.readFileSync(path.join(artifacts, 'noisy-cli', f))), `noisy frame ${f} differs from the command's`);
+    }
 
     // Fluid: plume targets simulated (48x48, frames 0..3), then the bundled ink over frames
     // 1..3; the frames are `exemplar fluid`'s bytes on the same targets.

@@ -1016,6 +1016,152 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
     EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
 }
 
+// The first channel of a map file, as the command reads it; `levels` scales it to grey levels
+// (a source map's 0..255).
+Image map_of(const fs::path& file, float levels = 1.0f) {
+    auto image = load_image(file.string());
+    EXPECT_TRUE(image.ok()) << file;
+    Image map(image->width(), image->height(), 1);
+    for (int y = 0; y < map.height(); ++y) {
+        for (int x = 0; x < map.width(); ++x) {
+            map.at(x, y, 0) =
+                levels == 1.0f ? image->at(x, y, 0) : std::round(image->at(x, y, 0) * levels);
+        }
+    }
+    return map;
+}
+
+TEST_F(StudioTest, NoisyRangesWithSeveralMediaWriteTheLibrarysFrames) {
+    // Three 40 x 32 reference frames 1..3, a second medium (the texture inverted), a source map
+    // per frame (the second medium right of a moving boundary) and one noise map.
+    const fs::path ws = base_ / "ws";
+    fs::create_directories(ws / "R");
+    fs::create_directories(ws / "M");
+    Image inverted = texture(64, 48);
+    for (float& v : inverted.data()) v = 1.0f - v;
+    ASSERT_TRUE(save_image(inverted, (ws / "inverted.png").string()).is_ok());
+    Image noise(40, 32, 1);
+    for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 40; ++x) noise.at(x, y, 0) = static_cast<float>(x) / 39.0f;
+    }
+    ASSERT_TRUE(save_image(noise, (ws / "noise.png").string()).is_ok());
+    for (int n = 1; n <= 3; ++n) {
+        const Image tex = texture(40 + 4 * n, 32);
+        Image frame(40, 32, 3), map(40, 32, 1);
+        for (int y = 0; y < 32; ++y) {
+            for (int x = 0; x < 40; ++x) {
+                for (int c = 0; c < 3; ++c) frame.at(x, y, c) = tex.at(x + 4 * n, y, c);
+                map.at(x, y, 0) = x >= 14 + 2 * n ? 1.0f / 255.0f : 0.0f;
+            }
+        }
+        ASSERT_TRUE(
+            save_image(frame, (ws / *video::format_frame_path("R/%d.png", n)).string()).is_ok());
+        ASSERT_TRUE(
+            save_image(map, (ws / *video::format_frame_path("M/%d.png", n)).string()).is_ok());
+    }
+    start();
+    const json good = {{"kind", "noisy"},
+                       {"exemplar", {"tex.png", "inverted.png"}},
+                       {"frames", "R/%d.png"},
+                       {"first", 1},
+                       {"last", 3},
+                       {"source-map", "M/%d.png"},
+                       {"noise-map", "noise.png"},
+                       {"output", "outputs/noisy/%d.png"},
+                       {"noise", 3},
+                       {"patch-size", 5},
+                       {"seed", 4}};
+    auto job = post("/api/jobs", good);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const json end = follow(server_->port(), body_of(job)["id"]);
+    ASSERT_EQ(end["state"], "done") << end.dump();
+    ASSERT_EQ(end["frames"].size(), 3u);
+    // The library's frames, each keyed by its number, in order.
+    noisy::NoisyOptions options;
+    options.noise = 3.0f;
+    options.patch_size = 5;
+    options.seed = 4;
+    std::vector<noisy::NoisySource> media(2);
+    media[0].image = *load_image((ws / "tex.png").string());
+    media[1].image = *load_image((ws / "inverted.png").string());
+    for (int n = 1; n <= 3; ++n) {
+        const std::string output = *video::format_frame_path("outputs/noisy/%d.png", n);
+        EXPECT_EQ(end["frames"][n - 1]["frame"], n);
+        EXPECT_EQ(end["frames"][n - 1]["path"], output);
+        noisy::NoisyFrame frame;
+        frame.reference = *load_image((ws / *video::format_frame_path("R/%d.png", n)).string());
+        frame.noise_map = map_of(ws / "noise.png");
+        frame.source_map = map_of(ws / *video::format_frame_path("M/%d.png", n), 255.0f);
+        auto image = noisy::synthesize_frame(media, frame, options, n, RunContext(1));
+        ASSERT_TRUE(image.ok()) << image.status().message();
+        const fs::path mine = base_ / *video::format_frame_path("library%d.png", n);
+        ASSERT_TRUE(save_image(*image, mine.string()).is_ok());
+        EXPECT_TRUE(file_bytes(ws / output) == file_bytes(mine)) << "frame " << n;
+    }
+
+    // A folder of frames: its images in name order are frames 0, 1, ...
+    auto folder = post("/api/jobs", {{"kind", "noisy"},
+                                     {"exemplar", "tex.png"},
+                                     {"frames", "R"},
+                                     {"last", 1},
+                                     {"output", "outputs/folder/%d.png"},
+                                     {"noise", 3},
+                                     {"patch-size", 5}});
+    ASSERT_EQ(folder->status, 202) << folder->body;
+    ASSERT_EQ(follow(server_->port(), body_of(folder)["id"])["state"], "done");
+    options.seed = 1;
+    for (int k = 0; k <= 1; ++k) {
+        noisy::NoisyFrame frame;
+        frame.reference = *load_image((ws / *video::format_frame_path("R/%d.png", k + 1)).string());
+        auto image = noisy::synthesize_frame(media[0].image, frame, options, k, RunContext(1));
+        ASSERT_TRUE(image.ok()) << image.status().message();
+        const fs::path mine = base_ / "folder.png";
+        ASSERT_TRUE(save_image(*image, mine.string()).is_ok());
+        EXPECT_TRUE(file_bytes(ws / *video::format_frame_path("outputs/folder/%d.png", k)) ==
+                    file_bytes(mine))
+            << "folder frame " << k;
+    }
+    EXPECT_FALSE(fs::exists(ws / "outputs" / "folder" / "2.png"));
+
+    // Every path is resolved in the workspace: one outside is a 403 and nothing is written.
+    ASSERT_TRUE(save_image(Image(40, 32, 1), (base_ / "outside" / "1.png").string()).is_ok());
+    const std::vector<std::pair<std::string, json>> outside = {
+        {"frames", "../outside/%d.png"},
+        {"frames", "../outside"},
+        {"exemplar", {"tex.png", "../outside/1.png"}},
+        {"source-map", "../outside/1.png"},
+        {"noise-map", "../outside/%d.png"},
+        {"output", "../outside/%d.png"},
+        {"exemplar-orientation", {"../outside/o.exr", "../outside/p.exr"}}};
+    for (const auto& [key, value] : outside) {
+        json bad = good;
+        bad[key] = value;
+        if (key == "exemplar-orientation") bad["frame-orientation"] = "M/%d.png";
+        auto refused = post("/api/jobs", bad);
+        ASSERT_TRUE(refused);
+        EXPECT_EQ(refused->status, 403) << key << ": " << refused->body;
+    }
+    // Bad parameters: one line naming the parameter (400).
+    expect_refused("/api/jobs", good,
+                   {{"last", 4, "frames: R/4.png"},
+                    {"source-map", "nope/%d.png", "source-map: nope/1.png"},
+                    {"noise-map", "nope.png", "noise-map: "},
+                    {"frame", 2, "frame: "},
+                    {"reference", "tex.png", "reference: "},
+                    {"exemplar-orientation", "o.exr", "frame-orientation"},
+                    {"frame-orientation", "M/%d.png", "frame-orientation: "},
+                    {"output", "outputs/%d.txt", "output: "},
+                    {"wobble", 1, "wobble: "}});
+    json one_map_too_few = good;
+    one_map_too_few.erase("source-map");
+    auto refused = post("/api/jobs", one_map_too_few);
+    EXPECT_EQ(refused->status, 400);
+    EXPECT_EQ(body_of(refused)["error"],
+              "source-map: is required with 2 exemplars (it chooses the medium of every pixel)");
+    EXPECT_EQ(std::distance(fs::directory_iterator(base_ / "outside"), fs::directory_iterator()),
+              2);
+}
+
 // Light-path buffers of a small render: smooth shading that differs per buffer and per render.
 Image buffer_of(int width, int height, int buffer, int render) {
     Image image(width, height, 3);
@@ -1679,6 +1825,22 @@ TEST_F(StudioJobTest, CancelStopsANoisyJobAndWritesNothing) {
                                  {"noise", 16},
                                  {"warm-search-iterations", 0}},
                                 "outputs/noisy.png");
+}
+
+TEST_F(StudioJobTest, CancelStopsANoisyRangeAndKeepsTheFinishedFramesWhole) {
+    // Four 320 x 462 frames, two at a time (the server's two threads, one each).
+    for (int n = 0; n < 4; ++n) {
+        fs::copy_file(base_ / "ws" / "texbynum" / "source_photo.png",
+                      base_ / "ws" / "texbynum" / *video::format_frame_path("f%d.png", n));
+    }
+    start();
+    cancel_after_first_frame({{"kind", "noisy"},
+                              {"exemplar", "texbynum/source_photo.png"},
+                              {"frames", "texbynum/f%d.png"},
+                              {"last", 3},
+                              {"output", "outputs/%d.png"},
+                              {"noise", 8}},
+                             "320x462");
 }
 
 TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {

@@ -538,6 +538,19 @@ strokes(stylitOverlay.canvas, (points) => {
   stylitLater();
 });
 
+// The noisy form: one frame (reference, frame) or a range (frames, first, last); more media and
+// the media's orientations are comma-separated paths; empty fields are left out.
+const jobShapes = {
+  noisy(body) {
+    for (const k of Object.keys(body)) if (body[k] === '') delete body[k];
+    const list = (text) => text.split(',').map((p) => p.trim()).filter(Boolean);
+    if (body['more-media']) body.exemplar = [body.exemplar, ...list(body['more-media'])];
+    delete body['more-media'];
+    if (body['exemplar-orientation']) body['exemplar-orientation'] = list(body['exemplar-orientation']);
+    for (const k of body.frames ? ['reference', 'frame'] : ['first', 'last']) delete body[k];
+  },
+};
+
 // Each job form names its kind; number fields are sent as JSON numbers, optional files left at
 // "none" are left out.
 for (const jobForm of document.querySelectorAll('.job-form')) {
@@ -549,6 +562,7 @@ for (const jobForm of document.querySelectorAll('.job-form')) {
       if (v === '' && 'optional' in field.dataset) continue;
       body[k] = field.type === 'number' ? Number(v) : v;
     }
+    jobShapes[body.kind]?.(body);
     try {
       const { id } = await api('POST', '/api/jobs', body);
       followJob(id, body.output || body.alpha);

@@ -40,6 +40,9 @@ enum class PixelFormat {
     Float,   ///< 32-bit float, stored exactly.
 };
 
+/// Lower-case extension of `path` with the dot (".png"), or "".
+std::string lowercase_extension(const std::string& path);
+
 /// Options of `save_image` and `save_exr_layers`.
 struct SaveOptions {
     PixelFormat format = PixelFormat::Auto;  ///< Sample format; see PixelFormat. Default Auto.
