@@ -520,9 +520,10 @@ test('exemplar studio in Chromium: paint, sketch, jobs, cancel, shutdown', { tim
     // Shutdown: another job running, then SIGINT: exit 0, nothing half-written.
     await page.click('nav button[data-tab=jobs]');
     await page.fill('#job-form input[name=output]', 'outputs/interrupted.png');
+    const jobsBefore = await page.locator('#job-list li').count();
     await page.click('#job-form button[type=submit]');
-    await page.waitForFunction(() => document.querySelectorAll('#job-list li').length === 7 &&
-      document.querySelector('#job-list li progress').value > 0, null, { timeout: 60000 });
+    await page.waitForFunction((n) => document.querySelectorAll('#job-list li').length === n &&
+      document.querySelector('#job-list li progress').value > 0, jobsBefore + 1, { timeout: 60000 });
     studio.child.kill('SIGINT');
     const exit = await studio.exited;
     assert.equal(exit.code, 0, `exit ${exit.code} ${exit.signal}: ${exit.stderr}`);
