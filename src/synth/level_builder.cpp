@@ -477,16 +477,20 @@ Level LevelBuilder::build(int index, int patch_size) const {
     return L;
 }
 
-void set_target_style(Level& level, const Image& style) {
+void set_target_style(Level& level, const Image& style, int threads) {
     EXEMPLAR_CHECK_EQ(style.width(), level.tw);
     EXEMPLAR_CHECK_EQ(style.channels(), level.style_channels);
     const int S = level.style_channels;
-    for (std::size_t i = 0; i < style.pixel_count(); ++i) {
-        std::uint8_t* out = level.target_features.pixel(i);
-        const float* in = style.data().data() + i * static_cast<std::size_t>(S);
-        for (int c = 0; c < S; ++c)
-            out[c] = level.quantizers[static_cast<std::size_t>(c)].code(in[c]);
-    }
+    const auto w = static_cast<std::size_t>(style.width());
+    parallel_for(0, style.height(), threads, [&](int y) {
+        const std::size_t row = static_cast<std::size_t>(y) * w;
+        for (std::size_t i = row; i < row + w; ++i) {
+            std::uint8_t* out = level.target_features.pixel(i);
+            const float* in = style.data().data() + i * static_cast<std::size_t>(S);
+            for (int c = 0; c < S; ++c)
+                out[c] = level.quantizers[static_cast<std::size_t>(c)].code(in[c]);
+        }
+    });
 }
 
 }  // namespace exemplar::synth

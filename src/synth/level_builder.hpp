@@ -76,7 +76,8 @@ private:
     SynthesisResult::GuideCompression compression_;
 };
 
-/// Copies B' (style channels) into the style part of the level's target features.
-void set_target_style(Level& level, const Image& style);
+/// Copies B' (style channels) into the style part of the level's target features, over rows on
+/// up to `threads` threads (each row writes only its own pixels: the same bytes for any count).
+void set_target_style(Level& level, const Image& style, int threads = 1);
 
 }  // namespace exemplar::synth

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "exemplar/core/parallel.hpp"
 #include "vote.hpp"
 
 namespace exemplar {
@@ -24,11 +25,11 @@ std::int64_t round_half_away(double v) {
 
 // The same relative database position, the offset within the patch kept (rotated with the
 // match). Serves the forward NNF (query = target, database = source) and the engine's reversed
-// field (query = source, database = target). Runs between every two levels on one thread, so
-// the coarse pixel and offset of each column and row are computed once, and unrotated matches
+// field (query = source, database = target). Runs between every two levels, over rows; the
+// coarse pixel and offset of each column and row are computed once, and unrotated matches
 // skip the rotation (cos 0 = 1 and sin 0 = 0 exactly: the same sums).
 Nnf upsample_nnf(const Nnf& coarse, int coarse_db_w, int coarse_db_h, int fine_w, int fine_h,
-                 int fine_db_w, int fine_db_h) {
+                 int fine_db_w, int fine_db_h, int threads) {
     Nnf out(fine_w, fine_h);
     const double dx_scale = static_cast<double>(fine_db_w) / coarse_db_w;
     const double dy_scale = static_cast<double>(fine_db_h) / coarse_db_h;
@@ -49,7 +50,7 @@ Nnf upsample_nnf(const Nnf& coarse, int coarse_db_w, int coarse_db_h, int fine_w
     std::vector<double> du, dv;
     nearest(coarse.width(), fine_w, cx, du);
     nearest(coarse.height(), fine_h, cy, dv);
-    for (int y = 0; y < fine_h; ++y) {
+    parallel_for(0, fine_h, threads, [&](int y) {
         const double v = dv[static_cast<std::size_t>(y)];
         for (int x = 0; x < fine_w; ++x) {
             const Match& m =
@@ -70,7 +71,7 @@ Nnf upsample_nnf(const Nnf& coarse, int coarse_db_w, int coarse_db_h, int fine_w
             o.y = static_cast<int>(round_half_away((sv + 0.5) * dy_scale - 0.5));
             o.angle_rad = m.angle_rad;
         }
-    }
+    });
     return out;
 }
 

@@ -229,7 +229,7 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
             vp.source_weights = histogram;
         }
         synth::vote(nnf, L.source_style, vp, current, threads);
-        set_target_style(L, current);
+        set_target_style(L, current, threads);
         tracker.step(L.index, it, iterations, work);
         if (debug) {
             const std::vector<float> counts = synth::usage_counts(L, nnf);
@@ -456,11 +456,11 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             nnf = in.initial_nnf.empty() ? unassigned_nnf(L.tw, L.th)
                                          : downscale_nnf(in.initial_nnf, in.style, L);
         } else {
-            nnf = upsample_nnf(nnf, prev_sw, prev_sh, L.tw, L.th, L.sw, L.sh);
+            nnf = upsample_nnf(nnf, prev_sw, prev_sh, L.tw, L.th, L.sw, L.sh, threads);
             // The reversed-retrieval state starts from the coarser level's too.
             if (!reverse_field.empty()) {
                 reverse_field =
-                    upsample_nnf(reverse_field, prev_tw, prev_th, L.sw, L.sh, L.tw, L.th);
+                    upsample_nnf(reverse_field, prev_tw, prev_th, L.sw, L.sh, L.tw, L.th, threads);
             }
         }
 
@@ -468,7 +468,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         // the vote of the initial NNF. Fixed pixels always hold the initial target.
         current = L.fixed_style.empty() ? Image(L.tw, L.th, L.style_channels) : L.fixed_style;
         current.set_channel_names(in.style.channel_names());
-        set_target_style(L, current);
+        set_target_style(L, current, threads);
         evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
         const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
         auto vote_initial = [&] {
@@ -476,7 +476,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             synth::vote(nnf, L.source_style,
                         vote_params(L, VoteMode::Average, 0.0f, nnf, {}, threads), current,
                         threads);
-            set_target_style(L, current);
+            set_target_style(L, current, threads);
         };
         vote_initial();
         // Candidate fields on this level's grid: tried once here, then in every PatchMatch
@@ -514,7 +514,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             if (final_pass) {
                 synth::Level fine = builder.build(l, 3);
                 fine.search_radius = L.search_radius;
-                set_target_style(fine, current);
+                set_target_style(fine, current, threads);
                 // Same grid as the last pass: both fields carry over (every 5x5 match is a
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),

@@ -106,7 +106,8 @@ TEST(PatchMatch, IdenticalForAnyThreadCount) {
 
 // upsample_nnf's tables and integer rounding against its definition written per pixel: the
 // nearest coarse pixel, the offset within it rotated with the match, std::lround. Rotated and
-// unrotated matches, no-match entries, halves (2x) and odd ratios, up and down in source size.
+// unrotated matches, no-match entries, halves (2x) and odd ratios, up and down in source size;
+// on 1 and 3 threads (rows in parallel).
 TEST(UpsampleNnf, EqualsThePerPixelDefinition) {
     Nnf coarse(13, 9);
     for (int y = 0; y < coarse.height(); ++y) {
@@ -120,27 +121,31 @@ TEST(UpsampleNnf, EqualsThePerPixelDefinition) {
     for (const auto& [fw, fh, cdw, cdh, fdw, fdh] :
          {std::array{26, 18, 20, 15, 40, 30}, std::array{31, 20, 20, 15, 47, 33},
           std::array{13, 9, 20, 15, 20, 15}, std::array{27, 19, 21, 16, 43, 31}}) {
-        const Nnf fine = upsample_nnf(coarse, cdw, cdh, fw, fh, fdw, fdh);
-        for (int y = 0; y < fh; ++y) {
-            for (int x = 0; x < fw; ++x) {
-                const double u = (x + 0.5) * (static_cast<double>(coarse.width()) / fw) - 0.5;
-                const double v = (y + 0.5) * (static_cast<double>(coarse.height()) / fh) - 0.5;
-                const int cx = std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
-                const int cy = std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
-                const Match& m = coarse.at(cx, cy);
-                const Match& o = fine.at(x, y);
-                if (m.x < 0) {
-                    ASSERT_EQ(o.x, -1);
-                    continue;
+        for (const int threads : {1, 3}) {
+            const Nnf fine = upsample_nnf(coarse, cdw, cdh, fw, fh, fdw, fdh, threads);
+            for (int y = 0; y < fh; ++y) {
+                for (int x = 0; x < fw; ++x) {
+                    const double u = (x + 0.5) * (static_cast<double>(coarse.width()) / fw) - 0.5;
+                    const double v = (y + 0.5) * (static_cast<double>(coarse.height()) / fh) - 0.5;
+                    const int cx =
+                        std::clamp(static_cast<int>(std::lround(u)), 0, coarse.width() - 1);
+                    const int cy =
+                        std::clamp(static_cast<int>(std::lround(v)), 0, coarse.height() - 1);
+                    const Match& m = coarse.at(cx, cy);
+                    const Match& o = fine.at(x, y);
+                    if (m.x < 0) {
+                        ASSERT_EQ(o.x, -1);
+                        continue;
+                    }
+                    const double du = u - cx, dv = v - cy;
+                    const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
+                    const double su = m.x + c * du - s * dv, sv = m.y + s * du + c * dv;
+                    ASSERT_EQ(o.x, std::lround((su + 0.5) * (static_cast<double>(fdw) / cdw) - 0.5))
+                        << x << "," << y;
+                    ASSERT_EQ(o.y, std::lround((sv + 0.5) * (static_cast<double>(fdh) / cdh) - 0.5))
+                        << x << "," << y;
+                    ASSERT_EQ(o.angle_rad, m.angle_rad);
                 }
-                const double du = u - cx, dv = v - cy;
-                const double c = std::cos(m.angle_rad), s = std::sin(m.angle_rad);
-                const double su = m.x + c * du - s * dv, sv = m.y + s * du + c * dv;
-                ASSERT_EQ(o.x, std::lround((su + 0.5) * (static_cast<double>(fdw) / cdw) - 0.5))
-                    << x << "," << y;
-                ASSERT_EQ(o.y, std::lround((sv + 0.5) * (static_cast<double>(fdh) / cdh) - 0.5))
-                    << x << "," << y;
-                ASSERT_EQ(o.angle_rad, m.angle_rad);
             }
         }
     }

@@ -64,9 +64,11 @@ Result<Nnf> nnf_from_image(const Image& image);
 /// `coarse_source_width` x `coarse_source_height` source), keeping its offset within the patch.
 /// Entries with x = -1 stay "no match". Matches may fall outside the fine source by rounding;
 /// the engine repairs such entries of an initial field (SynthesisInput::initial_nnf) with random
-/// ones, so clamp them if the field is used elsewhere.
+/// ones, so clamp them if the field is used elsewhere. Rows run on up to `threads` threads (0 = all
+/// cores); the field is the same for any count.
 Nnf upsample_nnf(const Nnf& coarse, int coarse_source_width, int coarse_source_height,
-                 int fine_width, int fine_height, int fine_source_width, int fine_source_height);
+                 int fine_width, int fine_height, int fine_source_width, int fine_source_height,
+                 int threads = 1);
 
 /// Re-applies an NNF to another source image (e.g. a 16-bit or extra-channel version of the
 /// style): every target pixel becomes the (weighted) average of the overlapping `patch_size`
