@@ -646,8 +646,11 @@ std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const 
     constexpr std::array<std::array<int, 2>, 4> kSteps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
     const Level& L = setup.level;
     const std::vector<std::uint8_t>& free = rr.free_mask();
-    std::vector<Candidate> proposals(free.size(), Candidate{kInf, -1, -1, 0.0f});
+    // Each row's proposals apart, applied in row order: the memory follows the proposals (a
+    // whole-level table of candidates beside the round's own raised guided2's peak by 2.5 MB).
+    std::vector<std::vector<Candidate>> proposals(static_cast<std::size_t>(L.th));
     parallel_for(0, L.th, setup.threads, [&](int y) {
+        std::vector<Candidate>& row = proposals[static_cast<std::size_t>(y)];
         for (int x = 0; x < L.tw; ++x) {
             const std::size_t t = L.target_index(x, y);
             if (!free[t]) continue;
@@ -669,15 +672,16 @@ std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const 
                     best = Candidate{d, static_cast<int>(c), static_cast<int>(t), angle};
                 }
             }
-            proposals[t] = best;
+            if (best.source >= 0) row.push_back(best);
         }
     });
     std::size_t grown = 0;
-    for (const Candidate& c : proposals) {
-        if (c.source < 0) continue;
-        used[static_cast<std::size_t>(c.source)] = 1;
-        rr.assign(c);
-        ++grown;
+    for (const std::vector<Candidate>& row : proposals) {
+        for (const Candidate& c : row) {
+            used[static_cast<std::size_t>(c.source)] = 1;
+            rr.assign(c);
+            ++grown;
+        }
     }
     return grown;
 }
