@@ -262,13 +262,8 @@ Status synthesize_fluid_range(const FluidRange& range, const FluidOptions& optio
             input.previous_output = previous ? &*previous : nullptr;
             input.previous_motion = previous_motion ? &*previous_motion : nullptr;
             input.motion = own_motion ? &*own_motion : nullptr;
-            RunContext frame_context = context;
-            frame_context.progress = [&](const ProgressEvent& event) {
-                ProgressEvent overall = event;
-                overall.fraction = (static_cast<double>(n - range.first) + event.fraction) / count;
-                context.report(overall);
-            };
-            auto frame = synthesize_fluid_frame(input, options, frame_context);
+            auto frame =
+                synthesize_fluid_frame(input, options, context.part(n - range.first, 1.0, count));
             if (!frame.ok()) return frame.status();
             EXEMPLAR_RETURN_IF_ERROR(save_image(frame->rgba, *out_path));
         }

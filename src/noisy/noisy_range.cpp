@@ -175,14 +175,10 @@ Status synthesize_range(std::span<const NoisySource> sources, const NoisyRange& 
             inputs.push_back(std::move(*frame));
         }
         std::vector<Status> statuses(inputs.size());
-        RunContext frame_context(batch > 1 ? 1 : context.threads);
-        frame_context.cancel = context.cancel;
-        if (batch == 1) {
-            frame_context.progress = [&](const ProgressEvent& event) {
-                ProgressEvent overall = event;
-                overall.fraction = (static_cast<double>(start) + event.fraction) / count;
-                context.report(overall);
-            };
+        RunContext frame_context = context.part(static_cast<double>(start), 1.0, count);
+        if (batch > 1) {  // one thread per frame; the batch reports its progress at its end
+            frame_context.threads = 1;
+            frame_context.progress = nullptr;
         }
         parallel_for(0, static_cast<int>(inputs.size()), batch > 1 ? threads : 1, [&](int i) {
             const auto k = static_cast<std::size_t>(i);

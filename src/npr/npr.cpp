@@ -258,15 +258,7 @@ Result<NprFrameResult> stylize_frame(const Pattern& pattern, const NprFrame& fra
     synthesis.seed = options.seed;
     // With the paper, each synthesis reports its share of the frame (the pattern's first half)
     const auto share = [&](double start) {
-        RunContext shared = context;
-        if (options.paper && context.progress) {
-            shared.progress = [&context, start](const ProgressEvent& event) {
-                ProgressEvent frame_event = event;
-                frame_event.fraction = start + 0.5 * event.fraction;
-                context.report(frame_event);
-            };
-        }
-        return shared;
+        return options.paper ? context.part(start, 0.5, 1.0) : context;
     };
     auto state = synthesize_frame(pattern, input, previous, frame_index, synthesis, share(0.0));
     if (!state.ok()) return state.status();

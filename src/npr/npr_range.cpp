@@ -160,15 +160,10 @@ private:
     // Synthesis pass `pass` of `passes` of the block [start, start + size): its progress over the
     // whole range.
     RunContext pass_context(int start, int size, int pass, int passes) const {
-        RunContext pass_ctx = context_;
+        // In units of 1/passes of a frame.
         const double count = range_.last - range_.first + 1;
-        pass_ctx.progress = [this, start, size, pass, passes, count](const ProgressEvent& event) {
-            ProgressEvent overall = event;
-            overall.fraction =
-                (start - range_.first + (pass + event.fraction) * size / passes) / count;
-            context_.report(overall);
-        };
-        return pass_ctx;
+        return context_.part(static_cast<double>(start - range_.first) * passes + pass * size, size,
+                             count * passes);
     }
 
     Status style_block(int start, int end) {

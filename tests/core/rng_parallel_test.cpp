@@ -7,6 +7,7 @@
 
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/core/rng.hpp"
+#include "exemplar/core/run_context.hpp"
 
 namespace exemplar {
 namespace {
@@ -70,6 +71,32 @@ TEST(ParallelFor, RepeatedLoopsDoNotGrowMemory) {
     std::printf("resident memory after 5000 more loops: %+ld kB\n", growth);
     EXPECT_LT(growth, 2048);  // it was ~35 MB
     EXPECT_EQ(out[63], 63 + 4999);
+}
+
+TEST(RunContext, APartMapsItsProgressOntoItsShareAndKeepsThreadsAndCancel) {
+    CancelToken token;
+    std::vector<ProgressEvent> seen;
+    RunContext whole(3);
+    whole.cancel = &token;
+    whole.progress = [&](const ProgressEvent& e) { seen.push_back(e); };
+    // Frame 2 of 4: its fractions land on 2/4..3/4 with the rest of the event kept.
+    const RunContext frame = whole.part(2.0, 1.0, 4.0);
+    EXPECT_EQ(frame.threads, 3);
+    EXPECT_EQ(frame.cancel, &token);
+    frame.report({.stage = "search", .level = 1, .fraction = 0.0});
+    frame.report({.stage = "vote", .level = 2, .fraction = 0.5});
+    frame.report({.stage = "end", .fraction = 1.0});
+    ASSERT_EQ(seen.size(), 3u);
+    EXPECT_EQ(seen[0].fraction, 0.5);
+    EXPECT_EQ(seen[1].fraction, 0.625);
+    EXPECT_EQ(seen[1].stage, "vote");
+    EXPECT_EQ(seen[1].level, 2);
+    EXPECT_EQ(seen[2].fraction, 0.75);
+    // A part of a part: the second half of that frame.
+    whole.part(2.0, 1.0, 4.0).part(0.5, 0.5, 1.0).report({.stage = "end", .fraction = 1.0});
+    EXPECT_EQ(seen.back().fraction, 0.75);
+    // No sink, no wrapping.
+    EXPECT_FALSE(RunContext(2).part(0.0, 1.0, 2.0).progress);
 }
 
 }  // namespace

@@ -45,6 +45,20 @@ struct RunContext {
     void report(const ProgressEvent& event) const {
         if (progress) progress(event);
     }
+    /// This context for a part of the call (a frame of a range, one of several syntheses):
+    /// the same threads and cancel token, and progress whose fraction f is reported as
+    /// (done + f·size) / total of this call (no progress if this context has none).
+    RunContext part(double done, double size, double total) const {
+        RunContext sub = *this;
+        if (progress) {
+            sub.progress = [sink = progress, done, size, total](const ProgressEvent& event) {
+                ProgressEvent overall = event;
+                overall.fraction = (done + event.fraction * size) / total;
+                sink(overall);
+            };
+        }
+        return sub;
+    }
 };
 
 }  // namespace exemplar
