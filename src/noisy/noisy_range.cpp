@@ -18,12 +18,7 @@ namespace {
 
 // The first channel of `image`: a grey map saved as RGB(A) gives its grey.
 Image first_channel(Image image) {
-    if (image.channels() == 1) return image;
-    Image grey(image.width(), image.height(), 1);
-    for (int y = 0; y < grey.height(); ++y) {
-        for (int x = 0; x < grey.width(); ++x) grey.at(x, y, 0) = image.at(x, y, 0);
-    }
-    return grey;
+    return image.channels() == 1 ? std::move(image) : extract_channels(image, 0, 1);
 }
 
 // A map's file for frame n (`per_frame`) or the range's one file, loaded by `load`.
