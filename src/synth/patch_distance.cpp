@@ -274,12 +274,10 @@ float patch_distance_reference(const Level& L, int tx, int ty, int sx, int sy, f
 
 float patch_distance_general(const Level& L, int tx, int ty, int sx, int sy, float angle,
                              float bound) {
-    if (angle != 0.0f && turns_target(L, tx, ty, sx, sy)) {
-        if (const int step = L.table_step(angle); step >= 0) {
-            alignas(64) std::uint8_t block[kTargetPatchBytes];
-            gather_target_patch(L, tx, ty, step, block);
-            return turned_target_distance(L, block, sx, sy, bound);
-        }
+    if (const int step = turned_target_step(L, tx, ty, sx, sy, angle); step >= 0) {
+        alignas(64) std::uint8_t block[kTargetPatchBytes];
+        gather_target_patch(L, tx, ty, step, block);
+        return turned_target_distance(L, block, sx, sy, bound);
     }
     float sum = 0.0f;
     if (angle != 0.0f && L.target_weights.empty() && L.pixel_weight.empty() &&

@@ -55,6 +55,13 @@ inline bool turns_target(const Level& L, int tx, int ty, int sx, int sy) {
            ty < L.th - margin && sx >= r && sy >= r && sx < L.sw - r && sy < L.sh - r;
 }
 
+/// The orientation step whose turned target patch the pair at `angle` is compared by, or -1 for
+/// patch_distance's other paths: an unrotated pair, one turns_target refuses, or an angle that is
+/// not a step of the level's tables.
+inline int turned_target_step(const Level& L, int tx, int ty, int sx, int sy, float angle) {
+    return angle != 0.0f && turns_target(L, tx, ty, sx, sy) ? L.table_step(angle) : -1;
+}
+
 /// The target patch centred at (tx, ty) turned back by orientation step `step`, gathered
 /// row-major into `block` (kTargetPatchBytes): what turned_target_distance compares.
 void gather_target_patch(const Level& L, int tx, int ty, int step, std::uint8_t* block);

@@ -297,12 +297,9 @@ struct ForwardProblem {
         const float extra = penalty != nullptr ? penalty[L.source_index(sx, sy)] : 0.0f;
         // patch_distance's value; a turned target patch is gathered once for all the
         // candidates of a query at the same step.
-        if (angle_rad != 0.0f && turns_target(L, tx, ty, sx, sy)) {
-            if (const int step = L.table_step(angle_rad); step >= 0) {
-                return turned_target_distance(L, turned_target(tx, ty, step), sx, sy,
-                                              bound - extra) +
-                       extra;
-            }
+        if (const int step = turned_target_step(L, tx, ty, sx, sy, angle_rad); step >= 0) {
+            return turned_target_distance(L, turned_target(tx, ty, step), sx, sy, bound - extra) +
+                   extra;
         }
         return patch_distance(L, tx, ty, sx, sy, angle_rad, bound - extra) + extra;
     }
