@@ -408,6 +408,15 @@ struct StudioServer::Impl {
         int first = 0;
         std::vector<std::string> relative;  ///< As the client names them.
         std::vector<std::string> absolute;  ///< Resolved.
+        /// For frames a job reads: ok when every file exists, else `FIELD: NAME: no such file`
+        /// naming the first one missing.
+        Status check_exist(const std::string& field) const {
+            for (std::size_t k = 0; k < absolute.size(); ++k) {
+                if (!std::filesystem::is_regular_file(absolute[k]))
+                    return invalid_argument(field + ": " + relative[k] + ": no such file");
+            }
+            return Status::ok();
+        }
     };
     struct JobPaths {
         std::map<std::string, std::filesystem::path> one;
@@ -1024,10 +1033,7 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
         FrameFiles frames;
         if (paths.patterns.contains("frames")) {
             frames = paths.patterns.at("frames");
-            for (std::size_t k = 0; k < frames.absolute.size(); ++k) {
-                if (!std::filesystem::is_regular_file(frames.absolute[k]))
-                    return invalid_argument("frames: " + frames.relative[k] + ": no such file");
-            }
+            EXEMPLAR_RETURN_IF_ERROR(frames.check_exist("frames"));
         } else {
             // A folder: its images in name order, each resolved in the workspace.
             const std::string folder = body.value("frames", std::string());
@@ -1073,11 +1079,7 @@ Result<JobWork> StudioServer::Impl::noisy_work(const json& body, const JobPaths&
             input.file = [file](int) -> Result<std::string> { return file; };
         } else if (paths.patterns.contains(field)) {
             const FrameFiles& files = paths.patterns.at(field);
-            for (std::size_t k = 0; k < files.absolute.size(); ++k) {
-                if (!std::filesystem::is_regular_file(files.absolute[k]))
-                    return invalid_argument(std::string(field) + ": " + files.relative[k] +
-                                            ": no such file");
-            }
+            EXEMPLAR_RETURN_IF_ERROR(files.check_exist(field));
             input.per_frame = true;
             input.file = [files = files.absolute,
                           first = files.first](int n) -> Result<std::string> {
@@ -1266,10 +1268,7 @@ Result<JobWork> StudioServer::Impl::animate_work(const json& body, const JobPath
         if (!frame.ok()) return invalid_argument("frames: " + frame.status().message());
         return frame;
     };
-    for (std::size_t k = 0; k < frames.absolute.size(); ++k) {
-        if (!std::filesystem::is_regular_file(frames.absolute[k]))
-            return invalid_argument("frames: " + frames.relative[k] + ": no such file");
-    }
+    EXEMPLAR_RETURN_IF_ERROR(frames.check_exist("frames"));
     EXEMPLAR_RETURN_IF_ERROR(animate::validate(input, animate_options));
     return JobWork([input = std::move(input), animate_options, outputs, first = frames.first](
                        const RunContext& context, const OutputSink& wrote) mutable -> Status {
