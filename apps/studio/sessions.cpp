@@ -268,10 +268,6 @@ std::vector<paint::StrokePoint> BrushSession::feature_line() const {
     return line;
 }
 
-}  // namespace exemplar::studio
-
-namespace exemplar::studio {
-
 std::shared_ptr<CancelToken> StepSlot::begin() {
     std::lock_guard lock(mutex_);
     running_.push_back(std::make_shared<CancelToken>());

@@ -99,8 +99,6 @@ public:
     }
     bool undo() { return history_.undo(); }
     bool redo() { return history_.redo(); }
-    bool can_undo() const { return history_.can_undo(); }
-    bool can_redo() const { return history_.can_redo(); }
     /// The painting: RGBA, straight alpha, transparent where nothing is painted.
     const Image& image() const { return history_.current().image; }
     const paint::PaintCanvas& canvas() const { return history_.current().canvas; }
