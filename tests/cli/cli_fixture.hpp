@@ -19,6 +19,7 @@
 #include "cli.hpp"
 #include "exemplar/core/image.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "file_bytes.hpp"
 #include "test_images.hpp"
 
 namespace exemplar::cli::testing {
@@ -68,10 +69,7 @@ inline Image texture(int w, int h, int channels, std::uint32_t seed) {
 
 using exemplar::testing::ramp;
 
-inline std::string file_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using exemplar::testing::file_bytes;
 
 /// Bit depth of a PNG file from its IHDR chunk (byte 24), or -1.
 inline int png_bit_depth(const std::string& path) {

@@ -17,6 +17,7 @@
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/video/frame_sequence.hpp"
+#include "file_bytes.hpp"
 #include "fluid_scene.hpp"
 
 namespace exemplar::fluid {
@@ -24,10 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string file_bytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using exemplar::testing::file_bytes;
 
 class FluidRangeTest : public ::testing::Test {
 protected:

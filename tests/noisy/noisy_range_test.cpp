@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "file_bytes.hpp"
 #include "procedural.hpp"
 
 namespace exemplar::noisy {
@@ -21,10 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string file_bytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using exemplar::testing::file_bytes;
 
 class NoisyRangeTest : public ::testing::Test {
 protected:

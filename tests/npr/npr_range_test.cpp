@@ -16,6 +16,7 @@
 
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "file_bytes.hpp"
 #include "npr_patterns.hpp"
 
 namespace exemplar::npr {
@@ -25,10 +26,7 @@ namespace fs = std::filesystem;
 
 constexpr int kWidth = 48, kHeight = 32, kFrames = 5, kStep = 2;
 
-std::string file_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using exemplar::testing::file_bytes;
 
 // kFrames folders F/frame_N of what `exemplar render --frames` writes and npr reads: a tone
 // ramp moving right by kStep px a frame, a vertical line moving with it, the motion both ways,

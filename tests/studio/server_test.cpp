@@ -38,6 +38,7 @@
 #include "exemplar/paint/vectorize_style.hpp"
 #include "exemplar/stylit/stylit.hpp"
 #include "exemplar/video/frame_sequence.hpp"
+#include "file_bytes.hpp"
 #include "jobs.hpp"
 #include "sessions.hpp"
 #include "studio.hpp"
@@ -139,10 +140,7 @@ paint::Stroke stroke_of(std::vector<paint::StrokePoint> points, float width) {
     return stroke;
 }
 
-std::string file_bytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using exemplar::testing::file_bytes;
 
 // Hidden files left anywhere under `folder` (the atomic writers' temporary files).
 int hidden_files(const fs::path& folder) {
