@@ -4,7 +4,6 @@
 // naming the file or parameter, and no output file left behind.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +19,7 @@
 #include "exemplar/core/image.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "file_bytes.hpp"
+#include "temp_dir.hpp"
 #include "test_images.hpp"
 
 namespace exemplar::cli::testing {
@@ -87,23 +87,17 @@ inline float max_abs_diff(const Image& a, const Image& b) {
 
 /// A temporary folder with style.png (32x28 RGB), a.png (its guide, 32x28 RGB), b.png (the
 /// target guide, 36x30 RGB) and the float guides ramp_a.exr / ramp_b.exr.
-class Cli : public ::testing::Test {
+class Cli : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_cli_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        TempDirTest::SetUp();
         write("style.png", texture(32, 28, 3, 1));
         write("a.png", texture(32, 28, 3, 2));
         write("b.png", texture(36, 30, 3, 3));
         write("ramp_a.exr", ramp(32, 28));
         write("ramp_b.exr", ramp(36, 30));
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
     void write(const std::string& name, const Image& image, const SaveOptions& options = {}) {
         const Status status = save_image(image, path(name), options);
         ASSERT_TRUE(status.is_ok()) << status.message();
@@ -163,8 +157,6 @@ protected:
         std::sort(names.begin(), names.end());
         return names;
     }
-
-    fs::path dir_;
 };
 
 }  // namespace exemplar::cli::testing

@@ -2,7 +2,6 @@
 // files written, resume, the job file, and one-line errors with exit code 1 and no output frame.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,6 +14,7 @@
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "fluid_scene.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::fluid {
 namespace {
@@ -25,22 +25,16 @@ using cli::testing::file_bytes;
 using cli::testing::run;
 
 // A temporary folder with a 6-frame 48x48 plume (sim/alpha, sim/motion) and a 28x28 exemplar.
-class FluidCli : public ::testing::Test {
+class FluidCli : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_fluid_cli_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        TempDirTest::SetUp();
         const CliRun sim = run({"fluid", "simulate", "--scene", "plume", "--width", "48",
                                 "--height", "48", "--frames", "6", "-o", path("sim"), "-q"});
         ASSERT_EQ(sim.code, 0) << sim.err;
         ASSERT_TRUE(save_image(test::fire_exemplar(28), path("fire.png")).is_ok());
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
     std::vector<std::string> args(const std::string& output = "out/%04d.png") const {
         return {"fluid",
                 "--exemplar",
@@ -80,8 +74,6 @@ protected:
         }
         return out;
     }
-
-    fs::path dir_;
 };
 
 TEST_F(FluidCli, SimulateWritesAlphaAndMotionPerFrame) {

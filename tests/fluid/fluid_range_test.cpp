@@ -5,7 +5,6 @@
 #include "exemplar/fluid/fluid_range.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -19,6 +18,7 @@
 #include "exemplar/video/frame_sequence.hpp"
 #include "file_bytes.hpp"
 #include "fluid_scene.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::fluid {
 namespace {
@@ -27,14 +27,11 @@ namespace fs = std::filesystem;
 
 using exemplar::testing::file_bytes;
 
-class FluidRangeTest : public ::testing::Test {
+class FluidRangeTest : public exemplar::testing::TempDirTest {
 protected:
     // Frames 0..3: an ellipse moving 2 px right per frame, its motion, a 24 px exemplar.
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_fluid_range_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
+        TempDirTest::SetUp();
         fs::create_directories(dir_ / "alpha");
         fs::create_directories(dir_ / "motion");
         for (int n = 0; n <= 3; ++n) {
@@ -46,7 +43,6 @@ protected:
         options_.patch_size = 3;
         options_.synthesis.seed = 7;
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     // `folder`/%04d.png (alpha, output) or .flo (motion) of frame n.
     std::string file(const std::string& folder, int n) const {
@@ -69,7 +65,6 @@ protected:
         return r;
     }
 
-    fs::path dir_;
     Image exemplar_ = test::fire_exemplar(24);
     FluidOptions options_;
     std::vector<int> frames_;  // on_frame's calls: n when written, −n − 1 when resumed

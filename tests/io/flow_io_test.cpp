@@ -4,7 +4,6 @@
 #include "exemplar/io/flow_io.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -13,6 +12,7 @@
 #include <string>
 
 #include "exemplar/io/image_io.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar {
 namespace {
@@ -22,17 +22,8 @@ namespace fs = std::filesystem;
 // The synthetic pair's exact flow (tests/data/flow, written by bench/make_flow_pair).
 const std::string kPairFlow = std::string(EXEMPLAR_TEST_DATA_DIR) + "/flow/synthetic-gt.flo";
 
-class FlowIo : public ::testing::Test {
+class FlowIo : public exemplar::testing::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_flow_io_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
     std::string bytes(const std::string& file) const {
         std::ifstream in(file, std::ios::binary);
         return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -43,7 +34,6 @@ protected:
     std::size_t entries() const {
         return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir_), {}));
     }
-    fs::path dir_;
 };
 
 TEST_F(FlowIo, ReadsGroundTruthFile) {

@@ -1,17 +1,18 @@
 #include "exemplar/io/image_io.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <set>
 #include <string>
 #include <vector>
+
+#include "file_bytes.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar {
 namespace {
@@ -19,24 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Each test works in its own empty folder under the system temp folder, removed afterwards.
-class ImageIo : public ::testing::Test {
+class ImageIo : public testing::TempDirTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::string name = "exemplar_io_test_";
-        name.append(info->name()).append("_").append(std::to_string(::getpid()));
-        std::replace(name.begin(), name.end(), '/', '_');  // parameterized tests: "Name/0"
-        dir_ = fs::temp_directory_path() / name;
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
     std::set<std::string> files_in_dir() const {
         std::set<std::string> names;
         for (const auto& entry : fs::directory_iterator(dir_)) {
@@ -44,14 +29,7 @@ protected:
         }
         return names;
     }
-
-    fs::path dir_;
 };
-
-std::string read_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 void write_bytes(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
@@ -455,7 +433,7 @@ TEST_F(ImageIo, MissingFileErrorNamesFile) {
 TEST_F(ImageIo, CorruptFilesFailQuietlyWithOneLine) {
     // Valid PNG, then damaged copies: garbage, truncated, one flipped bit.
     ASSERT_TRUE(save_image(gradient_image(40, 30, 3), path("good.png")).is_ok());
-    const std::string good = read_bytes(path("good.png"));
+    const std::string good = testing::file_bytes(path("good.png"));
     std::string flipped = good;
     flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
     write_bytes(path("x.png"), "this is not an image at all, just some garbage bytes");
@@ -468,7 +446,7 @@ TEST_F(ImageIo, CorruptFilesFailQuietlyWithOneLine) {
     // Valid files of the other formats cut in half.
     for (const char* name : {"t.jpg", "t.tif", "t.exr", "t.ppm"}) {
         ASSERT_TRUE(save_image(gradient_image(64, 48, 3), path(name)).is_ok());
-        const std::string bytes = read_bytes(path(name));
+        const std::string bytes = testing::file_bytes(path(name));
         write_bytes(path(std::string("truncated_") + name), bytes.substr(0, bytes.size() / 2));
     }
 
@@ -578,11 +556,11 @@ TEST_F(ImageIo, AtomicWritesLeaveNoTemporaryFiles) {
 TEST_F(ImageIo, FailedWriteKeepsExistingDestination) {
     const std::string file = path("out.png");
     ASSERT_TRUE(save_image(gradient_image(4, 4, 3), file).is_ok());
-    const std::string before = read_bytes(file);
+    const std::string before = testing::file_bytes(file);
 
     // Rejected before anything is written.
     EXPECT_FALSE(save_image(Image(4, 4, 5), file).is_ok());
-    EXPECT_EQ(read_bytes(file), before);
+    EXPECT_EQ(testing::file_bytes(file), before);
     EXPECT_EQ(files_in_dir(), std::set<std::string>{"out.png"});
 
     // Fails at the final rename (the destination is a non-empty folder): the temporary file,

@@ -15,6 +15,7 @@
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/video/frame_sequence.hpp"
 #include "procedural.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::noisy {
 namespace {
@@ -29,14 +30,10 @@ CliRun run_noisy(std::vector<std::string> args) {
     return cli::testing::run(std::move(args));
 }
 
-class NoisyCli : public ::testing::Test {
+class NoisyCli : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_noisy_cli_" +
-                std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
+        TempDirTest::SetUp();
         fs::create_directories(dir_ / "R");
         ASSERT_TRUE(save_image(testing::medium(64, 64), (dir_ / "S.png").string()).ok());
         for (int n = 1; n <= 4; ++n) {
@@ -44,7 +41,6 @@ protected:
             ASSERT_TRUE(save_image(cel, path("R/%04d.png", n)).ok());
         }
     }
-    void TearDown() override { fs::remove_all(dir_); }
     std::string path(const std::string& pattern, int n = -1) const {
         if (n < 0) return (dir_ / pattern).string();
         char name[64];
@@ -75,7 +71,6 @@ protected:
                 threads,
                 "-q"};
     }
-    fs::path dir_;
 };
 
 TEST_F(NoisyCli, WritesEveryFrameIdenticallyForAnyThreadCount) {

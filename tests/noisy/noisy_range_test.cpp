@@ -16,6 +16,7 @@
 
 #include "file_bytes.hpp"
 #include "procedural.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::noisy {
 namespace {
@@ -24,16 +25,12 @@ namespace fs = std::filesystem;
 
 using exemplar::testing::file_bytes;
 
-class NoisyRangeTest : public ::testing::Test {
+class NoisyRangeTest : public exemplar::testing::TempDirTest {
 protected:
     // Frames 1..3 (32 x 32 cels), two media (dark, bright), a source map per frame (the bright
     // medium right of a moving boundary) and one noise map.
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_noisy_range_" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        TempDirTest::SetUp();
         Image dark = testing::medium(64, 64), bright = testing::medium(64, 64, 7);
         for (float& v : dark.data()) v = 0.05f + 0.4f * std::clamp(v, 0.0f, 1.0f);
         for (float& v : bright.data()) v = 0.55f + 0.4f * std::clamp(v, 0.0f, 1.0f);
@@ -56,7 +53,6 @@ protected:
         options_.em_iterations = 2;
         options_.search_iterations = 3;
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     std::string file(const std::string& name, int n = -1) const {
         return (dir_ / (n < 0 ? name : name + std::to_string(n) + ".png")).string();
@@ -75,7 +71,6 @@ protected:
         return r;
     }
 
-    fs::path dir_;
     std::vector<NoisySource> media_;
     NoisyOptions options_;
 };

@@ -3,7 +3,6 @@
 // that keep the finished frames.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "cli_fixture.hpp"
 #include "exemplar/io/image_io.hpp"
 #include "npr_patterns.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::npr {
 namespace {
@@ -26,14 +26,10 @@ using cli::testing::file_bytes;
 using cli::testing::run;
 
 // Three 64x48 frames of a sphere moving right, and a 64x64 stipple pattern.
-class NprCli : public ::testing::Test {
+class NprCli : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_npr_cli_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        TempDirTest::SetUp();
         std::ofstream(path("scene.json")) << R"({
             "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov_deg": 40},
             "sky": [0.8, 0.8, 0.8],
@@ -47,9 +43,7 @@ protected:
         ASSERT_EQ(render.code, 0) << render.err;
         ASSERT_TRUE(save_image(testing::stipple_pattern(64, 5.0f), path("stipple.png")).is_ok());
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
     // The bytes of the outputs O/0000.png .. O/0002.png.
     std::vector<std::string> outputs() const {
         std::vector<std::string> bytes;
@@ -77,7 +71,6 @@ protected:
         args.insert(args.end(), more.begin(), more.end());
         return args;
     }
-    fs::path dir_;
 };
 
 TEST_F(NprCli, WritesThresholdedFramesAndResumesToTheSameBytes) {

@@ -5,7 +5,6 @@
 #include "exemplar/npr/npr_range.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -18,6 +17,7 @@
 #include "exemplar/io/image_io.hpp"
 #include "file_bytes.hpp"
 #include "npr_patterns.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::npr {
 namespace {
@@ -31,13 +31,10 @@ using exemplar::testing::file_bytes;
 // kFrames folders F/frame_N of what `exemplar render --frames` writes and npr reads: a tone
 // ramp moving right by kStep px a frame, a vertical line moving with it, the motion both ways,
 // the strip it uncovers (left) and hides (right), and a shape (alpha) of the left two thirds.
-class NprRangeDriver : public ::testing::Test {
+class NprRangeDriver : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_npr_range_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
+        TempDirTest::SetUp();
         for (int n = 0; n < kFrames; ++n) {
             const fs::path folder = dir_ / "F" / ("frame_" + std::to_string(n));
             fs::create_directories(folder);
@@ -77,7 +74,6 @@ protected:
         ASSERT_TRUE(paper.ok()) << paper.status().message();
         paper_ = std::move(paper).value();
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     std::string folder(int n) const {
         return (dir_ / "F" / ("frame_" + std::to_string(n))).string();
@@ -108,7 +104,6 @@ protected:
         return bytes;
     }
 
-    fs::path dir_;
     NprOptions options_;
     Pattern pattern_, paper_;
 };

@@ -13,6 +13,7 @@
 #include "cli.hpp"
 #include "exemplar/io/flow_io.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::cli {
 namespace {
@@ -33,18 +34,8 @@ CliResult run(std::vector<std::string> args) {
     return {code, out.str(), err.str()};
 }
 
-class RenderCli : public ::testing::Test {
+class RenderCli : public exemplar::testing::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_render_cli_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
     static std::vector<std::string> tiny(std::vector<std::string> more) {
         std::vector<std::string> args = {
             "render", "--scene", "sphere-on-table", "--width", "24", "--height", "18",
@@ -61,8 +52,6 @@ protected:
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_TRUE(fs::is_empty(dir_)) << "a failed run wrote a file";
     }
-
-    fs::path dir_;
 };
 
 TEST_F(RenderCli, WritesOneMultiLayerExrWithNamedLayers) {

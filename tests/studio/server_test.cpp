@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 #include <httplib.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -42,6 +41,7 @@
 #include "jobs.hpp"
 #include "sessions.hpp"
 #include "studio.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::studio {
 namespace {
@@ -151,26 +151,23 @@ int hidden_files(const fs::path& folder) {
     return count;
 }
 
-class StudioTest : public ::testing::Test {
+class StudioTest : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        base_ = fs::temp_directory_path() /
-                ("exemplar_studio_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(base_);
-        fs::create_directories(base_ / "ws");
-        fs::create_directories(base_ / "outside");
-        std::ofstream(base_ / "outside" / "secret.txt") << "secret";
-        ASSERT_TRUE(save_image(texture(64, 48), (base_ / "ws" / "tex.png").string()).is_ok());
+        TempDirTest::SetUp();
+        fs::create_directories(dir_ / "ws");
+        fs::create_directories(dir_ / "outside");
+        std::ofstream(dir_ / "outside" / "secret.txt") << "secret";
+        ASSERT_TRUE(save_image(texture(64, 48), (dir_ / "ws" / "tex.png").string()).is_ok());
     }
     void TearDown() override {
         stop();
-        fs::remove_all(base_);
+        TempDirTest::TearDown();
     }
 
     void start(StudioOptions options = {}) {
         options.port = 0;
-        options.workspace = (base_ / "ws").string();
+        options.workspace = (dir_ / "ws").string();
         options.threads = 2;
         auto server = StudioServer::create(options);
         ASSERT_TRUE(server.ok()) << server.status().message();
@@ -208,7 +205,6 @@ protected:
         }
     }
 
-    fs::path base_;
     std::unique_ptr<StudioServer> server_;
     std::thread serving_;
     std::unique_ptr<httplib::Client> client_;
@@ -235,8 +231,8 @@ TEST_F(StudioTest, ServesTheEmbeddedAppAndItsInfo) {
 
 TEST_F(StudioTest, TraversalAttemptsReadAndWriteNothingOutside) {
     start();
-    fs::create_directory_symlink(base_ / "outside", base_ / "ws" / "door");
-    const std::string png = file_bytes(base_ / "ws" / "tex.png");
+    fs::create_directory_symlink(dir_ / "outside", dir_ / "ws" / "door");
+    const std::string png = file_bytes(dir_ / "ws" / "tex.png");
     for (const char* path :
          {"/api/files/../outside/secret.txt", "/api/files/%2e%2e/outside/secret.txt",
           "/api/files/..%2foutside%2fsecret.txt", "/api/files/door/secret.txt",
@@ -269,12 +265,12 @@ TEST_F(StudioTest, TraversalAttemptsReadAndWriteNothingOutside) {
     EXPECT_EQ(job->status, 403);
     // Only the two files that were there before.
     int outside = 0;
-    for (const auto& e : fs::directory_iterator(base_ / "outside")) {
+    for (const auto& e : fs::directory_iterator(dir_ / "outside")) {
         EXPECT_EQ(e.path().filename(), "secret.txt");
         ++outside;
     }
     EXPECT_EQ(outside, 1);
-    EXPECT_EQ(file_bytes(base_ / "outside" / "secret.txt"), "secret");
+    EXPECT_EQ(file_bytes(dir_ / "outside" / "secret.txt"), "secret");
 }
 
 TEST_F(StudioTest, RequestsFromOtherSitesAndNamesAreRefused) {
@@ -305,11 +301,11 @@ TEST_F(StudioTest, UploadsAreTypeCheckedAndSizeLimited) {
     StudioOptions options;
     options.max_upload_bytes = 64 * 1024;
     start(options);
-    const std::string png = file_bytes(base_ / "ws" / "tex.png");
+    const std::string png = file_bytes(dir_ / "ws" / "tex.png");
     auto ok = client_->Put("/api/files/uploads/copy.png", png, "image/png");
     ASSERT_TRUE(ok);
     EXPECT_EQ(ok->status, 201) << ok->body;
-    EXPECT_EQ(file_bytes(base_ / "ws" / "uploads" / "copy.png"), png);
+    EXPECT_EQ(file_bytes(dir_ / "ws" / "uploads" / "copy.png"), png);
 
     auto text = client_->Put("/api/files/fake.png", "<svg onload=alert(1)>", "image/png");
     ASSERT_TRUE(text);
@@ -326,9 +322,9 @@ TEST_F(StudioTest, UploadsAreTypeCheckedAndSizeLimited) {
     ASSERT_TRUE(large);
     EXPECT_EQ(large->status, 413);
     for (const char* name : {"fake.png", "fake.jpg", "x.html", "big.png"}) {
-        EXPECT_FALSE(fs::exists(base_ / "ws" / name)) << name;
+        EXPECT_FALSE(fs::exists(dir_ / "ws" / name)) << name;
     }
-    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+    EXPECT_EQ(hidden_files(dir_ / "ws"), 0);
 }
 
 TEST_F(StudioTest, SketchSuggestsAfterEachStrokeAndUndoesAcceptedOnes) {
@@ -420,7 +416,7 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     ASSERT_EQ(painted->body.size(), static_cast<std::size_t>((x1 - x0) * (y1 - y0) * 4));
 
     // The same library calls, made here: identical bytes.
-    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    auto exemplar = load_image((dir_ / "ws" / "tex.png").string());
     ASSERT_TRUE(exemplar.ok());
     const paint::PaintSource source = paint_source_of(*exemplar);
     ASSERT_FALSE(source.directions.empty());
@@ -454,7 +450,7 @@ TEST_F(StudioTest, PaintStrokesRepaintTheTouchedRectangleAsTheLibraryDoes) {
     // Saved as a PNG in the workspace.
     auto saved = post("/api/paint/save", {{"output", "outputs/painting.png"}});
     ASSERT_EQ(saved->status, 200) << saved->body;
-    auto back = load_image((base_ / "ws" / "outputs" / "painting.png").string());
+    auto back = load_image((dir_ / "ws" / "outputs" / "painting.png").string());
     ASSERT_TRUE(back.ok());
     EXPECT_EQ(back->channels(), 4);
     EXPECT_EQ(back->width(), 96);
@@ -483,7 +479,7 @@ TEST_F(StudioTest, PaintPreviewArrivesFirstAndTheFinalIsTheLibrarysRepaint) {
     auto previewed = post("/api/paint/preview", stroke);
     ASSERT_TRUE(previewed);
     ASSERT_EQ(previewed->status, 200) << previewed->body;
-    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    auto exemplar = load_image((dir_ / "ws" / "tex.png").string());
     ASSERT_TRUE(exemplar.ok());
     const paint::PaintSource source = paint_source_of(*exemplar);
     paint::PaintCanvas canvas(96, 64);
@@ -598,7 +594,7 @@ TEST_F(StudioTest, QuickStrokesAreFinalInOrderAndPreviewsShowNothingOlder) {
     }
     for (std::thread& t : posting) t.join();
 
-    auto exemplar = load_image((base_ / "ws" / "tex.png").string());
+    auto exemplar = load_image((dir_ / "ws" / "tex.png").string());
     ASSERT_TRUE(exemplar.ok());
     paint::PaintOptions options;
     options.seed = 5;
@@ -770,7 +766,7 @@ TEST(StepSlotTest, UndoCancelsTheNewestStepAndACancelledStepKeepsNothing) {
 }
 
 TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
-    ASSERT_TRUE(save_image(band_palette(), (base_ / "ws" / "band.png").string()).is_ok());
+    ASSERT_TRUE(save_image(band_palette(), (dir_ / "ws" / "band.png").string()).is_ok());
     start();
     const json selection = {{"points", {{8, 32}, {100, 32}, {192, 32}}}, {"width", 14}};
     auto started = post("/api/brush/start", {{"palette", "band.png"},
@@ -792,7 +788,7 @@ TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
     ASSERT_EQ(post("/api/brush/save", {{"output", "brushed.png"}})->status, 200);
 
     // `exemplar brush`'s library calls with the same feature and paths: the same bytes.
-    auto palette = load_image((base_ / "ws" / "band.png").string());
+    auto palette = load_image((dir_ / "ws" / "band.png").string());
     ASSERT_TRUE(palette.ok());
     paint::FeatureBrushOptions options;
     options.seed = 5;
@@ -803,7 +799,7 @@ TEST_F(StudioTest, BrushStrokesPaintAsExemplarBrushDoes) {
                                      stroke_of({{20, 100}, {140, 90}}, 12.0f)};
     auto expected = paint::paint_feature(*feature, strokes, 160, 120, 0.0f, 1);
     ASSERT_TRUE(expected.ok()) << expected.status().message();
-    auto saved = load_image((base_ / "ws" / "brushed.png").string());
+    auto saved = load_image((dir_ / "ws" / "brushed.png").string());
     ASSERT_TRUE(saved.ok());
     int differing = 0, opaque = 0;
     for (int y = 0; y < 120; ++y) {
@@ -871,7 +867,7 @@ Image region_of(std::vector<paint::StrokePoint> polygon, int width, int height) 
 }
 
 TEST_F(StudioTest, BrushFillsARegionAsExemplarFillDoes) {
-    ASSERT_TRUE(save_image(band_palette(), (base_ / "ws" / "band.png").string()).is_ok());
+    ASSERT_TRUE(save_image(band_palette(), (dir_ / "ws" / "band.png").string()).is_ok());
     start();
     const json selection = {{"points", {{8, 32}, {100, 32}, {192, 32}}}, {"width", 14}};
     ASSERT_EQ(
@@ -890,7 +886,7 @@ TEST_F(StudioTest, BrushFillsARegionAsExemplarFillDoes) {
     EXPECT_EQ(filled->get_header_value("X-Rect"), "20,20,100,80");
 
     // `exemplar fill`'s library call with the blank painting as the canvas: the same pixels.
-    auto palette = load_image((base_ / "ws" / "band.png").string());
+    auto palette = load_image((dir_ / "ws" / "band.png").string());
     ASSERT_TRUE(palette.ok());
     paint::FeatureFillOptions options;
     options.rotations = 3;
@@ -947,7 +943,7 @@ TEST_F(StudioTest, JobsReportProgressAndWriteTheirOutput) {
     const json end = follow(server_->port(), body_of(job)["id"]);
     EXPECT_EQ(end["state"], "done") << end.dump();
     EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the engine's";
-    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "stylized.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "ws" / "outputs" / "stylized.png"));
     // A late listener still sees the whole log.
     EXPECT_EQ(follow(server_->port(), body_of(job)["id"])["state"], "done");
     auto list = client_->Get("/api/jobs");
@@ -981,7 +977,7 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
     EXPECT_EQ(end["output"], "outputs/noisy.png");
     EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the levels'";
     // The same bytes as the library's call and atomic writer.
-    auto tex = load_image((base_ / "ws" / "tex.png").string());
+    auto tex = load_image((dir_ / "ws" / "tex.png").string());
     ASSERT_TRUE(tex.ok());
     noisy::NoisyOptions options;
     options.noise = 4.0f;
@@ -991,9 +987,8 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
     frame.reference = *tex;
     auto image = noisy::synthesize_frame(*tex, frame, options, 3, RunContext(1));
     ASSERT_TRUE(image.ok()) << image.status().message();
-    ASSERT_TRUE(save_image(*image, (base_ / "library.png").string()).is_ok());
-    EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "noisy.png"),
-              file_bytes(base_ / "library.png"));
+    ASSERT_TRUE(save_image(*image, (dir_ / "library.png").string()).is_ok());
+    EXPECT_EQ(file_bytes(dir_ / "ws" / "outputs" / "noisy.png"), file_bytes(dir_ / "library.png"));
     // Bad parameters are refused at once with one line naming the parameter.
     const json good = {{"kind", "noisy"},
                        {"exemplar", "tex.png"},
@@ -1011,7 +1006,7 @@ TEST_F(StudioTest, NoisyJobsWriteTheLibrarysFrame) {
     json no_noise = good;
     no_noise.erase("noise");
     EXPECT_EQ(post("/api/jobs", no_noise)->status, 400);
-    EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "ws" / "o.png"));
 }
 
 // The first channel of a map file, as the command reads it; `levels` scales it to grey levels
@@ -1032,7 +1027,7 @@ Image map_of(const fs::path& file, float levels = 1.0f) {
 TEST_F(StudioTest, NoisyRangesWithSeveralMediaWriteTheLibrarysFrames) {
     // Three 40 x 32 reference frames 1..3, a second medium (the texture inverted), a source map
     // per frame (the second medium right of a moving boundary) and one noise map.
-    const fs::path ws = base_ / "ws";
+    const fs::path ws = dir_ / "ws";
     fs::create_directories(ws / "R");
     fs::create_directories(ws / "M");
     Image inverted = texture(64, 48);
@@ -1092,7 +1087,7 @@ TEST_F(StudioTest, NoisyRangesWithSeveralMediaWriteTheLibrarysFrames) {
         frame.source_map = map_of(ws / *video::format_frame_path("M/%d.png", n), 255.0f);
         auto image = noisy::synthesize_frame(media, frame, options, n, RunContext(1));
         ASSERT_TRUE(image.ok()) << image.status().message();
-        const fs::path mine = base_ / *video::format_frame_path("library%d.png", n);
+        const fs::path mine = dir_ / *video::format_frame_path("library%d.png", n);
         ASSERT_TRUE(save_image(*image, mine.string()).is_ok());
         EXPECT_TRUE(file_bytes(ws / output) == file_bytes(mine)) << "frame " << n;
     }
@@ -1113,7 +1108,7 @@ TEST_F(StudioTest, NoisyRangesWithSeveralMediaWriteTheLibrarysFrames) {
         frame.reference = *load_image((ws / *video::format_frame_path("R/%d.png", k + 1)).string());
         auto image = noisy::synthesize_frame(media[0].image, frame, options, k, RunContext(1));
         ASSERT_TRUE(image.ok()) << image.status().message();
-        const fs::path mine = base_ / "folder.png";
+        const fs::path mine = dir_ / "folder.png";
         ASSERT_TRUE(save_image(*image, mine.string()).is_ok());
         EXPECT_TRUE(file_bytes(ws / *video::format_frame_path("outputs/folder/%d.png", k)) ==
                     file_bytes(mine))
@@ -1122,7 +1117,7 @@ TEST_F(StudioTest, NoisyRangesWithSeveralMediaWriteTheLibrarysFrames) {
     EXPECT_FALSE(fs::exists(ws / "outputs" / "folder" / "2.png"));
 
     // Every path is resolved in the workspace: one outside is a 403 and nothing is written.
-    ASSERT_TRUE(save_image(Image(40, 32, 1), (base_ / "outside" / "1.png").string()).is_ok());
+    ASSERT_TRUE(save_image(Image(40, 32, 1), (dir_ / "outside" / "1.png").string()).is_ok());
     const std::vector<std::pair<std::string, json>> outside = {
         {"frames", "../outside/%d.png"},
         {"frames", "../outside"},
@@ -1156,8 +1151,7 @@ TEST_F(StudioTest, NoisyRangesWithSeveralMediaWriteTheLibrarysFrames) {
     EXPECT_EQ(refused->status, 400);
     EXPECT_EQ(body_of(refused)["error"],
               "source-map: is required with 2 exemplars (it chooses the medium of every pixel)");
-    EXPECT_EQ(std::distance(fs::directory_iterator(base_ / "outside"), fs::directory_iterator()),
-              2);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "outside"), fs::directory_iterator()), 2);
 }
 
 // Light-path buffers of a small render: smooth shading that differs per buffer and per render.
@@ -1179,15 +1173,15 @@ Image buffer_of(int width, int height, int buffer, int render) {
 TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
     // Two buffers per render: the exemplar render 64 x 48 (tex.png is its painting), the target
     // 56 x 40, in the workspace's stylit/ folder.
-    fs::create_directories(base_ / "ws" / "stylit");
+    fs::create_directories(dir_ / "ws" / "stylit");
     std::vector<LpeBuffer> source, target;
     for (int b = 0; b < 2; ++b) {
         for (int render = 0; render < 2; ++render) {
             const std::string name =
                 (render == 0 ? "source_" : "target_") + std::to_string(b) + ".png";
             const Image image = render == 0 ? buffer_of(64, 48, b, 0) : buffer_of(56, 40, b, 1);
-            ASSERT_TRUE(save_image(image, (base_ / "ws" / "stylit" / name).string()).is_ok());
-            auto loaded = load_image((base_ / "ws" / "stylit" / name).string());
+            ASSERT_TRUE(save_image(image, (dir_ / "ws" / "stylit" / name).string()).is_ok());
+            auto loaded = load_image((dir_ / "ws" / "stylit" / name).string());
             ASSERT_TRUE(loaded.ok());
             (render == 0 ? source : target).push_back({name, name, std::move(*loaded)});
         }
@@ -1208,7 +1202,7 @@ TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
     EXPECT_EQ(end["state"], "done") << end.dump();
     EXPECT_GE(end["progress_events"].get<int>(), 2) << "the start and the engine's";
     // The same bytes as the library's call and atomic writer.
-    auto painting = load_image((base_ / "ws" / "tex.png").string());
+    auto painting = load_image((dir_ / "ws" / "tex.png").string());
     ASSERT_TRUE(painting.ok());
     StylitOptions options;
     options.synthesis = SynthesisOptions::preset(Quality::Fast);
@@ -1216,16 +1210,15 @@ TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
     options.guidance_weight = 4.0f;
     auto result = stylize_render(*painting, source, target, options, RunContext(1));
     ASSERT_TRUE(result.ok()) << result.status().message();
-    ASSERT_TRUE(save_image(result->synthesis.image, (base_ / "library.png").string()).is_ok());
-    EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "stylit.png"),
-              file_bytes(base_ / "library.png"));
+    ASSERT_TRUE(save_image(result->synthesis.image, (dir_ / "library.png").string()).is_ok());
+    EXPECT_EQ(file_bytes(dir_ / "ws" / "outputs" / "stylit.png"), file_bytes(dir_ / "library.png"));
     // Preview: half size.
     json preview = good;
     preview["preview"] = true;
     preview["output"] = "outputs/preview.png";
     const json preview_end = follow(server_->port(), body_of(post("/api/jobs", preview))["id"]);
     EXPECT_EQ(preview_end["state"], "done") << preview_end.dump();
-    auto half = load_image((base_ / "ws" / "outputs" / "preview.png").string());
+    auto half = load_image((dir_ / "ws" / "outputs" / "preview.png").string());
     ASSERT_TRUE(half.ok());
     EXPECT_EQ(half->width(), 28);
     // Bad parameters are refused at once with one line naming the parameter; paths outside the
@@ -1245,14 +1238,14 @@ TEST_F(StudioTest, StylitJobsWriteTheLibrarysImage) {
     json outside = good;
     outside["target"] = {"stylit/target_0.png", "../outside/secret.txt"};
     EXPECT_EQ(post("/api/jobs", outside)->status, 403);
-    EXPECT_FALSE(fs::exists(base_ / "ws" / "o.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "ws" / "o.png"));
 }
 
 TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
     // Three frames of a texture moving right by 2 px a frame, a grey style pair.
-    fs::create_directories(base_ / "ws" / "frames");
+    fs::create_directories(dir_ / "ws" / "frames");
     const auto frame_path = [&](int n) {
-        return base_ / "ws" / "frames" / *video::format_frame_path("f%d.png", n);
+        return dir_ / "ws" / "frames" / *video::format_frame_path("f%d.png", n);
     };
     const Image tex = texture(72, 40);
     for (int t = 0; t < 3; ++t) {
@@ -1266,7 +1259,7 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
     for (int y = 0; y < 32; ++y) {
         for (int x = 0; x < 40; ++x) style_input.at(x, y, 0) = tex.at(x, y, 1);
     }
-    ASSERT_TRUE(save_image(style_input, (base_ / "ws" / "si.png").string()).is_ok());
+    ASSERT_TRUE(save_image(style_input, (dir_ / "ws" / "si.png").string()).is_ok());
     start();
     const json good = {{"kind", "animate"},
                        {"frames", "frames/f%d.png"},
@@ -1278,7 +1271,7 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
                        {"seed", 9},
                        {"levels", 2},
                        {"output", "outputs/anim/%03d.png"}};
-    ASSERT_TRUE(save_image(texture(40, 32), (base_ / "ws" / "tex.png").string()).is_ok());
+    ASSERT_TRUE(save_image(texture(40, 32), (dir_ / "ws" / "tex.png").string()).is_ok());
     auto job = post("/api/jobs", good);
     ASSERT_TRUE(job);
     ASSERT_EQ(job->status, 202) << job->body;
@@ -1292,8 +1285,8 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
 
     // The library's call on the same frames: the same bytes, frame by frame.
     animate::AnimationInput input;
-    input.style_input = *load_image((base_ / "ws" / "si.png").string());
-    input.style_output = *load_image((base_ / "ws" / "tex.png").string());
+    input.style_input = *load_image((dir_ / "ws" / "si.png").string());
+    input.style_output = *load_image((dir_ / "ws" / "tex.png").string());
     input.frame_count = 3;
     input.frame = [&](int t) { return load_image(frame_path(t + 4).string()); };
     animate::AnimateOptions options;
@@ -1303,10 +1296,10 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
     auto expected = animate::animate(input, options, RunContext(1));
     ASSERT_TRUE(expected.ok()) << expected.status().message();
     for (int t = 0; t < 3; ++t) {
-        const fs::path mine = base_ / *video::format_frame_path("library%d.png", t);
+        const fs::path mine = dir_ / *video::format_frame_path("library%d.png", t);
         ASSERT_TRUE(
             save_image(expected->frames[static_cast<std::size_t>(t)], mine.string()).is_ok());
-        EXPECT_EQ(file_bytes(base_ / "ws" / "outputs" / "anim" /
+        EXPECT_EQ(file_bytes(dir_ / "ws" / "outputs" / "anim" /
                              *video::format_frame_path("%03d.png", t + 4)),
                   file_bytes(mine))
             << "frame " << t + 4;
@@ -1330,7 +1323,7 @@ TEST_F(StudioTest, AnimateJobsWriteEachFrameAsTheLibraryMakesIt) {
 }
 
 TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
-    ASSERT_TRUE(save_image(ink_exemplar(40), (base_ / "ws" / "ink.png").string()).is_ok());
+    ASSERT_TRUE(save_image(ink_exemplar(40), (dir_ / "ws" / "ink.png").string()).is_ok());
     start();
     // Targets: the built-in plume, 48 x 48, frames 0..3 (warm-up: the first frames are thin).
     auto simulated = post("/api/jobs", {{"kind", "fluid-simulate"},
@@ -1346,12 +1339,12 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
     ASSERT_TRUE(fluid::simulate(
                     fluid::plume_scene(48, 48), 4,
                     [&](int frame, const Image& alpha, const Image& motion) -> Status {
-                        const fs::path mine = base_ / *video::format_frame_path("a%d.png", frame);
+                        const fs::path mine = dir_ / *video::format_frame_path("a%d.png", frame);
                         EXEMPLAR_RETURN_IF_ERROR(save_image(alpha, mine.string()));
-                        EXPECT_EQ(file_bytes(base_ / "ws" / "sim" / "alpha" /
+                        EXPECT_EQ(file_bytes(dir_ / "ws" / "sim" / "alpha" /
                                              *video::format_frame_path("%04d.png", frame)),
                                   file_bytes(mine));
-                        EXPECT_EQ(file_bytes(base_ / "ws" / "sim" / "motion" /
+                        EXPECT_EQ(file_bytes(dir_ / "ws" / "sim" / "motion" /
                                              *video::format_frame_path("%04d.flo", frame))
                                       .size(),
                                   std::size_t{48} * 48 * 8 + 12);
@@ -1378,14 +1371,14 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
     ASSERT_EQ(end["frames"].size(), 3u);
     EXPECT_EQ(end["frames"][0]["path"], "outputs/fluid/0001.png");
     // The library's frames, each continuing from the previous one read back from its file.
-    const Image stored_exemplar = *load_image((base_ / "ws" / "ink.png").string());
+    const Image stored_exemplar = *load_image((dir_ / "ws" / "ink.png").string());
     fluid::FluidOptions options;
     options.synthesis.seed = 5;
     options.patch_size = 3;
     std::optional<Image> previous, previous_motion;
     for (int n = 1; n <= 3; ++n) {
         const auto sim = [&](const char* pattern) {
-            return (base_ / "ws" / "sim" / *video::format_frame_path(pattern, n)).string();
+            return (dir_ / "ws" / "sim" / *video::format_frame_path(pattern, n)).string();
         };
         auto alpha = load_image(sim("alpha/%04d.png"));
         ASSERT_TRUE(alpha.ok());
@@ -1396,9 +1389,9 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
         input.previous_motion = previous_motion ? &*previous_motion : nullptr;
         auto frame = fluid::synthesize_fluid_frame(input, options, RunContext(1));
         ASSERT_TRUE(frame.ok()) << frame.status().message();
-        const fs::path mine = base_ / *video::format_frame_path("fluid%d.png", n);
+        const fs::path mine = dir_ / *video::format_frame_path("fluid%d.png", n);
         ASSERT_TRUE(save_image(frame->rgba, mine.string()).is_ok());
-        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / "fluid" /
+        EXPECT_TRUE(file_bytes(dir_ / "ws" / "outputs" / "fluid" /
                                *video::format_frame_path("%04d.png", n)) == file_bytes(mine))
             << "frame " << n;
         previous = *load_image(mine.string());
@@ -1427,13 +1420,12 @@ TEST_F(StudioTest, FluidJobsSimulateAndTransferAsTheLibraryDoes) {
 
 TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
     // Targets: the plume, 48 x 48, frames 0..3, written here.
-    fs::create_directories(base_ / "ws" / "sim");
+    fs::create_directories(dir_ / "ws" / "sim");
     ASSERT_TRUE(fluid::simulate(
                     fluid::plume_scene(48, 48), 4,
                     [&](int frame, const Image& alpha, const Image& motion) -> Status {
                         const auto name = [&](const char* pattern) {
-                            return (base_ / "ws" / "sim" /
-                                    *video::format_frame_path(pattern, frame))
+                            return (dir_ / "ws" / "sim" / *video::format_frame_path(pattern, frame))
                                 .string();
                         };
                         EXEMPLAR_RETURN_IF_ERROR(save_image(alpha, name("a%04d.png")));
@@ -1442,8 +1434,8 @@ TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
                     RunContext(1))
                     .is_ok());
     // An exemplar sequence of two RGB frames with its alpha in a folder beside it.
-    fs::create_directories(base_ / "ws" / "ink" / "rgb");
-    fs::create_directories(base_ / "ws" / "ink" / "alpha");
+    fs::create_directories(dir_ / "ws" / "ink" / "rgb");
+    fs::create_directories(dir_ / "ws" / "ink" / "alpha");
     for (int k = 0; k < 2; ++k) {
         Image rgba = ink_exemplar(40);
         for (int y = 0; y < 40 && k == 1; ++y) {
@@ -1451,10 +1443,10 @@ TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
         }
         const std::string name = *video::format_frame_path("f%d.png", k);
         ASSERT_TRUE(
-            save_image(extract_channels(rgba, 0, 3), (base_ / "ws" / "ink" / "rgb" / name).string())
+            save_image(extract_channels(rgba, 0, 3), (dir_ / "ws" / "ink" / "rgb" / name).string())
                 .is_ok());
         ASSERT_TRUE(save_image(extract_channels(rgba, 3, 1),
-                               (base_ / "ws" / "ink" / "alpha" / name).string())
+                               (dir_ / "ws" / "ink" / "alpha" / name).string())
                         .is_ok());
     }
     start();
@@ -1477,8 +1469,8 @@ TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
     ASSERT_EQ(end["frames"].size(), 3u);
 
     // The library's range driver on the same files, as exemplar fluid calls it: the same bytes.
-    auto exemplar = fluid::FluidExemplar::open((base_ / "ws" / "ink" / "rgb").string(),
-                                               (base_ / "ws" / "ink" / "alpha").string());
+    auto exemplar = fluid::FluidExemplar::open((dir_ / "ws" / "ink" / "rgb").string(),
+                                               (dir_ / "ws" / "ink" / "alpha").string());
     ASSERT_TRUE(exemplar.ok()) << exemplar.status().message();
     EXPECT_EQ(exemplar->size(), 2);
     fluid::FluidRange range;
@@ -1491,21 +1483,20 @@ TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
             return (folder / *name).string();
         };
     };
-    range.alpha_file = in(base_ / "ws" / "sim", "a%04d.png");
-    range.motion_file = in(base_ / "ws" / "sim", "m%04d.flo");
-    range.output_file = in(base_ / "mine", "%04d.png");
+    range.alpha_file = in(dir_ / "ws" / "sim", "a%04d.png");
+    range.motion_file = in(dir_ / "ws" / "sim", "m%04d.flo");
+    range.output_file = in(dir_ / "mine", "%04d.png");
     range.resume = false;
     exemplar->use_in(range);
     EXPECT_TRUE(range.exemplar_sequence);
-    fs::create_directories(base_ / "mine");
+    fs::create_directories(dir_ / "mine");
     fluid::FluidOptions options;
     options.synthesis.seed = 4;
     options.patch_size = 3;
     ASSERT_TRUE(fluid::synthesize_fluid_range(range, options, RunContext(1)).is_ok());
     for (int n = 1; n <= 3; ++n) {
         const std::string name = *video::format_frame_path("%04d.png", n);
-        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / name) ==
-                    file_bytes(base_ / "mine" / name))
+        EXPECT_TRUE(file_bytes(dir_ / "ws" / "outputs" / name) == file_bytes(dir_ / "mine" / name))
             << name;
     }
     // Refusals: one line naming the key (400); an alpha outside the workspace (403).
@@ -1520,8 +1511,8 @@ TEST_F(StudioTest, FluidJobsTakeExemplarSequencesAndAlphaAsExemplarFluidDoes) {
 
 TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
     // Three render frame folders of 64 x 48: a tone ramp moving right, no lines, the motion.
-    write_render_frames(base_ / "ws" / "render", 3, 64, 48);
-    write_dots(base_ / "ws" / "dots.png");
+    write_render_frames(dir_ / "ws" / "render", 3, 64, 48);
+    write_dots(dir_ / "ws" / "dots.png");
     start();
     const json good = {{"kind", "npr"},
                        {"pattern", "dots.png"},
@@ -1536,18 +1527,18 @@ TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
     const json end = follow(server_->port(), body_of(job)["id"]);
     ASSERT_EQ(end["state"], "done") << end.dump();
     ASSERT_EQ(end["frames"].size(), 3u);
-    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "npr" / "2.png.state.exr"));
+    EXPECT_TRUE(fs::exists(dir_ / "ws" / "outputs" / "npr" / "2.png.state.exr"));
     // The library's frames, each continuing from the one before.
     npr::NprOptions options;
     options.levels = 2;
     options.patch_size = 8;
     options.seed = 3;
-    auto pattern = npr::prepare_pattern(*load_image((base_ / "ws" / "dots.png").string()), options,
+    auto pattern = npr::prepare_pattern(*load_image((dir_ / "ws" / "dots.png").string()), options,
                                         RunContext(1));
     ASSERT_TRUE(pattern.ok()) << pattern.status().message();
     std::optional<npr::FrameState> previous;
     for (int n = 0; n < 3; ++n) {
-        const fs::path folder = base_ / "ws" / "render" / *video::format_frame_path("f%d", n);
+        const fs::path folder = dir_ / "ws" / "render" / *video::format_frame_path("f%d", n);
         npr::NprFrame frame;
         for (const npr::BufferNeed& need : npr::needed_buffers(options, previous.has_value())) {
             const bool exr = need.name == "backward_flow";
@@ -1558,9 +1549,9 @@ TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
         auto styled = npr::stylize_frame(*pattern, frame, previous ? &*previous : nullptr, n,
                                          options, RunContext(1));
         ASSERT_TRUE(styled.ok()) << styled.status().message();
-        const fs::path mine = base_ / *video::format_frame_path("npr%d.png", n);
+        const fs::path mine = dir_ / *video::format_frame_path("npr%d.png", n);
         ASSERT_TRUE(save_image(styled->image, mine.string()).is_ok());
-        EXPECT_TRUE(file_bytes(base_ / "ws" / "outputs" / "npr" /
+        EXPECT_TRUE(file_bytes(dir_ / "ws" / "outputs" / "npr" /
                                *video::format_frame_path("%d.png", n)) == file_bytes(mine))
             << "frame " << n;
         previous = styled->state;
@@ -1580,11 +1571,11 @@ TEST_F(StudioTest, NprJobsStyleFrameFoldersAsTheLibraryDoes) {
 // The paper layer and the bidirectional loop: the frames and states are those of the library's
 // range driver (the one exemplar npr calls) on the same files.
 TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
-    write_render_frames(base_ / "ws" / "render", 5, 64, 48);
-    write_loop_buffers(base_ / "ws" / "render", 5, 64, 48);
-    write_dots(base_ / "ws" / "dots.png");
+    write_render_frames(dir_ / "ws" / "render", 5, 64, 48);
+    write_loop_buffers(dir_ / "ws" / "render", 5, 64, 48);
+    write_dots(dir_ / "ws" / "dots.png");
     fs::copy_file(std::string(EXEMPLAR_TEST_DATA_DIR) + "/paper/struc.pgm",
-                  base_ / "ws" / "paper.pgm");
+                  dir_ / "ws" / "paper.pgm");
     start();
     const json good = {{"kind", "npr"},
                        {"pattern", "dots.png"},
@@ -1606,9 +1597,9 @@ TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
     options.erosion_px = 1.5f;
     const RunContext context(1);
     auto pattern =
-        npr::prepare_pattern(*load_image((base_ / "ws" / "dots.png").string()), options, context);
+        npr::prepare_pattern(*load_image((dir_ / "ws" / "dots.png").string()), options, context);
     auto paper =
-        npr::prepare_pattern(*load_image((base_ / "ws" / "paper.pgm").string()), options, context);
+        npr::prepare_pattern(*load_image((dir_ / "ws" / "paper.pgm").string()), options, context);
     ASSERT_TRUE(pattern.ok() && paper.ok());
     const auto named = [](const fs::path& files) {
         return [files](int n) -> Result<std::string> {
@@ -1617,8 +1608,8 @@ TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
     };
     npr::NprRange range;
     range.last = 4;
-    range.frame_folder = named(base_ / "ws" / "render" / "f%d");
-    range.output_file = named(base_ / "lib" / "%d.png");
+    range.frame_folder = named(dir_ / "ws" / "render" / "f%d");
+    range.output_file = named(dir_ / "lib" / "%d.png");
     range.bidirectional = 2;
     for (const bool with_paper : {true, false}) {
         json job_body = good;
@@ -1627,7 +1618,7 @@ TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
             job_body.erase("erosion");
             job_body["output"] = "outputs/plain/%d.png";
             options.paper = false;
-            range.output_file = named(base_ / "plain" / "%d.png");
+            range.output_file = named(dir_ / "plain" / "%d.png");
         }
         ASSERT_TRUE(
             npr::stylize_range(*pattern, with_paper ? &*paper : nullptr, range, options, context)
@@ -1640,8 +1631,8 @@ TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
         const std::string folder = with_paper ? "npr" : "plain";
         for (int n = 0; n <= 4; ++n) {
             const std::string name = *video::format_frame_path("%d.png", n);
-            const fs::path mine = base_ / (with_paper ? "lib" : "plain") / name;
-            const fs::path theirs = base_ / "ws" / "outputs" / folder / name;
+            const fs::path mine = dir_ / (with_paper ? "lib" : "plain") / name;
+            const fs::path theirs = dir_ / "ws" / "outputs" / folder / name;
             for (const char* suffix : {"", ".state.exr", ".paper.state.exr"}) {
                 if (!with_paper && std::string(suffix) == ".paper.state.exr") continue;
                 EXPECT_TRUE(fs::exists(theirs.string() + suffix)) << name << suffix;
@@ -1665,7 +1656,7 @@ TEST_F(StudioTest, NprJobsWithPaperAndBidirectionalLoopGiveTheLibrarysBytes) {
     outside["paper"] = "../outside/secret.txt";
     EXPECT_EQ(post("/api/jobs", outside)->status, 403);
     // The backward passes read the forward flow, checked when the job is posted.
-    fs::remove(base_ / "ws" / "render" / "f3" / "forward_flow.exr");
+    fs::remove(dir_ / "ws" / "render" / "f3" / "forward_flow.exr");
     expect_refused("/api/jobs", good,
                    {{"last", 4, "frames: render/f3: missing buffer 'forward_flow'"}});
 }
@@ -1743,10 +1734,10 @@ class StudioJobTest : public StudioTest {
 protected:
     void SetUp() override {
         StudioTest::SetUp();
-        fs::create_directories(base_ / "ws" / "texbynum");
+        fs::create_directories(dir_ / "ws" / "texbynum");
         for (const char* name : {"source_photo.png", "source_segment.png", "target_segment.png"}) {
             fs::copy_file(fs::path(EXEMPLAR_TEST_DATA_DIR) / "ebsynth" / "texbynum" / name,
-                          base_ / "ws" / "texbynum" / name);
+                          dir_ / "ws" / "texbynum" / name);
         }
     }
 
@@ -1765,8 +1756,8 @@ protected:
             }
         });
         EXPECT_EQ(end["state"], "cancelled") << end.dump();
-        EXPECT_FALSE(fs::exists(base_ / "ws" / output));
-        EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+        EXPECT_FALSE(fs::exists(dir_ / "ws" / output));
+        EXPECT_EQ(hidden_files(dir_ / "ws"), 0);
     }
 
     // Posts the range job `job` (outputs in outputs/, frames 0..3) and cancels it when its first
@@ -1787,7 +1778,7 @@ protected:
         EXPECT_EQ(end["state"], "cancelled") << end.dump();
         std::vector<std::string> reported, written;
         for (const json& frame : end["frames"]) reported.push_back(frame["path"]);
-        for (const auto& entry : fs::directory_iterator(base_ / "ws" / "outputs")) {
+        for (const auto& entry : fs::directory_iterator(dir_ / "ws" / "outputs")) {
             const std::string name = entry.path().filename().string();
             if (name.ends_with(".png")) written.push_back("outputs/" + name);
         }
@@ -1796,13 +1787,13 @@ protected:
         EXPECT_GE(reported.size(), 1u);
         EXPECT_LT(reported.size(), 4u);
         for (const std::string& file : written) {
-            auto image = load_image((base_ / "ws" / file).string());
+            auto image = load_image((dir_ / "ws" / file).string());
             EXPECT_TRUE(image.ok()) << file;
             if (image.ok()) {
                 EXPECT_EQ(size_str(*image), size) << file;
             }
         }
-        EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+        EXPECT_EQ(hidden_files(dir_ / "ws"), 0);
         return reported;
     }
 };
@@ -1828,8 +1819,8 @@ TEST_F(StudioJobTest, CancelStopsANoisyJobAndWritesNothing) {
 TEST_F(StudioJobTest, CancelStopsANoisyRangeAndKeepsTheFinishedFramesWhole) {
     // Four 320 x 462 frames, two at a time (the server's two threads, one each).
     for (int n = 0; n < 4; ++n) {
-        fs::copy_file(base_ / "ws" / "texbynum" / "source_photo.png",
-                      base_ / "ws" / "texbynum" / *video::format_frame_path("f%d.png", n));
+        fs::copy_file(dir_ / "ws" / "texbynum" / "source_photo.png",
+                      dir_ / "ws" / "texbynum" / *video::format_frame_path("f%d.png", n));
     }
     start();
     cancel_after_first_frame({{"kind", "noisy"},
@@ -1844,8 +1835,8 @@ TEST_F(StudioJobTest, CancelStopsANoisyRangeAndKeepsTheFinishedFramesWhole) {
 TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {
     // The texture-by-numbers target as a still animation of four frames, at the best quality.
     for (int n = 0; n < 4; ++n) {
-        fs::copy_file(base_ / "ws" / "texbynum" / "target_segment.png",
-                      base_ / "ws" / "texbynum" / *video::format_frame_path("frame%d.png", n));
+        fs::copy_file(dir_ / "ws" / "texbynum" / "target_segment.png",
+                      dir_ / "ws" / "texbynum" / *video::format_frame_path("frame%d.png", n));
     }
     start();
     cancel_after_first_progress({{"kind", "animate"},
@@ -1860,8 +1851,8 @@ TEST_F(StudioJobTest, CancelStopsAnAnimateJobAndLeavesNoHalfWrittenFrame) {
 
 TEST_F(StudioJobTest, CancelStopsAFluidJobAndKeepsTheFinishedFramesWhole) {
     // Four 384 x 384 frames of a still disc (no motion): each takes a while.
-    ASSERT_TRUE(save_image(ink_exemplar(48), (base_ / "ws" / "ink.png").string()).is_ok());
-    fs::create_directories(base_ / "ws" / "target");
+    ASSERT_TRUE(save_image(ink_exemplar(48), (dir_ / "ws" / "ink.png").string()).is_ok());
+    fs::create_directories(dir_ / "ws" / "target");
     Image disc(384, 384, 1), still(384, 384, 2);
     for (int y = 0; y < 384; ++y) {
         for (int x = 0; x < 384; ++x) {
@@ -1871,7 +1862,7 @@ TEST_F(StudioJobTest, CancelStopsAFluidJobAndKeepsTheFinishedFramesWhole) {
         }
     }
     for (int n = 0; n < 4; ++n) {
-        const fs::path target = base_ / "ws" / "target";
+        const fs::path target = dir_ / "ws" / "target";
         ASSERT_TRUE(
             save_image(disc, (target / *video::format_frame_path("a%d.png", n)).string()).is_ok());
         ASSERT_TRUE(
@@ -1889,8 +1880,8 @@ TEST_F(StudioJobTest, CancelStopsAFluidJobAndKeepsTheFinishedFramesWhole) {
 
 TEST_F(StudioJobTest, CancelStopsAnNprJobAndKeepsTheFinishedFramesWhole) {
     // Four 768 x 576 render frames at the default three levels: each takes a while.
-    write_render_frames(base_ / "ws" / "render", 4, 768, 576);
-    write_dots(base_ / "ws" / "dots.png");
+    write_render_frames(dir_ / "ws" / "render", 4, 768, 576);
+    write_dots(dir_ / "ws" / "dots.png");
     start();
     const std::vector<std::string> finished =
         cancel_after_first_frame({{"kind", "npr"},
@@ -1903,7 +1894,7 @@ TEST_F(StudioJobTest, CancelStopsAnNprJobAndKeepsTheFinishedFramesWhole) {
     for (int n = 0; n <= 3; ++n) {
         const std::string file = "outputs/" + std::to_string(n) + ".png";
         const bool done = std::find(finished.begin(), finished.end(), file) != finished.end();
-        EXPECT_EQ(fs::exists(base_ / "ws" / (file + ".state.exr")), done) << file;
+        EXPECT_EQ(fs::exists(dir_ / "ws" / (file + ".state.exr")), done) << file;
     }
 }
 
@@ -1949,7 +1940,7 @@ TEST_F(StudioJobTest, StylitRunsPostedAtOnceLeaveOneRunning) {
         const json end = follow(server_->port(), ids[static_cast<std::size_t>(k)]);
         EXPECT_EQ(end["state"], k + 1 < kPosts ? "cancelled" : "done") << end.dump();
     }
-    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+    EXPECT_EQ(hidden_files(dir_ / "ws"), 0);
 }
 
 TEST(JobManagerTest, OneClientsReplaceWaitDoesNotHoldUpAnothers) {
@@ -2010,8 +2001,8 @@ TEST_F(StudioJobTest, AStylitRunReplacesTheClientsRunningOne) {
     EXPECT_EQ(end["state"], "cancelled") << end.dump();
     ASSERT_FALSE(second_id.empty());
     EXPECT_EQ(follow(server_->port(), second_id)["state"], "done");
-    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "first.png"));
-    EXPECT_TRUE(fs::exists(base_ / "ws" / "outputs" / "second.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "ws" / "outputs" / "first.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "ws" / "outputs" / "second.png"));
 }
 
 TEST_F(StudioJobTest, JobsPerClientAreBoundedAndShutdownCancelsThem) {
@@ -2029,9 +2020,9 @@ TEST_F(StudioJobTest, JobsPerClientAreBoundedAndShutdownCancelsThem) {
     EXPECT_EQ(third->status, 202) << third->body;
     // Shutdown cancels both, waits for them, and nothing is left half-written.
     stop();
-    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "a.png"));
-    EXPECT_FALSE(fs::exists(base_ / "ws" / "outputs" / "c.png"));
-    EXPECT_EQ(hidden_files(base_ / "ws"), 0);
+    EXPECT_FALSE(fs::exists(dir_ / "ws" / "outputs" / "a.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "ws" / "outputs" / "c.png"));
+    EXPECT_EQ(hidden_files(dir_ / "ws"), 0);
 }
 
 }  // namespace

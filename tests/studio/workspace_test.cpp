@@ -4,7 +4,6 @@
 #include "workspace.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -12,40 +11,36 @@
 #include <string>
 
 #include "sessions.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::studio {
 namespace {
 
 namespace fs = std::filesystem;
 
-class WorkspaceTest : public ::testing::Test {
+class WorkspaceTest : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        base_ = fs::temp_directory_path() /
-                ("exemplar_ws_" + std::to_string(::getpid()) + "_" +
-                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(base_);
-        fs::create_directories(base_ / "ws" / "inner");
-        fs::create_directories(base_ / "outside");
-        std::ofstream(base_ / "outside" / "secret.txt") << "secret";
-        std::ofstream(base_ / "ws" / "inner" / "a.png") << "png";
-        auto ws = Workspace::open((base_ / "ws").string());
+        TempDirTest::SetUp();
+        fs::create_directories(dir_ / "ws" / "inner");
+        fs::create_directories(dir_ / "outside");
+        std::ofstream(dir_ / "outside" / "secret.txt") << "secret";
+        std::ofstream(dir_ / "ws" / "inner" / "a.png") << "png";
+        auto ws = Workspace::open((dir_ / "ws").string());
         ASSERT_TRUE(ws.ok()) << ws.status().message();
         ws_.emplace(std::move(*ws));
     }
-    void TearDown() override { fs::remove_all(base_); }
 
-    fs::path base_;
     std::optional<Workspace> ws_;
 };
 
 TEST_F(WorkspaceTest, ResolvesRelativePathsInside) {
     auto p = ws_->resolve("inner/a.png");
     ASSERT_TRUE(p.ok()) << p.status().message();
-    EXPECT_EQ(*p, fs::canonical(base_ / "ws" / "inner" / "a.png"));
+    EXPECT_EQ(*p, fs::canonical(dir_ / "ws" / "inner" / "a.png"));
     auto fresh = ws_->resolve("new/folder/b.png");
     ASSERT_TRUE(fresh.ok()) << fresh.status().message();
-    EXPECT_EQ(*fresh, fs::canonical(base_ / "ws") / "new" / "folder" / "b.png");
+    EXPECT_EQ(*fresh, fs::canonical(dir_ / "ws") / "new" / "folder" / "b.png");
 }
 
 TEST_F(WorkspaceTest, RefusesTraversalAbsoluteHiddenAndControlNames) {
@@ -73,14 +68,14 @@ TEST_F(WorkspaceTest, RefusesTraversalAbsoluteHiddenAndControlNames) {
         EXPECT_FALSE(ws_->write(name, "x").is_ok()) << name;
     }
     std::string secret;
-    std::ifstream(base_ / "outside" / "secret.txt") >> secret;
+    std::ifstream(dir_ / "outside" / "secret.txt") >> secret;
     EXPECT_EQ(secret, "secret") << "a refused write changed a file outside";
 }
 
 TEST_F(WorkspaceTest, RefusesSymbolicLinksThatLeaveTheWorkspace) {
-    fs::create_directory_symlink(base_ / "outside", base_ / "ws" / "door");
-    fs::create_symlink(base_ / "outside" / "secret.txt", base_ / "ws" / "secret.txt");
-    fs::create_symlink(base_ / "ws" / "inner" / "a.png", base_ / "ws" / "alias.png");
+    fs::create_directory_symlink(dir_ / "outside", dir_ / "ws" / "door");
+    fs::create_symlink(dir_ / "outside" / "secret.txt", dir_ / "ws" / "secret.txt");
+    fs::create_symlink(dir_ / "ws" / "inner" / "a.png", dir_ / "ws" / "alias.png");
     for (const char* name : {"door/secret.txt", "door/new.png", "secret.txt", "door"}) {
         auto p = ws_->resolve(name);
         ASSERT_FALSE(p.ok()) << name;
@@ -88,7 +83,7 @@ TEST_F(WorkspaceTest, RefusesSymbolicLinksThatLeaveTheWorkspace) {
     }
     EXPECT_FALSE(ws_->read("secret.txt", 100).ok());
     EXPECT_FALSE(ws_->write("door/new.png", "x").is_ok());
-    EXPECT_FALSE(fs::exists(base_ / "outside" / "new.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "outside" / "new.png"));
     // A link that stays inside is followed.
     auto alias = ws_->read("alias.png", 100);
     ASSERT_TRUE(alias.ok()) << alias.status().message();
@@ -104,7 +99,7 @@ TEST_F(WorkspaceTest, WritesAtomicallyIntoNewFoldersAndLeavesNoTemporaryFiles) {
     EXPECT_EQ(*back, "bytes");
     EXPECT_FALSE(ws_->read("out/deep/b.png", 2).ok()) << "over the read limit";
     int entries = 0;
-    for (const auto& e : fs::directory_iterator(base_ / "ws" / "out" / "deep")) {
+    for (const auto& e : fs::directory_iterator(dir_ / "ws" / "out" / "deep")) {
         EXPECT_EQ(e.path().filename(), "b.png");
         ++entries;
     }
@@ -112,9 +107,9 @@ TEST_F(WorkspaceTest, WritesAtomicallyIntoNewFoldersAndLeavesNoTemporaryFiles) {
 }
 
 TEST_F(WorkspaceTest, ListsVisibleFilesOnly) {
-    std::ofstream(base_ / "ws" / ".hidden.png") << "x";
-    fs::create_directories(base_ / "ws" / ".studio");
-    std::ofstream(base_ / "ws" / ".studio" / "c.png") << "x";
+    std::ofstream(dir_ / "ws" / ".hidden.png") << "x";
+    fs::create_directories(dir_ / "ws" / ".studio");
+    std::ofstream(dir_ / "ws" / ".studio" / "c.png") << "x";
     const auto files = ws_->list();
     ASSERT_EQ(files.size(), 1u);
     EXPECT_EQ(files[0].path, "inner/a.png");

@@ -5,12 +5,12 @@
 #include "exemplar/stylit/lpe_buffers.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 
 #include "exemplar/io/image_io.hpp"
 #include "exemplar/stylit/stylit.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar {
 namespace {
@@ -21,18 +21,8 @@ Image constant(int w, int h, int channels, float value) {
     return Image(w, h, channels, value);
 }
 
-class LpeBuffers : public ::testing::Test {
+class LpeBuffers : public exemplar::testing::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_lpe_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
     // A multi-layer EXR whose layer i is constant 0.1 * (i + 1), RGB (the first RGBA).
     std::string write_layers(const std::string& name, const std::vector<std::string>& layers) {
         std::vector<Image> images;
@@ -53,8 +43,6 @@ protected:
             EXPECT_NEAR(buffers[i].image.at(3, 2, 0), 0.1f * static_cast<float>(i + 1), 1e-3f);
         }
     }
-
-    fs::path dir_;
 };
 
 TEST_F(LpeBuffers, PngListKeepsTheOrder) {

@@ -4,13 +4,13 @@
 #include "exemplar/video/frame_sequence.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "exemplar/io/image_io.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::video {
 namespace {
@@ -36,18 +36,12 @@ double mean_abs_diff(const Image& a, const Image& b) {
     return sum / static_cast<double>(a.size());
 }
 
-class Sequences : public ::testing::Test {
+class Sequences : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_seq_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
+        TempDirTest::SetUp();
         fs::create_directories(dir_ / "frames");
     }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    fs::path dir_;
 };
 
 TEST(FramePattern, FormatsOneIntegerConversion) {

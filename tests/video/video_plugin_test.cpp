@@ -11,7 +11,6 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -27,6 +26,7 @@
 #include "exemplar/render/scene.hpp"
 #include "exemplar/video/frame_sequence.hpp"
 #include "exemplar/video/optical_flow.hpp"
+#include "temp_dir.hpp"
 
 namespace exemplar::video {
 namespace {
@@ -82,18 +82,13 @@ struct ProcessRun {
     std::string err;
 };
 
-class VideoPlugin : public ::testing::Test {
+class VideoPlugin : public exemplar::testing::TempDirTest {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("exemplar_plugin_" + std::to_string(::getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
+        TempDirTest::SetUp();
         fs::create_directories(dir_ / "frames");
         fs::create_directories(dir_ / "out");
     }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
     // Runs `executable args...` through the shell with `env` in front ("env -u NAME" or
     // "env NAME=value"), capturing the exit code and both streams.
@@ -142,8 +137,6 @@ protected:
         for (int n = 0; n < 3; ++n) ASSERT_TRUE(writer->write(frame(n)).is_ok());
         ASSERT_TRUE(writer->finish().is_ok());
     }
-
-    fs::path dir_;
 };
 
 // ctest runs every test in a fresh process; run by hand, this one comes first in the file.
