@@ -45,9 +45,13 @@ PaintCommand::PaintCommand(CLI::App& parent) {
         "--source-labels its stroke colour is its segment).\n"
         "Example: exemplar paint --source grass.png --strokes strokes.json --width 512 --height "
         "256 -o out.png");
-    app_->add_option("--source", source_, "Exemplar: RGBA (alpha = its shape) or RGB")->required();
-    app_->add_option("--source-mask", source_mask_,
-                     "Shape of the exemplar (white = inside); default alpha > 0");
+    app_->add_option(
+            "--source", source_,
+            "Exemplar: RGBA (alpha = its shape), or RGB with --source-mask or --source-labels")
+        ->required();
+    app_->add_option(
+        "--source-mask", source_mask_,
+        "Shape of the exemplar (white = inside; all white = the whole image); default alpha > 0");
     app_->add_option("--source-directions", source_directions_,
                      "Direction field of the exemplar (.exr from `exemplar directions`); default: "
                      "analysed with radius 10");
@@ -162,6 +166,13 @@ Status PaintCommand::run(const Streams& streams) const {
     const Image& background = canvas_file->background;
     auto strokes = read_strokes("--strokes", strokes_, width, height, !source_labels_.empty());
     if (!strokes.ok()) return strokes.status();
+    if (strokes->empty()) return invalid_argument("--strokes " + strokes_ + ": has no strokes");
+    // The shape hint needs the exemplar's shape: its alpha, a mask, or its segments.
+    if (source.image.channels() == 3 && source_mask_.empty() && source_labels_.empty()) {
+        return invalid_argument("--source " + source_ +
+                                ": has no alpha channel and no --source-mask or --source-labels "
+                                "gives its shape (an all-white mask paints with the whole image)");
+    }
     for (std::size_t i = 0; i < strokes->size() && !segments.empty(); ++i) {
         const paint::Stroke& stroke = (*strokes)[i];
         if (stroke.comb || segments.count(stroke.label) > 0) continue;

@@ -19,6 +19,8 @@ Image.fromarray(np.round(rgba * 255).astype(np.uint8), "RGBA").save("crayon_red.
 # A crop of The Starry Night's sky.
 starry = Image.open(DATA + "style/neural-style/starry_night.jpg").convert("RGB")
 starry.crop((300, 60, 560, 230)).save("starry_sky.png")
+# Opaque: the whole crop is texture, no boundary (an all-white --source-mask says so).
+Image.new("L", (260, 170), 255).save("starry_sky_mask.png")
 
 # Two textures, bark (left) and leaves (right), tiled and cut along a wavy line; the
 # segmentation in two colours, #804000 bark and #00a000 leaves.
@@ -39,3 +41,5 @@ segments = np.zeros((H, W, 3), np.uint8)
 segments[left] = (128, 64, 0)
 segments[~left] = (0, 160, 0)
 Image.fromarray(segments).save("bark_leaves_segments.png")
+# Without the segmentation the whole exemplar is one opaque texture: an all-white mask.
+Image.new("L", (W, H), 255).save("bark_leaves_mask.png")

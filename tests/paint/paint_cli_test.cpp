@@ -185,30 +185,32 @@ TEST_F(Cli, PaintRejectsBadLabels) {
                    "none.png");
 }
 
-// Issue 18's bad-input list: a stroke partly outside the canvas is clipped, an empty stroke list
-// paints nothing, an opaque RGB source without a mask is painted whole (no boundary), malformed
-// SVG is one line naming the file.
-TEST_F(Cli, PaintClipsStrokesAndAcceptsEmptyListsAndRgbSources) {
+// Issue 18's bad-input list: a stroke partly outside the canvas is clipped; an empty stroke list,
+// an RGB source with nothing giving its shape, malformed JSON or SVG are one line naming the file,
+// exit 1, nothing written. An all-white mask paints with the whole RGB source.
+TEST_F(Cli, PaintClipsStrokesAndRejectsEmptyListsAndShapelessSources) {
     write("two.png", two_textures(48, 32));
+    write("white.png", Image(48, 32, 1, 1.0f));
     std::ofstream(path("outside.json")) << R"([{"points": [[-30, 10], [50, 10]], "width": 12},
                {"points": [[200, 200], [300, 260]], "width": 12}])";
-    CliRun r = run({"paint", "--source", path("two.png"), "--strokes", path("outside.json"),
-                    "--width", "40", "--height", "24", "-o", path("clipped.png")});
+    CliRun r =
+        run({"paint", "--source", path("two.png"), "--source-mask", path("white.png"), "--strokes",
+             path("outside.json"), "--width", "40", "--height", "24", "-o", path("clipped.png")});
     ASSERT_EQ(r.code, 0) << r.err;
     Image out = read("clipped.png");
     EXPECT_EQ(out.width(), 40);
     EXPECT_EQ(out.at(0, 10, 3), 1.0f);   // the clipped stroke, up to the canvas' left edge
     EXPECT_EQ(out.at(20, 20, 3), 0.0f);  // the stroke far outside painted nothing
+    expect_failure({"paint", "--source", path("two.png"), "--strokes", path("outside.json"),
+                    "--width", "40", "--height", "24"},
+                   1,
+                   "--source " + path("two.png") +
+                       ": has no alpha channel and no --source-mask or --source-labels gives its "
+                       "shape (an all-white mask paints with the whole image)");
     std::ofstream(path("empty.json")) << "[]";
-    r = run({"paint", "--source", path("two.png"), "--strokes", path("empty.json"), "--width", "40",
-             "--height", "24", "-o", path("empty.png")});
-    ASSERT_EQ(r.code, 0) << r.err;
-    out = read("empty.png");
-    float alpha = 0.0f;
-    for (int y = 0; y < 24; ++y) {
-        for (int x = 0; x < 40; ++x) alpha = std::max(alpha, out.at(x, y, 3));
-    }
-    EXPECT_EQ(alpha, 0.0f);
+    expect_failure({"paint", "--source", path("two.png"), "--source-mask", path("white.png"),
+                    "--strokes", path("empty.json"), "--width", "40", "--height", "24"},
+                   1, "--strokes " + path("empty.json") + ": has no strokes");
     std::ofstream(path("broken.svg")) << "<svg><path d=";
     expect_failure({"paint", "--source", path("two.png"), "--strokes", path("broken.svg"),
                     "--width", "40", "--height", "24"},
