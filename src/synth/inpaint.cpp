@@ -30,13 +30,15 @@ Result<Image> inpainting_known(const Image& mask, const std::string& what) {
 }
 
 Result<SynthesisInput> inpainting_input(const Image& image, const Image& known) {
-    if (known.width() != image.width() || known.height() != image.height() ||
-        known.channels() != 1) {
+    if (known.width() != image.width() || known.height() != image.height()) {
         return invalid_argument("inpaint mask: is " + std::to_string(known.width()) + "x" +
-                                std::to_string(known.height()) + " with " +
-                                std::to_string(known.channels()) + " channels but the image is " +
+                                std::to_string(known.height()) + " but the image is " +
                                 std::to_string(image.width()) + "x" +
-                                std::to_string(image.height()) + " (needs 1 channel)");
+                                std::to_string(image.height()));
+    }
+    if (known.channels() != 1) {
+        return invalid_argument("inpaint mask: has " + std::to_string(known.channels()) +
+                                " channels (pass it through inpainting_known)");
     }
     const auto channels = static_cast<std::size_t>(image.channels());
     std::vector<double> mean(channels, 0.0);

@@ -66,6 +66,7 @@ TEST(CliHelp, StylizeHelpIsGeneratedFromTheOptionTable) {
                              "--target-orientation",
                              "--init",
                              "--init-nnf",
+                             "--inpaint",
                              "--size",
                              "--save-nnf",
                              "--save-error",

@@ -83,8 +83,11 @@ TEST(InpaintingInput, SetsMasksAndStartsTheHoleFromTheKnownMean) {
     }
     auto wrong = inpainting_input(image, Image(4, 3, 1, 1.0f));
     ASSERT_FALSE(wrong.ok());
+    EXPECT_EQ(wrong.status().message(), "inpaint mask: is 4x3 but the image is 4x2");
+    wrong = inpainting_input(image, Image(4, 2, 3, 1.0f));
+    ASSERT_FALSE(wrong.ok());
     EXPECT_EQ(wrong.status().message(),
-              "inpaint mask: is 4x3 with 1 channels but the image is 4x2 (needs 1 channel)");
+              "inpaint mask: has 3 channels (pass it through inpainting_known)");
 }
 
 // A 96x96 crop of texture-synthesis' 3.jpg (birch bark with a red Z painted over it) and of its

@@ -24,7 +24,8 @@ Result<Image> inpainting_known(const Image& mask, const std::string& what = "inp
 /// inside them are copied, so nothing that the hole covers, such as a painted mark, comes back);
 /// inside the hole the initial target is the mean colour of the known pixels (the covered
 /// content is not information: the painted mark's colour would pull the first matches). Guide
-/// pairs may be added (both on the image's grid). Errors: sizes that differ.
+/// pairs may be added (both on the image's grid). Errors: sizes that differ, `known` of more than
+/// 1 channel.
 Result<SynthesisInput> inpainting_input(const Image& image, const Image& known);
 
 }  // namespace exemplar
