@@ -1,7 +1,8 @@
 // End-to-end timing and quality of `synthesize` on the ebsynth examples in ../shared/data (the
 // issue's reference workloads).
 //
-// Usage: bench_examples [stylit|facestyle|texbynum|guided2|all] [threads] [repeats] [options...]
+// Usage: bench_examples [stylit|facestyle|texbynum|guided2|inpaint3|all] [threads] [repeats]
+//                       [options...]
 //   --scale S          resize inputs by S first (0.5 = the bundled half-resolution job)
 //   --quality NAME     start from SynthesisOptions::preset (fast, default, best); --usage and
 //                      --set apply over it, whatever the order
@@ -11,10 +12,21 @@
 //   --fidelity         also print the output's patch fidelity (see patch_fidelity; a few seconds)
 //   --measure FILE     print texture kept and patch fidelity of FILE (e.g. another tool's output
 //                      for the same example) instead of synthesizing
+//   --write-guides DIR inpaint3: write the guides of ebsynth's formulation (bench/vs_ebsynth.sh)
+//                      instead of synthesizing: DIR/inpaint3_filled.png (3.jpg with the hole at
+//                      the known pixels' mean colour, the start of inpainting_input),
+//                      DIR/inpaint3_hole.png (1 in the hole) and DIR/inpaint3_none.png (all 0)
 // Prints per run: wall and CPU seconds, the time at the end of every level, the texture kept
 // (output / exemplar luminance gradient energy; plain averaging washes out to ~0.6) and the mean
 // final patch error (the synthesis energy per pixel of the final NNF, whose patch size depends
 // on the options; lower = closer to the exemplar).
+//
+// inpaint3 (EmbarkStudios/texture-synthesis imgs/3.jpg, birch bark with a red "Z" painted over
+// it, and imgs/masks/3_inpaint.jpg, black over the Z) fills the Z's hole from the rest of the
+// image (inpainting_input). Its exemplar is the known region only: texture kept is the hole's
+// gradient energy over the known region's, fidelity the mean over the hole of the distance to
+// the nearest patch entirely inside the known region (the Z is no exemplar), and "outside" the
+// largest difference (of 255) from 3.jpg outside the hole (0: kept byte for byte).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,6 +40,7 @@
 #include "exemplar/filters/measures.hpp"
 #include "exemplar/filters/resample.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/synth/inpaint.hpp"
 #include "exemplar/synth/synthesize.hpp"
 #include "shared_data.hpp"
 
@@ -49,15 +62,21 @@ struct Settings {
     std::string out;
     bool fidelity = false;  // also measure the output's patch fidelity (slower)
     std::string measure;    // measure this image instead of synthesizing
+    std::string guides;     // inpaint3: write ebsynth's guides into this folder instead
+    float smooth_sigma = 8.0f;
 };
 
 // Patch fidelity: the mean distance of the output's 5x5 patches (style channels only) to their
 // nearest exemplar patches, found by a plain nearest-neighbour synthesis with the output as the
 // only guide. Wash-out (blurred patches) and seams (patches found nowhere in the exemplar) both
-// raise it; a copy of exemplar regions scores 0.
-double patch_fidelity(const Image& exemplar, const Image& output, int threads) {
+// raise it; a copy of exemplar regions scores 0. With `known` (inpainting; 1 channel, 1 = known):
+// only patches entirely inside it are the exemplar's, and the mean is taken over the hole
+// (known = 0) alone.
+double patch_fidelity(const Image& exemplar, const Image& output, int threads,
+                      const Image& known = {}) {
     SynthesisInput in;
     in.style = exemplar;
+    in.source_mask = known;
     in.guides.push_back(GuidePair{"exemplar", exemplar, output, 1.0f, {}});
     SynthesisOptions o;
     o.usage = UsageStrategy::None;
@@ -71,8 +90,74 @@ double patch_fidelity(const Image& exemplar, const Image& output, int threads) {
     auto r = synthesize(in, o, context);
     if (!r.ok()) return -1.0;
     double sum = 0.0;
-    for (float e : r->error.data()) sum += e;
-    return sum / static_cast<double>(r->error.pixel_count());
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < r->error.pixel_count(); ++i) {
+        if (!known.empty() && known.data()[i] > 0.5f) continue;
+        sum += r->error.data()[i];
+        ++count;
+    }
+    return sum / static_cast<double>(std::max<std::size_t>(1, count));
+}
+
+// The known pixels' colours spread smoothly over the whole image: a normalized convolution,
+// blur(image x known) / blur(known), Gaussian of `sigma` pixels.
+Image smooth_fill(const Image& image, const Image& known, float sigma) {
+    Image weighted = image;
+    const auto channels = static_cast<std::size_t>(image.channels());
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        for (std::size_t c = 0; c < channels; ++c)
+            weighted.data()[i * channels + c] *= known.data()[i];
+    }
+    weighted = gaussian_blur(weighted, sigma);
+    const Image weight = gaussian_blur(known, sigma);
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+        const float w = std::max(weight.data()[i], 1e-6f);
+        for (std::size_t c = 0; c < channels; ++c) weighted.data()[i * channels + c] /= w;
+    }
+    return weighted;
+}
+
+// An example's input and how to judge its outputs.
+struct Example {
+    SynthesisInput input;
+    Image known;  // inpainting: 1 = known (kept, the exemplar), 0 = the hole; else empty
+    Image hole;   // inpainting: 1 - known
+};
+
+// Texture kept and patch fidelity; inpainting: of the output pasted into the hole of the
+// original (what a user of a tool that redraws everything would keep; the same image when the
+// outside is kept), and the largest and mean change outside the hole (in 255ths) before that.
+std::string quality(const Example& e, const Image& output, int threads) {
+    const Image& style = e.input.style;
+    Image pasted = output;
+    double outside = 0.0, outside_sum = 0.0;
+    if (!e.known.empty()) {
+        const auto channels = static_cast<std::size_t>(style.channels());
+        for (std::size_t i = 0; i < style.pixel_count(); ++i) {
+            if (e.known.data()[i] <= 0.5f) continue;
+            for (std::size_t c = 0; c < channels; ++c) {
+                const std::size_t k = i * channels + c;
+                const double d = 255.0 * std::abs(static_cast<double>(output.data()[k]) -
+                                                  static_cast<double>(style.data()[k]));
+                outside = std::max(outside, d);
+                outside_sum += d / static_cast<double>(channels);
+                pasted.data()[k] = style.data()[k];
+            }
+        }
+    }
+    char text[160];
+    std::snprintf(text, sizeof text, "texture %.3f  fidelity %.4f",
+                  gradient_energy(pasted, e.hole) / gradient_energy(style, e.known),
+                  patch_fidelity(style, pasted, threads, e.known));
+    std::string out = text;
+    if (!e.known.empty()) {
+        double known_pixels = 0.0;
+        for (float k : e.known.data()) known_pixels += k;
+        std::snprintf(text, sizeof text, "  outside %.0f max %.2f mean", outside,
+                      outside_sum / known_pixels);
+        out += text;
+    }
+    return out;
 }
 
 bool load(const std::string& path, double scale, Image& out) {
@@ -90,32 +175,74 @@ bool load(const std::string& path, double scale, Image& out) {
     return true;
 }
 
-// `folder`: the example's folder under ../shared/data/guided (default: ebsynth/<name>).
-int run(const std::string& name, const char* style, const std::vector<GuideFiles>& guides,
-        const Settings& settings, const std::string& folder = "") {
+// The example's files under ../shared/data/guided/`folder`/ (default ebsynth/<name>/).
+bool load_guided(const std::string& name, const char* style, const std::vector<GuideFiles>& guides,
+                 const Settings& settings, Example& e, const std::string& folder = "") {
     const std::string dir =
         bench::shared_data("guided/" + (folder.empty() ? "ebsynth/" + name : folder) + "/");
-    if (!bench::shared_data_present(dir)) return 1;
-    SynthesisInput in;
-    if (!load(dir + style, settings.scale, in.style)) return 1;
+    if (!bench::shared_data_present(dir)) return false;
+    SynthesisInput& in = e.input;
+    if (!load(dir + style, settings.scale, in.style)) return false;
     for (const GuideFiles& g : guides) {
         GuidePair pair{g.source, {}, {}, g.weight, {}};
         if (!load(dir + g.source, settings.scale, pair.source) ||
             !load(dir + g.target, settings.scale, pair.target)) {
-            return 1;
+            return false;
         }
         in.guides.push_back(std::move(pair));
     }
-    const double style_energy = gradient_energy(in.style);
+    return true;
+}
+
+// Inpainting: `image` with its hole where `mask` is black, under guided/texture-synthesis/.
+bool load_inpainting(const char* image, const char* mask, const Settings& settings, Example& e) {
+    const std::string dir = bench::shared_data("guided/texture-synthesis/");
+    if (!bench::shared_data_present(dir)) return false;
+    Image picture, drawn;
+    if (!load(dir + image, settings.scale, picture) || !load(dir + mask, settings.scale, drawn)) {
+        return false;
+    }
+    auto known = inpainting_known(drawn, dir + mask);
+    auto input =
+        known.ok() ? inpainting_input(picture, *known) : Result<SynthesisInput>(known.status());
+    if (!input.ok()) {
+        std::fprintf(stderr, "%s\n", input.status().message().c_str());
+        return false;
+    }
+    e.input = std::move(input).value();
+    e.known = std::move(known).value();
+    e.hole = e.input.target_mask;
+    return true;
+}
+
+int run(const std::string& name, const Example& example, const Settings& settings) {
+    const SynthesisInput& in = example.input;
+    if (!settings.guides.empty()) {
+        if (example.known.empty()) return 0;  // only the inpainting example has them
+        const std::string stem = settings.guides + "/" + name + "_";
+        const Image smooth = smooth_fill(in.style, example.known, settings.smooth_sigma);
+        for (const auto& [file, image] : {std::pair{"filled.png", &in.initial_target},
+                                          {"smooth.png", &smooth},
+                                          {"hole.png", &in.target_mask},
+                                          {"none.png", nullptr}}) {
+            const Status saved = save_image(
+                image != nullptr ? *image : Image(in.style.width(), in.style.height(), 1, 0.0f),
+                stem + file);
+            if (!saved.is_ok()) {
+                std::fprintf(stderr, "%s\n", saved.message().c_str());
+                return 1;
+            }
+        }
+        return 0;
+    }
     if (!settings.measure.empty()) {
         auto image = load_image(settings.measure);
         if (!image.ok()) {
             std::fprintf(stderr, "%s\n", image.status().message().c_str());
             return 1;
         }
-        std::printf("%-10s %s  texture %.3f  fidelity %.4f\n", name.c_str(),
-                    settings.measure.c_str(), gradient_energy(*image) / style_energy,
-                    patch_fidelity(in.style, *image, settings.threads));
+        std::printf("%-10s %s  %s\n", name.c_str(), settings.measure.c_str(),
+                    quality(example, *image, settings.threads).c_str());
         return 0;
     }
     for (int r = 0; r < settings.repeats; ++r) {
@@ -156,12 +283,11 @@ int run(const std::string& name, const char* style, const std::vector<GuideFiles
             "mean error %.4f  distinct %.3f\n",
             name.c_str(), result->image.width(), result->image.height(), settings.threads,
             std::string(to_string(settings.options.usage)).c_str(), secs, cpu,
-            gradient_energy(result->image) / style_energy,
+            gradient_energy(result->image, example.hole) / gradient_energy(in.style, example.known),
             error_sum / static_cast<double>(result->error.pixel_count()),
             static_cast<double>(distinct) / static_cast<double>(std::max<std::size_t>(1, centres)));
         if (settings.fidelity) {
-            std::printf("  fidelity %.4f\n",
-                        patch_fidelity(in.style, result->image, settings.threads));
+            std::printf("  %s\n", quality(example, result->image, settings.threads).c_str());
         }
         std::printf("  time at the end of each level (and of the final 3x3 pass, if on):");
         for (double t : level_end) std::printf(" %.2f", t);
@@ -199,6 +325,10 @@ bool parse_options(int argc, char** argv, int first, Settings& settings) {
             settings.fidelity = true;
         } else if (arg == "--measure" && has_value) {
             settings.measure = argv[++i];
+        } else if (arg == "--write-guides" && has_value) {
+            settings.guides = argv[++i];
+        } else if (arg == "--smooth-sigma" && has_value) {
+            settings.smooth_sigma = std::stof(argv[++i]);
         } else if (arg == "--usage" && has_value) {
             if (!bench::parse_usage(argv[++i], settings.options.usage)) return false;
         } else if (arg == "--set" && has_value) {
@@ -225,30 +355,42 @@ int main(int argc, char** argv) {
     const int first_option = bench::parse_counts(argc, argv, settings.threads, settings.repeats);
     if (!parse_options(argc, argv, first_option, settings)) return 2;
     int rc = 0;
-    if (which == "all" || which == "stylit") {
-        rc |= run("stylit", "source_style.png",
-                  {{"source_fullgi.png", "target_fullgi.png", 0.5f},
-                   {"source_dirdif.png", "target_dirdif.png", 0.5f},
-                   {"source_dirspc.png", "target_dirspc.png", 0.5f},
-                   {"source_indirb.png", "target_indirb.png", 0.5f}},
-                  settings);
+    const auto want = [&](const char* name) { return which == "all" || which == name; };
+    Example e;
+    if (want("stylit")) {
+        rc |= !load_guided("stylit", "source_style.png",
+                           {{"source_fullgi.png", "target_fullgi.png", 0.5f},
+                            {"source_dirdif.png", "target_dirdif.png", 0.5f},
+                            {"source_dirspc.png", "target_dirspc.png", 0.5f},
+                            {"source_indirb.png", "target_indirb.png", 0.5f}},
+                           settings, e = {}) ||
+              run("stylit", e, settings);
     }
-    if (which == "all" || which == "facestyle") {
-        rc |= run("facestyle", "source_painting.png",
-                  {{"source_Gapp.png", "target_Gapp.png", 0.5f},
-                   {"source_Gseg.png", "target_Gseg.png", 1.5f},
-                   {"source_Gpos.png", "target_Gpos.png", 10.0f}},
-                  settings);
+    if (want("facestyle")) {
+        rc |= !load_guided("facestyle", "source_painting.png",
+                           {{"source_Gapp.png", "target_Gapp.png", 0.5f},
+                            {"source_Gseg.png", "target_Gseg.png", 1.5f},
+                            {"source_Gpos.png", "target_Gpos.png", 10.0f}},
+                           settings, e = {}) ||
+              run("facestyle", e, settings);
     }
     // Guided texture synthesis (EmbarkStudios/texture-synthesis, imgs/2.jpg): the example's
     // mask guides where the target's should go.
-    if (which == "all" || which == "guided2") {
-        rc |= run("guided2", "2.jpg", {{"masks/2_example.jpg", "masks/2_target.jpg", 1.0f}},
-                  settings, "texture-synthesis");
+    if (want("guided2")) {
+        rc |=
+            !load_guided("guided2", "2.jpg", {{"masks/2_example.jpg", "masks/2_target.jpg", 1.0f}},
+                         settings, e = {}, "texture-synthesis") ||
+            run("guided2", e, settings);
     }
-    if (which == "all" || which == "texbynum") {
-        rc |= run("texbynum", "source_photo.png",
-                  {{"source_segment.png", "target_segment.png", 1.0f}}, settings);
+    if (want("texbynum")) {
+        rc |=
+            !load_guided("texbynum", "source_photo.png",
+                         {{"source_segment.png", "target_segment.png", 1.0f}}, settings, e = {}) ||
+            run("texbynum", e, settings);
+    }
+    if (want("inpaint3")) {
+        rc |= !load_inpainting("3.jpg", "masks/3_inpaint.jpg", settings, e = {}) ||
+              run("inpaint3", e, settings);
     }
     return rc;
 }

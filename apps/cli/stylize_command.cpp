@@ -130,6 +130,10 @@ StylizeCommand::StylizeCommand(CLI::App& parent) {
     app.add_option("--source-mask", flag_job_.source_mask,
                    "Use only style patches entirely inside this grey mask (> 0.5)")
         ->group(kInputs);
+    app.add_option("--inpaint", flag_job_.inpaint,
+                   "Fill the hole of --style where this mask is black (<= 0.5) from the rest, "
+                   "which stays as it is (sets --init and both masks; JPEG masks are fine)")
+        ->group(kInputs);
     app.add_option("--source-labels", flag_job_.source_labels,
                    "Label map on the style's grid (each distinct colour is a label); with "
                    "--target-labels")

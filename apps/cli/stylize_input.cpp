@@ -8,6 +8,7 @@
 
 #include "exemplar/core/parallel.hpp"
 #include "exemplar/io/image_io.hpp"
+#include "exemplar/synth/inpaint.hpp"
 #include "output_files.hpp"
 
 namespace exemplar::cli {
@@ -113,6 +114,35 @@ Status check_pair(const std::string& a_flag, const std::string& a, const std::st
                             ", or neither)");
 }
 
+// --inpaint MASK: the initial target and both masks of inpainting_input.
+Status load_inpainting(const StylizeJob& job, StylizeInput& loaded) {
+    const std::string name = named("--inpaint", job.inpaint);
+    for (const auto& [flag, value] : {std::pair{"--init", &job.init},
+                                      {"--target-mask", &job.target_mask},
+                                      {"--source-mask", &job.source_mask}}) {
+        if (!value->empty()) {
+            return invalid_argument(name + ": sets " + flag + " itself (leave " + flag + " out)");
+        }
+    }
+    auto mask = load_image(job.inpaint);
+    if (!mask.ok()) return mask.status();
+    auto known = inpainting_known(*mask, name);
+    if (!known.ok()) return known.status();
+    SynthesisInput& in = loaded.input;
+    auto inpainting = inpainting_input(in.style, *known);
+    if (!inpainting.ok()) {
+        const std::string& message = inpainting.status().message();
+        return invalid_argument(name + message.substr(message.find(':')));
+    }
+    in.initial_target = std::move(inpainting->initial_target);
+    in.target_mask = std::move(inpainting->target_mask);
+    in.source_mask = std::move(inpainting->source_mask);
+    for (const char* what : {"initial target", "target mask", "source mask"}) {
+        loaded.names.emplace_back(what, name);
+    }
+    return Status::ok();
+}
+
 }  // namespace
 
 Result<std::pair<int, int>> parse_size(const std::string& text) {
@@ -211,6 +241,7 @@ Result<StylizeInput> load_stylize_input(const StylizeJob& job) {
         in.source_mask = std::move(mask).value();
         names.emplace_back("source mask", named("--source-mask", job.source_mask));
     }
+    if (!job.inpaint.empty()) EXEMPLAR_RETURN_IF_ERROR(load_inpainting(job, loaded));
 
     // Labels and orientation fields come in pairs.
     EXEMPLAR_RETURN_IF_ERROR(check_pair("--source-labels", job.source_labels, "--target-labels",

@@ -98,6 +98,7 @@ Result<StylizeJob> load_job_file(const std::string& path) {
         {"target-orientation", &job.target_orientation},
         {"init", &job.init},
         {"init-nnf", &job.init_nnf},
+        {"inpaint", &job.inpaint},
         {"save-nnf", &job.save_nnf},
         {"save-error", &job.save_error},
     };
@@ -183,6 +184,7 @@ StylizeJob merge_jobs(const StylizeJob& base, const StylizeJob& over) {
     take(out.target_orientation, over.target_orientation);
     take(out.init, over.init);
     take(out.init_nnf, over.init_nnf);
+    take(out.inpaint, over.inpaint);
     take(out.save_nnf, over.save_nnf);
     take(out.save_error, over.save_error);
     take(out.size, over.size);

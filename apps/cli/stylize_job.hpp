@@ -29,6 +29,7 @@ struct StylizeJob {
     std::vector<float> style_weights;
     std::string target_mask, source_mask, source_labels, target_labels;
     std::string source_orientation, target_orientation, init, init_nnf;
+    std::string inpaint;  ///< Inpainting mask (black = the hole); sets init and both masks.
     std::string save_nnf, save_error;
     std::string size;  ///< "WxH" for unguided synthesis.
     std::optional<int> threads;

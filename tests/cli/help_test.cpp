@@ -8,6 +8,30 @@
 namespace exemplar::cli::testing {
 namespace {
 
+// The stylize flags besides the numeric options: in --help and in docs/cli.md.
+constexpr const char* kStylizeFlags[] = {"--style",
+                                         "--guide",
+                                         "--weight",
+                                         "--weight-map",
+                                         "--output",
+                                         "--config",
+                                         "--usage",
+                                         "--target-mask",
+                                         "--source-mask",
+                                         "--source-labels",
+                                         "--target-labels",
+                                         "--source-orientation",
+                                         "--target-orientation",
+                                         "--init",
+                                         "--init-nnf",
+                                         "--inpaint",
+                                         "--size",
+                                         "--save-nnf",
+                                         "--save-error",
+                                         "--style-weights",
+                                         "--threads",
+                                         "--quiet"};
+
 // --help lists the everyday options and the quality dial; the search-tuning knobs only appear
 // under --help-all, each with its range and default from the option table.
 TEST(CliHelp, StylizeHelpIsGeneratedFromTheOptionTable) {
@@ -51,27 +75,7 @@ TEST(CliHelp, StylizeHelpIsGeneratedFromTheOptionTable) {
     };
     EXPECT_LE(flags(h.out), 30) << h.out;  // 43 numeric and other flags before the dial
     EXPECT_GE(flags(all.out), flags(h.out) + experts);
-    for (const char* flag : {"--style",
-                             "--guide",
-                             "--weight",
-                             "--weight-map",
-                             "--output",
-                             "--config",
-                             "--usage",
-                             "--target-mask",
-                             "--source-mask",
-                             "--source-labels",
-                             "--target-labels",
-                             "--source-orientation",
-                             "--target-orientation",
-                             "--init",
-                             "--init-nnf",
-                             "--size",
-                             "--save-nnf",
-                             "--save-error",
-                             "--style-weights",
-                             "--threads",
-                             "--quiet"}) {
+    for (const char* flag : kStylizeFlags) {
         EXPECT_NE(h.out.find(flag), std::string::npos) << flag;
     }
     EXPECT_NE(h.out.find("a guide without --weight has weight 1"), std::string::npos);
@@ -118,6 +122,10 @@ TEST(CliDocs, ReferenceAgreesWithTheOptionTable) {
         EXPECT_NE(std::find(lines.begin(), lines.end(), row), lines.end())
             << "docs/cli.md should have the row\n"
             << row;
+    }
+    for (const char* flag : kStylizeFlags) {
+        EXPECT_NE(text.find(std::string("`").append(flag)), std::string::npos)
+            << "docs/cli.md should describe " << flag;
     }
     for (Quality q : {Quality::Fast, Quality::Best}) {
         const std::string says =

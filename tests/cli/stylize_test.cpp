@@ -231,6 +231,72 @@ TEST_F(Cli, GreyMasksMayBeStoredAsRgb) {
     EXPECT_EQ(out.at(35, 29, 2), init.at(35, 29, 2));
 }
 
+// --inpaint MASK: black (<= 0.5 after averaging the colour channels, as a JPEG's chroma noise
+// needs) is the hole; everything else comes out as it went in, the same from a job file.
+TEST_F(Cli, InpaintFillsTheBlackHoleAndKeepsTheRest) {
+    Image mask(32, 28, 3);
+    for (int y = 0; y < 28; ++y) {
+        for (int x = 0; x < 32; ++x) {
+            const bool hole = x >= 12 && x < 20 && y >= 10 && y < 18;
+            const float noisy[3] = {hole ? 0.6f : 0.45f, hole ? 0.1f : 0.9f, hole ? 0.3f : 0.8f};
+            for (int c = 0; c < 3; ++c) mask.at(x, y, c) = noisy[c];
+        }
+    }
+    write("hole.png", mask);
+    const std::vector<std::string> args = {
+        "stylize", "--style", path("style.png"), "--inpaint", path("hole.png"), "--levels",
+        "1",       "-q"};
+    const CliRun r = run(with(args, {"-o", path("out.png")}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Image out = read("out.png");
+    const Image style = read("style.png");
+    ASSERT_EQ(out.width(), 32);
+    bool changed = false;
+    for (int y = 0; y < 28; ++y) {
+        for (int x = 0; x < 32; ++x) {
+            const bool hole = x >= 12 && x < 20 && y >= 10 && y < 18;
+            for (int c = 0; c < 3; ++c) {
+                if (!hole) {
+                    ASSERT_EQ(out.at(x, y, c), style.at(x, y, c)) << x << "," << y;
+                }
+                changed |= hole && out.at(x, y, c) != style.at(x, y, c);
+            }
+        }
+    }
+    EXPECT_TRUE(changed);
+    std::ofstream(path("inpaint.json"))
+        << R"({"style": "style.png", "inpaint": "hole.png", "levels": 1, "output": "job.png"})";
+    ASSERT_EQ(run({"stylize", "--config", path("inpaint.json"), "-q"}).code, 0);
+    EXPECT_EQ(file_bytes(path("job.png")), file_bytes(path("out.png")));
+}
+
+TEST_F(Cli, InpaintRefusesWhatItSetsAndMasksWithoutAHole) {
+    write("white.png", Image(32, 28, 1, 1.0f));
+    const std::vector<std::string> args = {"stylize", "--style", path("style.png"), "--levels",
+                                           "1"};
+    for (const char* flag : {"--init", "--target-mask", "--source-mask"}) {
+        expect_failure(with(args, {"--inpaint", path("white.png"), flag, path("white.png")}), 1,
+                       "--inpaint " + path("white.png") + ": sets " + flag + " itself");
+    }
+    expect_failure(with(args, {"--inpaint", path("white.png")}), 1,
+                   "--inpaint " + path("white.png") + ": has no hole (no pixel <= 0.5)");
+    write("small.png", Image(8, 8, 1, 0.0f));
+    expect_failure(with(args, {"--inpaint", path("small.png")}), 1,
+                   "--inpaint " + path("small.png") + ": is 8x8 but the image is 32x28");
+    Image see_through(32, 28, 4, 0.0f);
+    see_through.at(3, 3, 3) = 0.5f;
+    write("see_through.png", see_through);
+    expect_failure(with(args, {"--inpaint", path("see_through.png")}), 1,
+                   "--inpaint " + path("see_through.png") + ": is partly transparent");
+    // A hole with no whole patch of known pixels left: the engine's message names --inpaint.
+    Image mostly_hole(32, 28, 1, 0.0f);
+    mostly_hole.at(0, 0, 0) = 1.0f;
+    write("mostly_hole.png", mostly_hole);
+    expect_failure(
+        with(args, {"--inpaint", path("mostly_hole.png")}), 1,
+        "--inpaint " + path("mostly_hole.png") + ": no 5x5 patch fits entirely inside it");
+}
+
 TEST_F(Cli, InitNnfOfAnotherSizeIsRefused) {
     ASSERT_EQ(
         run(with(stylize_args(), {"-q", "-o", path("first.png"), "--save-nnf", path("nnf.exr")}))

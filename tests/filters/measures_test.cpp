@@ -27,5 +27,22 @@ TEST(GradientEnergy, KnownAnswers) {
     EXPECT_EQ(gradient_energy(Image(1, 1, 3, 1.0f)), 0.0);
 }
 
+// A region counts only the pairs whose three pixels are inside it: the ramp's right half
+// (x >= 2) has steps of 0.1, its left half steps of 0.3; each half alone gives its own step.
+TEST(GradientEnergy, RegionCountsOnlyItsPairs) {
+    Image ramp(5, 4, 1);
+    Image right(5, 4, 1, 0.0f), left(5, 4, 1, 0.0f);
+    for (int y = 0; y < 4; ++y) {
+        for (int x = 0; x < 5; ++x) {
+            ramp.at(x, y, 0) = x <= 2 ? 0.3f * static_cast<float>(x) : 0.6f + 0.1f * (x - 2);
+            (x >= 2 ? right : left).at(x, y, 0) = 1.0f;
+        }
+    }
+    EXPECT_NEAR(gradient_energy(ramp, right), 0.01, 1e-6);  // float steps
+    EXPECT_NEAR(gradient_energy(ramp, left), 0.09, 1e-6);
+    EXPECT_EQ(gradient_energy(ramp, Image(5, 4, 1, 0.0f)), 0.0);  // nothing inside
+    EXPECT_EQ(gradient_energy(ramp, Image(5, 4, 1, 1.0f)), gradient_energy(ramp));
+}
+
 }  // namespace
 }  // namespace exemplar
