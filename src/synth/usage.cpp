@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <span>
+#include <utility>
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/parallel.hpp"
@@ -40,22 +42,81 @@ std::uint64_t candidate_key(float error, std::size_t index) {
     return (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(error)) << 32) |
            static_cast<std::uint64_t>(index);
 }
+float key_error(std::uint64_t key) {
+    return std::bit_cast<float>(static_cast<std::uint32_t>(key >> 32));
+}
 
-// Sorts ascending: halves sorted in parallel, then merged (same result as std::sort).
-void parallel_sort(std::vector<std::uint64_t>& v, int threads) {
-    const auto mid = static_cast<std::ptrdiff_t>(v.size() / 2);
-    if (threads == 1 || v.size() < 65536) {
-        std::sort(v.begin(), v.end());
-        return;
-    }
-    parallel_for(0, 2, threads, [&](int half) {
-        if (half == 0) {
-            std::sort(v.begin(), v.begin() + mid);
-        } else {
-            std::sort(v.begin() + mid, v.end());
-        }
+// Fixed pieces of the parallel passes over a round's arrays (the same pieces for any thread
+// count).
+constexpr int kChunk = 8192;
+
+// Moves the entries of `in` other than `none` to the front of `out` (resized to their number),
+// in order. Parallel over fixed chunks: each counts its entries, then copies them to its offset.
+void compact(const std::vector<std::uint64_t>& in, std::uint64_t none,
+             std::vector<std::uint64_t>& out, int threads) {
+    const int chunks = static_cast<int>((in.size() + kChunk - 1) / kChunk);
+    std::vector<std::size_t> offset(static_cast<std::size_t>(chunks) + 1, 0);
+    auto chunk_range = [&](int c) {
+        const std::size_t b = static_cast<std::size_t>(c) * kChunk;
+        return std::pair{in.begin() + static_cast<std::ptrdiff_t>(b),
+                         in.begin() + static_cast<std::ptrdiff_t>(std::min(in.size(), b + kChunk))};
+    };
+    parallel_for(0, chunks, threads, [&](int c) {
+        const auto [b, e] = chunk_range(c);
+        offset[static_cast<std::size_t>(c) + 1] = static_cast<std::size_t>(
+            std::count_if(b, e, [&](std::uint64_t v) { return v != none; }));
     });
-    std::inplace_merge(v.begin(), v.begin() + mid, v.end());
+    std::partial_sum(offset.begin(), offset.end(), offset.begin());
+    out.resize(offset.back());
+    parallel_for(0, chunks, threads, [&](int c) {
+        const auto [b, e] = chunk_range(c);
+        std::copy_if(b, e,
+                     out.begin() + static_cast<std::ptrdiff_t>(offset[static_cast<std::size_t>(c)]),
+                     [&](std::uint64_t v) { return v != none; });
+    });
+}
+
+// The unique keys of `v`, sorted ascending: halves sorted in parallel, then merged in pieces
+// split where the output's are (merge path), each piece on its own thread. Unique keys have one
+// sorted order, whatever the thread count.
+std::vector<std::uint64_t> parallel_sort(std::vector<std::uint64_t> v, int threads) {
+    if (threads == 1 || v.size() < 2 * kChunk) {
+        std::sort(v.begin(), v.end());
+        return v;
+    }
+    const auto a = std::span(v).first(v.size() / 2);
+    const auto b = std::span(v).subspan(v.size() / 2);
+    parallel_for(0, 2, threads, [&](int half) {
+        const auto part = half == 0 ? a : b;
+        std::sort(part.begin(), part.end());
+    });
+    std::vector<std::uint64_t> out(v.size());
+    const int pieces = static_cast<int>((v.size() + kChunk - 1) / kChunk);
+    // The number of a's entries among the output's first k: the i with a[i - 1] < b[k - i] and
+    // b[k - i - 1] < a[i] (keys are unique).
+    auto split = [&](std::size_t k) {
+        std::size_t lo = k > b.size() ? k - b.size() : 0, hi = std::min(k, a.size());
+        while (lo < hi) {
+            const std::size_t i = (lo + hi) / 2;
+            if (a[i] < b[k - i - 1]) {
+                lo = i + 1;
+            } else {
+                hi = i;
+            }
+        }
+        return lo;
+    };
+    parallel_for(0, pieces, threads, [&](int p) {
+        const std::size_t k0 = static_cast<std::size_t>(p) * kChunk;
+        const std::size_t k1 = std::min(v.size(), k0 + kChunk);
+        const std::size_t i0 = split(k0), i1 = split(k1);
+        std::merge(a.begin() + static_cast<std::ptrdiff_t>(i0),
+                   a.begin() + static_cast<std::ptrdiff_t>(i1),
+                   b.begin() + static_cast<std::ptrdiff_t>(k0 - i0),
+                   b.begin() + static_cast<std::ptrdiff_t>(k1 - i1),
+                   out.begin() + static_cast<std::ptrdiff_t>(k0));
+    });
+    return out;
 }
 
 // The forward problem of a search over the target pixels in `process`, from the sources in
@@ -95,6 +156,7 @@ public:
         }
         active_count_ = free_count_;
         query_.assign(static_cast<std::size_t>(L_.sw) * L_.sh, 0);
+        free_bits_ = pack_mask(free_);
         warm_ = reverse_.width() == L_.sw && reverse_.height() == L_.sh;
         if (!warm_) {
             reverse_ = Nnf(L_.sw, L_.sh);
@@ -130,13 +192,13 @@ public:
     }
     const std::vector<std::uint8_t>& free_mask() const { return free_; }
 
-    // One reversed retrieval over the sources in query_mask(); returns collision-free
-    // candidates (one per target, the smallest error), sorted by error.
-    std::vector<Candidate> retrieve(int round) {
+    // One reversed retrieval over the sources in query_mask(); returns the keys (candidate_key)
+    // of the collision-free candidates (one per target, the smallest error), sorted by error
+    // (candidate() decodes one).
+    std::vector<std::uint64_t> retrieve(int round) {
         // After the first round, matches whose target was taken resume at the nearest free one.
         if (round > 0) update_nearest_free();
-        const std::vector<std::uint64_t> free_bits = pack_mask(free_);
-        ReverseProblem problem{L_, query_.data(), free_bits.data(), free_by_group_,
+        ReverseProblem problem{L_, query_.data(), free_bits_.data(), free_by_group_,
                                round > 0 ? nearest_free_.data() : nullptr};
         problem.uniform_draw = round == 0;
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
@@ -158,8 +220,10 @@ public:
     }
 
     void assign(const Candidate& c) {
-        EXEMPLAR_DCHECK(free_[static_cast<std::size_t>(c.target)]);
-        free_[static_cast<std::size_t>(c.target)] = 0;
+        const auto t = static_cast<std::size_t>(c.target);
+        EXEMPLAR_DCHECK(free_[t]);
+        free_[t] = 0;
+        free_bits_[t / 64] &= ~(std::uint64_t{1} << (t % 64));
         --free_count_;
         nnf_[static_cast<std::size_t>(c.target)] =
             Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
@@ -181,11 +245,20 @@ public:
         }
     }
 
+    // The candidate of a key that retrieve() returned.
+    Candidate candidate(std::uint64_t key) const {
+        const auto si = static_cast<std::size_t>(key & kSourceMask);
+        const Match& m = reverse_[si];
+        return Candidate{m.error, static_cast<int>(si), static_cast<int>(L_.target_index(m.x, m.y)),
+                         -m.angle_rad};
+    }
+
     // Per target, the querying source with the smallest error (ties: smaller source index), as
-    // candidates sorted by (error, source). Parallel and deterministic: a candidate is one 64-bit
-    // key (error bits, source), errors are >= 0 so their bits order like the values, and each
-    // target keeps the minimum key (order-independent).
-    std::vector<Candidate> collision_free_candidates() const {
+    // keys sorted by (error, source), candidate_less's order. Parallel and deterministic: a
+    // candidate is one 64-bit key (error bits, source), errors are >= 0 so their bits order like
+    // the values, and each target keeps the minimum key (order-independent). Keys are unique (a
+    // source has one match).
+    std::vector<std::uint64_t> collision_free_candidates() const {
         constexpr std::uint64_t kNone = ~std::uint64_t{0};
         std::vector<std::uint64_t> best(free_.size(), kNone);
         const int threads = s_.threads;
@@ -203,21 +276,12 @@ public:
                 }
             }
         });
-        // The targets' keys, compacted in place (no second array: at 1 Mpx each is 8 MB), then
-        // sorted. Keys are unique (a source has one match): the order is candidate_less's.
-        std::vector<std::uint64_t>& keys = best;
-        keys.erase(std::remove(keys.begin(), keys.end(), kNone), keys.end());
-        parallel_sort(keys, threads);
-        std::vector<Candidate> out(keys.size());
-        parallel_for_ranges(0, static_cast<int>(keys.size()), threads, 4096, [&](int b, int e) {
-            for (int i = b; i < e; ++i) {
-                const auto si = static_cast<int>(keys[static_cast<std::size_t>(i)] & kSourceMask);
-                const Match& m = reverse_[static_cast<std::size_t>(si)];
-                out[static_cast<std::size_t>(i)] = Candidate{
-                    m.error, si, static_cast<int>(L_.target_index(m.x, m.y)), -m.angle_rad};
-            }
-        });
-        return out;
+        // The targets' keys, compacted, then sorted: keys and no decoded candidates (16 bytes
+        // each), which were the largest arrays of a round (guided2's peak).
+        std::vector<std::uint64_t> keys;
+        compact(best, kNone, keys, threads);
+        std::vector<std::uint64_t>().swap(best);
+        return parallel_sort(std::move(keys), threads);
     }
 
     // Forward search from the free targets to the sources in `allowed` (nullptr = any);
@@ -254,6 +318,7 @@ private:
     const Level& L_;
     Nnf& nnf_;
     std::vector<std::uint8_t> free_;
+    std::vector<std::uint64_t> free_bits_;  // free_, packed (pack_mask)
     std::vector<std::uint8_t> query_;
     std::vector<std::vector<int>> free_by_group_;
     std::vector<int> nearest_free_;
@@ -347,10 +412,10 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     // Reversed retrieval rounds.
     while (rr.free_count() > 0 && stats.rounds < kUniformMaxReverseRounds) {
         rr.select_queries(has_capacity);  // counts and R are only read here
-        const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
+        const std::vector<std::uint64_t> keys = rr.retrieve(stats.rounds);
         ++stats.rounds;
         std::size_t assigned = 0;
-        for (const Candidate& c : candidates) assigned += try_assign(c) ? 1 : 0;
+        for (const std::uint64_t key : keys) assigned += try_assign(rr.candidate(key)) ? 1 : 0;
         stats.reverse_assigned += assigned;
         rr.rebuild_free_lists();
         // A round that assigns almost nothing means the reversed search is starving on a few
@@ -703,19 +768,19 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
             static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
             focus_query(L, rr.free_mask(), rr.nnf(), used, stats.rounds, rr.query_mask());
         }
-        const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
+        const std::vector<std::uint64_t> keys = rr.retrieve(stats.rounds);
         ++stats.rounds;
-        if (candidates.empty()) break;
-        std::vector<float> errors(candidates.size());
-        std::transform(candidates.begin(), candidates.end(), errors.begin(),
-                       [](const Candidate& c) { return c.error; });
+        if (keys.empty()) break;
+        std::vector<float> errors(keys.size());
+        std::transform(keys.begin(), keys.end(), errors.begin(), key_error);
         const KneeFit fit = fit_knee(errors);
         double budget = 0.0;
         for (std::size_t i = 0; i < fit.knee_index; ++i) budget += errors[i];
         double spent = 0.0;
         std::size_t assigned = 0;
-        for (const Candidate& c : candidates) {
+        for (const std::uint64_t key : keys) {
             // Always take the best candidate so that every round makes progress.
+            const Candidate c = rr.candidate(key);
             if (assigned > 0 && spent + c.error > budget) break;
             spent += c.error;
             used[static_cast<std::size_t>(c.source)] = 1;
@@ -724,8 +789,8 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         }
         stats.reverse_assigned += assigned;
         if (setup.finest) {
-            stats.reverse_assigned += grow_assigned(
-                setup, rr, nnf, kGrowErrorFraction * candidates[assigned - 1].error, used);
+            stats.reverse_assigned +=
+                grow_assigned(setup, rr, nnf, kGrowErrorFraction * errors[assigned - 1], used);
         }
         rr.rebuild_free_lists();
     }
