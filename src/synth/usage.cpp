@@ -466,20 +466,25 @@ constexpr int kUnusedQueryStride = 4;
 // keeps the usage diverse); `query` keeps those, the unused ones on the rotating subset of round
 // `round` (kUnusedQueryStride).
 void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nnf& nnf,
-                 const std::vector<std::uint8_t>& used, int round,
-                 std::vector<std::uint8_t>& query) {
+                 const std::vector<std::uint8_t>& used, int round, std::vector<std::uint8_t>& query,
+                 int threads) {
+    // Rows in parallel: `near` is only ever set to 1 (relaxed stores, any order: the same mask).
     std::vector<std::uint8_t> near(query.size(), 0);
-    for (std::size_t t = 0; t < free.size(); ++t) {
-        if (!free[t]) continue;
-        const Match& m = nnf[t];
-        if (m.x < 0 || m.y < 0) continue;
-        for (int y = std::max(0, m.y - 1); y <= std::min(L.sh - 1, m.y + 1); ++y) {
-            for (int x = std::max(0, m.x - 1); x <= std::min(L.sw - 1, m.x + 1); ++x) {
-                near[L.source_index(x, y)] = 1;
+    parallel_for(0, L.th, threads, [&](int ty) {
+        for (int tx = 0; tx < L.tw; ++tx) {
+            const std::size_t t = L.target_index(tx, ty);
+            if (!free[t]) continue;
+            const Match& m = nnf[t];
+            if (m.x < 0 || m.y < 0) continue;
+            for (int y = std::max(0, m.y - 1); y <= std::min(L.sh - 1, m.y + 1); ++y) {
+                for (int x = std::max(0, m.x - 1); x <= std::min(L.sw - 1, m.x + 1); ++x) {
+                    std::atomic_ref<std::uint8_t>(near[L.source_index(x, y)])
+                        .store(1, std::memory_order_relaxed);
+                }
             }
         }
-    }
-    for (int y = 0; y < L.sh; ++y) {
+    });
+    parallel_for(0, L.sh, threads, [&](int y) {
         for (int x = 0; x < L.sw; ++x) {
             const std::size_t s = L.source_index(x, y);
             // Diagonal lines (x + 3y + round) mod stride = 0: spread over the source, shifted
@@ -487,7 +492,7 @@ void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nn
             const bool in_turn = (x + 3 * y + round) % kUnusedQueryStride == 0;
             query[s] = query[s] && (near[s] || (!used[s] && in_turn));
         }
-    }
+    });
 }
 
 // A target pixel whose match continues the source region of fewer than this many of its four
@@ -766,7 +771,8 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         rr.select_queries([](std::size_t) { return true; });
         if (stats.rounds > 0 &&
             static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
-            focus_query(L, rr.free_mask(), rr.nnf(), used, stats.rounds, rr.query_mask());
+            focus_query(L, rr.free_mask(), rr.nnf(), used, stats.rounds, rr.query_mask(),
+                        setup.threads);
         }
         const std::vector<std::uint64_t> keys = rr.retrieve(stats.rounds);
         ++stats.rounds;
