@@ -171,6 +171,11 @@ public:
         if (!first_round_.empty()) reverse_ = std::move(first_round_);
     }
 
+    // After the last round: the run's last search (SearchSetup::last) releases the field.
+    void end_rounds() {
+        if (s_.last) reverse_ = Nnf();
+    }
+
     std::size_t free_count() const { return free_count_; }
     const Nnf& nnf() const { return nnf_; }
     std::size_t active_count() const { return active_count_; }
@@ -215,7 +220,7 @@ public:
         run_patchmatch(problem, reverse_, iterations, hash_keys(key, 1), s_.threads);
         // Later rounds pull the field toward the few targets still free; the next EM
         // iteration (all targets free again) starts better from this round's field.
-        if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;
+        if (round == 0 && &reverse_ != &own_reverse_ && !s_.last) first_round_ = reverse_;
         return collision_free_candidates();
     }
 
@@ -422,6 +427,7 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
         // scattered free targets; the forward pass below finishes those efficiently.
         if (assigned == 0 || assigned * 200 < rr.free_count()) break;
     }
+    rr.end_rounds();
     // Remaining targets: forward search restricted to sources with capacity left, assigned in
     // order of increasing error under the same K/R rules. Each pass assigns at least one target.
     std::vector<std::uint8_t> allowed(count.size(), 0);
@@ -800,6 +806,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         }
         rr.rebuild_free_lists();
     }
+    rr.end_rounds();
     if (rr.free_count() > 0) {
         stats.forward_assigned = rr.free_count();
         rr.forward_candidates(nullptr, 0);
