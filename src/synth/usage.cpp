@@ -80,7 +80,8 @@ void compact(const std::vector<std::uint64_t>& in, std::uint64_t none,
 // split where the output's are (merge path), each piece on its own thread. Unique keys have one
 // sorted order, whatever the thread count.
 std::vector<std::uint64_t> parallel_sort(std::vector<std::uint64_t> v, int threads) {
-    if (threads == 1 || v.size() < 2 * kChunk) {
+    constexpr std::size_t kPiece = 2048;  // of the merge
+    if (threads == 1 || v.size() < 2 * kPiece) {
         std::sort(v.begin(), v.end());
         return v;
     }
@@ -91,7 +92,7 @@ std::vector<std::uint64_t> parallel_sort(std::vector<std::uint64_t> v, int threa
         std::sort(part.begin(), part.end());
     });
     std::vector<std::uint64_t> out(v.size());
-    const int pieces = static_cast<int>((v.size() + kChunk - 1) / kChunk);
+    const int pieces = static_cast<int>((v.size() + kPiece - 1) / kPiece);
     // The number of a's entries among the output's first k: the i with a[i - 1] < b[k - i] and
     // b[k - i - 1] < a[i] (keys are unique).
     auto split = [&](std::size_t k) {
@@ -107,8 +108,8 @@ std::vector<std::uint64_t> parallel_sort(std::vector<std::uint64_t> v, int threa
         return lo;
     };
     parallel_for(0, pieces, threads, [&](int p) {
-        const std::size_t k0 = static_cast<std::size_t>(p) * kChunk;
-        const std::size_t k1 = std::min(v.size(), k0 + kChunk);
+        const std::size_t k0 = static_cast<std::size_t>(p) * kPiece;
+        const std::size_t k1 = std::min(v.size(), k0 + kPiece);
         const std::size_t i0 = split(k0), i1 = split(k1);
         std::merge(a.begin() + static_cast<std::ptrdiff_t>(i0),
                    a.begin() + static_cast<std::ptrdiff_t>(i1),
@@ -225,13 +226,21 @@ public:
     }
 
     void assign(const Candidate& c) {
-        const auto t = static_cast<std::size_t>(c.target);
-        EXEMPLAR_DCHECK(free_[t]);
-        free_[t] = 0;
-        free_bits_[t / 64] &= ~(std::uint64_t{1} << (t % 64));
+        take(c);
         --free_count_;
-        nnf_[static_cast<std::size_t>(c.target)] =
-            Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
+    }
+
+    // Assigns the candidates of `keys` (from retrieve(): their targets and sources differ) and
+    // marks their sources in `used`. In parallel: only the packed bits share memory (atomic).
+    void assign_keys(std::span<const std::uint64_t> keys, std::vector<std::uint8_t>& used) {
+        parallel_for_ranges(0, static_cast<int>(keys.size()), s_.threads, 4096, [&](int b, int e) {
+            for (int i = b; i < e; ++i) {
+                const Candidate c = candidate(keys[static_cast<std::size_t>(i)]);
+                used[static_cast<std::size_t>(c.source)] = 1;
+                take(c);
+            }
+        });
+        free_count_ -= keys.size();
     }
 
     // nearest_free_[t]: the free target pixel nearest to t (t itself if free; -1 if none).
@@ -319,6 +328,16 @@ public:
     }
 
 private:
+    // Gives the candidate's target its source (the free count is the caller's).
+    void take(const Candidate& c) {
+        const auto t = static_cast<std::size_t>(c.target);
+        EXEMPLAR_DCHECK(free_[t]);
+        free_[t] = 0;
+        std::atomic_ref<std::uint64_t>(free_bits_[t / 64])
+            .fetch_and(~(std::uint64_t{1} << (t % 64)), std::memory_order_relaxed);
+        nnf_[t] = Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
+    }
+
     const SearchSetup& s_;
     const Level& L_;
     Nnf& nnf_;
@@ -790,15 +809,13 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         for (std::size_t i = 0; i < fit.knee_index; ++i) budget += errors[i];
         double spent = 0.0;
         std::size_t assigned = 0;
-        for (const std::uint64_t key : keys) {
+        for (const float error : errors) {
             // Always take the best candidate so that every round makes progress.
-            const Candidate c = rr.candidate(key);
-            if (assigned > 0 && spent + c.error > budget) break;
-            spent += c.error;
-            used[static_cast<std::size_t>(c.source)] = 1;
-            rr.assign(c);
+            if (assigned > 0 && spent + error > budget) break;
+            spent += error;
             ++assigned;
         }
+        rr.assign_keys(std::span(keys).first(assigned), used);
         stats.reverse_assigned += assigned;
         if (setup.finest) {
             stats.reverse_assigned +=
