@@ -50,30 +50,34 @@ float key_error(std::uint64_t key) {
 // count).
 constexpr int kChunk = 8192;
 
-// Moves the entries of `in` other than `none` to the front of `out` (resized to their number),
-// in order. Parallel over fixed chunks: each counts its entries, then copies them to its offset.
-void compact(const std::vector<std::uint64_t>& in, std::uint64_t none,
-             std::vector<std::uint64_t>& out, int threads) {
-    const int chunks = static_cast<int>((in.size() + kChunk - 1) / kChunk);
+// The keys key_of(v) of the entries v of `slots` other than `none`, in order. Parallel over fixed
+// chunks: each counts its entries, then writes their keys at its offset.
+template <class KeyOf>
+std::vector<std::uint64_t> compact(const std::vector<std::uint32_t>& slots, std::uint32_t none,
+                                   KeyOf key_of, int threads) {
+    const int chunks = static_cast<int>((slots.size() + kChunk - 1) / kChunk);
     std::vector<std::size_t> offset(static_cast<std::size_t>(chunks) + 1, 0);
     auto chunk_range = [&](int c) {
         const std::size_t b = static_cast<std::size_t>(c) * kChunk;
-        return std::pair{in.begin() + static_cast<std::ptrdiff_t>(b),
-                         in.begin() + static_cast<std::ptrdiff_t>(std::min(in.size(), b + kChunk))};
+        return std::pair{b, std::min(slots.size(), b + kChunk)};
     };
     parallel_for(0, chunks, threads, [&](int c) {
         const auto [b, e] = chunk_range(c);
-        offset[static_cast<std::size_t>(c) + 1] = static_cast<std::size_t>(
-            std::count_if(b, e, [&](std::uint64_t v) { return v != none; }));
+        offset[static_cast<std::size_t>(c) + 1] =
+            static_cast<std::size_t>(std::count_if(slots.begin() + static_cast<std::ptrdiff_t>(b),
+                                                   slots.begin() + static_cast<std::ptrdiff_t>(e),
+                                                   [&](std::uint32_t v) { return v != none; }));
     });
     std::partial_sum(offset.begin(), offset.end(), offset.begin());
-    out.resize(offset.back());
+    std::vector<std::uint64_t> out(offset.back());
     parallel_for(0, chunks, threads, [&](int c) {
         const auto [b, e] = chunk_range(c);
-        std::copy_if(b, e,
-                     out.begin() + static_cast<std::ptrdiff_t>(offset[static_cast<std::size_t>(c)]),
-                     [&](std::uint64_t v) { return v != none; });
+        std::size_t o = offset[static_cast<std::size_t>(c)];
+        for (std::size_t i = b; i < e; ++i) {
+            if (slots[i] != none) out[o++] = key_of(slots[i]);
+        }
     });
+    return out;
 }
 
 // The unique keys of `v`, sorted ascending: halves sorted in parallel, then merged in pieces
@@ -270,11 +274,13 @@ public:
     // Per target, the querying source with the smallest error (ties: smaller source index), as
     // keys sorted by (error, source), candidate_less's order. Parallel and deterministic: a
     // candidate is one 64-bit key (error bits, source), errors are >= 0 so their bits order like
-    // the values, and each target keeps the minimum key (order-independent). Keys are unique (a
-    // source has one match).
+    // the values, and each target keeps the source of the minimum key (order-independent) in a
+    // 32-bit slot (the slots are a round's largest array: guided2's peak of memory). Keys are
+    // unique (a source has one match).
     std::vector<std::uint64_t> collision_free_candidates() const {
-        constexpr std::uint64_t kNone = ~std::uint64_t{0};
-        std::vector<std::uint64_t> best(free_.size(), kNone);
+        constexpr std::uint32_t kNone = ~std::uint32_t{0};
+        const auto key_of = [&](std::uint32_t si) { return candidate_key(reverse_[si].error, si); };
+        std::vector<std::uint32_t> best(free_.size(), kNone);
         const int threads = s_.threads;
         parallel_for(0, L_.sh, threads, [&](int y) {
             for (int x = 0; x < L_.sw; ++x) {
@@ -283,18 +289,18 @@ public:
                 const Match& m = reverse_[si];
                 if (!(m.error < kInf)) continue;
                 const std::uint64_t key = candidate_key(m.error, si);
-                std::atomic_ref<std::uint64_t> slot(best[L_.target_index(m.x, m.y)]);
-                std::uint64_t seen = slot.load(std::memory_order_relaxed);
-                while (key < seen &&
-                       !slot.compare_exchange_weak(seen, key, std::memory_order_relaxed)) {
+                std::atomic_ref<std::uint32_t> slot(best[L_.target_index(m.x, m.y)]);
+                std::uint32_t seen = slot.load(std::memory_order_relaxed);
+                while ((seen == kNone || key < key_of(seen)) &&
+                       !slot.compare_exchange_weak(seen, static_cast<std::uint32_t>(si),
+                                                   std::memory_order_relaxed)) {
                 }
             }
         });
         // The targets' keys, compacted, then sorted: keys and no decoded candidates (16 bytes
         // each), which were the largest arrays of a round (guided2's peak).
-        std::vector<std::uint64_t> keys;
-        compact(best, kNone, keys, threads);
-        std::vector<std::uint64_t>().swap(best);
+        std::vector<std::uint64_t> keys = compact(best, kNone, key_of, threads);
+        std::vector<std::uint32_t>().swap(best);
         return parallel_sort(std::move(keys), threads);
     }
 
