@@ -247,6 +247,23 @@ public:
         free_count_ -= keys.size();
     }
 
+    // Assigns the candidates of every row (distinct targets; a source may serve several) and
+    // marks their sources in `used`. Rows in parallel; returns how many.
+    std::size_t assign_rows(const std::vector<std::vector<Candidate>>& rows,
+                            std::vector<std::uint8_t>& used) {
+        parallel_for(0, static_cast<int>(rows.size()), s_.threads, [&](int y) {
+            for (const Candidate& c : rows[static_cast<std::size_t>(y)]) {
+                std::atomic_ref<std::uint8_t>(used[static_cast<std::size_t>(c.source)])
+                    .store(1, std::memory_order_relaxed);
+                take(c);
+            }
+        });
+        std::size_t count = 0;
+        for (const std::vector<Candidate>& row : rows) count += row.size();
+        free_count_ -= count;
+        return count;
+    }
+
     // nearest_free_[t]: the free target pixel nearest to t (t itself if free; -1 if none).
     void update_nearest_free() {
         nearest_free_ = nearest_set_pixel(free_, L_.tw, L_.th, s_.threads);
@@ -747,8 +764,9 @@ std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const 
     constexpr std::array<std::array<int, 2>, 4> kSteps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
     const Level& L = setup.level;
     const std::vector<std::uint8_t>& free = rr.free_mask();
-    // Each row's proposals apart, applied in row order: the memory follows the proposals (a
-    // whole-level table of candidates beside the round's own raised guided2's peak by 2.5 MB).
+    // Each row's proposals apart, then assigned row by row in parallel: the memory follows the
+    // proposals (a whole-level table of candidates beside the round's own raised guided2's peak
+    // by 2.5 MB).
     std::vector<std::vector<Candidate>> proposals(static_cast<std::size_t>(L.th));
     parallel_for(0, L.th, setup.threads, [&](int y) {
         std::vector<Candidate>& row = proposals[static_cast<std::size_t>(y)];
@@ -776,15 +794,7 @@ std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const 
             if (best.source >= 0) row.push_back(best);
         }
     });
-    std::size_t grown = 0;
-    for (const std::vector<Candidate>& row : proposals) {
-        for (const Candidate& c : row) {
-            used[static_cast<std::size_t>(c.source)] = 1;
-            rr.assign(c);
-            ++grown;
-        }
-    }
-    return grown;
+    return rr.assign_rows(proposals, used);
 }
 
 // StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
