@@ -110,8 +110,15 @@ struct Level {
     /// Rotation from target to source coordinates for a pair (0 without orientation), rounded
     /// to the nearest step with orientation_steps.
     float angle_for(std::size_t target_pixel, int sx, int sy) const {
-        if (!rotated()) return 0.0f;
-        const float angle = source_angle[source_index(sx, sy)] - target_angle[target_pixel];
+        return rotated() ? turned_angle(target_pixel, source_index(sx, sy)) : 0.0f;
+    }
+    /// angle_for with the source centre as a pixel index (the reversed retrieval's query).
+    float angle_for_source(std::size_t target_pixel, std::size_t source_pixel) const {
+        return rotated() ? turned_angle(target_pixel, source_pixel) : 0.0f;
+    }
+    /// angle_for's value on a rotated level.
+    float turned_angle(std::size_t target_pixel, std::size_t source_pixel) const {
+        const float angle = source_angle[source_pixel] - target_angle[target_pixel];
         return orientation_steps > 0 ? step_angle[static_cast<std::size_t>(step_of(angle))] : angle;
     }
     /// With orientation_steps: the step nearest to `angle` (radians, finite).

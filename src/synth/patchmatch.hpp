@@ -366,8 +366,7 @@ struct ReverseProblem {
         return mask_bit(target_free, ti) && L.target_group(ti) == L.source_group(si);
     }
     float angle(std::size_t si, int tx, int ty) const {
-        return -L.angle_for(L.target_index(tx, ty), static_cast<int>(si % L.sw),
-                            static_cast<int>(si / L.sw));
+        return -L.angle_for_source(L.target_index(tx, ty), si);
     }
     void prefetch(int tx, int ty) const { prefetch_patch(L.target_features, L.radius, tx, ty); }
     float cost(int sx, int sy, int tx, int ty, float angle_rad, float bound) const {

@@ -214,7 +214,8 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        it > 0 || warm_start || (polish && L.index > 0),
                                        candidates.empty() ? nullptr : &candidates,
                                        finest ? options.finest_first_round_iterations : 0,
-                                       finest};
+                                       finest,
+                                       end_run && it + 1 == iterations};
         synth::search(setup, nnf);
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
@@ -441,6 +442,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
     int prev_sw = 0, prev_sh = 0, prev_tw = 0, prev_th = 0;
     SynthesisResult result;
     result.guide_compression = builder.guide_compression();
+    const std::vector<std::string> style_channel_names = in.style.channel_names();
     for (int l = 0; l < levels; ++l) {
         if (context.cancelled()) return cancelled();
         synth::Level L = builder.build(l);
@@ -450,12 +452,27 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         }
         const std::uint64_t level_key = hash_keys(options.seed, static_cast<std::uint64_t>(l));
         synth::ForwardProblem all{L, L.target_active.data()};
+        // Candidate fields on this level's grid: tried once below, then in every PatchMatch
+        // iteration of the searches (as B' changes, a candidate that lost here may win later).
+        std::vector<Nnf> candidates;
+        for (const Nnf& c : in.candidate_nnfs) candidates.push_back(downscale_nnf(c, in.style, L));
 
+        // The run's last vote (finest level, or the final pass after it) keeps the fine grain.
+        const bool finest = l == levels - 1;
+        const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
         // Initialize the NNF: random at the coarsest level (or the given one), else upsampled.
         if (l == 0) {
             nnf = in.initial_nnf.empty() ? unassigned_nnf(L.tw, L.th)
                                          : downscale_nnf(in.initial_nnf, in.style, L);
-        } else {
+        }
+        if (finest && !final_pass && owned != nullptr) {
+            // Nothing reads the full-resolution inputs any more: the level holds its own copies.
+            // Released before the level's fields are upsampled (the run's peak of memory was
+            // both at once: guided2 19.5 MB of heap).
+            builder.release_inputs();
+            *owned = SynthesisInput{};
+        }
+        if (l > 0) {
             nnf = upsample_nnf(nnf, prev_sw, prev_sh, L.tw, L.th, L.sw, L.sh, threads);
             // The reversed-retrieval state starts from the coarser level's too.
             if (!reverse_field.empty()) {
@@ -467,7 +484,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         // Initial B' of this level: the initial target on the coarsest level if given, else
         // the vote of the initial NNF. Fixed pixels always hold the initial target.
         current = L.fixed_style.empty() ? Image(L.tw, L.th, L.style_channels) : L.fixed_style;
-        current.set_channel_names(in.style.channel_names());
+        current.set_channel_names(style_channel_names);
         set_target_style(L, current, threads);
         evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
         const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
@@ -479,25 +496,12 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             set_target_style(L, current, threads);
         };
         vote_initial();
-        // Candidate fields on this level's grid: tried once here, then in every PatchMatch
-        // iteration of the searches (as B' changes, a candidate that lost here may win later).
-        std::vector<Nnf> candidates;
-        for (const Nnf& c : in.candidate_nnfs) candidates.push_back(downscale_nnf(c, in.style, L));
         if (!candidates.empty()) {
             // Candidates compete on costs against this initial B' (before the vote the coarsest
             // level's B' is empty, which would favour dark patches), then B' is voted again.
             evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
             for (const Nnf& c : candidates) adopt_candidates(all, c, nnf, threads);
             vote_initial();
-        }
-
-        // The run's last vote (finest level, or the final pass after it) keeps the fine grain.
-        const bool finest = l == levels - 1;
-        const bool final_pass = options.final_pass_iterations > 0 && options.patch_size > 3;
-        if (finest && !final_pass && owned != nullptr) {
-            // Nothing reads the full-resolution inputs any more: the level holds its own copies.
-            builder.release_inputs();
-            *owned = SynthesisInput{};
         }
         const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
         run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,

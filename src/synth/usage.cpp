@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <span>
+#include <utility>
 
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/parallel.hpp"
@@ -40,22 +42,86 @@ std::uint64_t candidate_key(float error, std::size_t index) {
     return (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(error)) << 32) |
            static_cast<std::uint64_t>(index);
 }
+float key_error(std::uint64_t key) {
+    return std::bit_cast<float>(static_cast<std::uint32_t>(key >> 32));
+}
 
-// Sorts ascending: halves sorted in parallel, then merged (same result as std::sort).
-void parallel_sort(std::vector<std::uint64_t>& v, int threads) {
-    const auto mid = static_cast<std::ptrdiff_t>(v.size() / 2);
-    if (threads == 1 || v.size() < 65536) {
-        std::sort(v.begin(), v.end());
-        return;
-    }
-    parallel_for(0, 2, threads, [&](int half) {
-        if (half == 0) {
-            std::sort(v.begin(), v.begin() + mid);
-        } else {
-            std::sort(v.begin() + mid, v.end());
+// Fixed pieces of the parallel passes over a round's arrays (the same pieces for any thread
+// count).
+constexpr int kChunk = 8192;
+
+// The keys key_of(v) of the entries v of `slots` other than `none`, in order. Parallel over fixed
+// chunks: each counts its entries, then writes their keys at its offset.
+template <class KeyOf>
+std::vector<std::uint64_t> compact(const std::vector<std::uint32_t>& slots, std::uint32_t none,
+                                   KeyOf key_of, int threads) {
+    const int chunks = static_cast<int>((slots.size() + kChunk - 1) / kChunk);
+    std::vector<std::size_t> offset(static_cast<std::size_t>(chunks) + 1, 0);
+    auto chunk_range = [&](int c) {
+        const std::size_t b = static_cast<std::size_t>(c) * kChunk;
+        return std::pair{b, std::min(slots.size(), b + kChunk)};
+    };
+    parallel_for(0, chunks, threads, [&](int c) {
+        const auto [b, e] = chunk_range(c);
+        offset[static_cast<std::size_t>(c) + 1] =
+            static_cast<std::size_t>(std::count_if(slots.begin() + static_cast<std::ptrdiff_t>(b),
+                                                   slots.begin() + static_cast<std::ptrdiff_t>(e),
+                                                   [&](std::uint32_t v) { return v != none; }));
+    });
+    std::partial_sum(offset.begin(), offset.end(), offset.begin());
+    std::vector<std::uint64_t> out(offset.back());
+    parallel_for(0, chunks, threads, [&](int c) {
+        const auto [b, e] = chunk_range(c);
+        std::size_t o = offset[static_cast<std::size_t>(c)];
+        for (std::size_t i = b; i < e; ++i) {
+            if (slots[i] != none) out[o++] = key_of(slots[i]);
         }
     });
-    std::inplace_merge(v.begin(), v.begin() + mid, v.end());
+    return out;
+}
+
+// The unique keys of `v`, sorted ascending: halves sorted in parallel, then merged in pieces
+// split where the output's are (merge path), each piece on its own thread. Unique keys have one
+// sorted order, whatever the thread count.
+std::vector<std::uint64_t> parallel_sort(std::vector<std::uint64_t> v, int threads) {
+    constexpr std::size_t kPiece = 2048;  // of the merge
+    if (threads == 1 || v.size() < 2 * kPiece) {
+        std::sort(v.begin(), v.end());
+        return v;
+    }
+    const auto a = std::span(v).first(v.size() / 2);
+    const auto b = std::span(v).subspan(v.size() / 2);
+    parallel_for(0, 2, threads, [&](int half) {
+        const auto part = half == 0 ? a : b;
+        std::sort(part.begin(), part.end());
+    });
+    std::vector<std::uint64_t> out(v.size());
+    const int pieces = static_cast<int>((v.size() + kPiece - 1) / kPiece);
+    // The number of a's entries among the output's first k: the i with a[i - 1] < b[k - i] and
+    // b[k - i - 1] < a[i] (keys are unique).
+    auto split = [&](std::size_t k) {
+        std::size_t lo = k > b.size() ? k - b.size() : 0, hi = std::min(k, a.size());
+        while (lo < hi) {
+            const std::size_t i = (lo + hi) / 2;
+            if (a[i] < b[k - i - 1]) {
+                lo = i + 1;
+            } else {
+                hi = i;
+            }
+        }
+        return lo;
+    };
+    parallel_for(0, pieces, threads, [&](int p) {
+        const std::size_t k0 = static_cast<std::size_t>(p) * kPiece;
+        const std::size_t k1 = std::min(v.size(), k0 + kPiece);
+        const std::size_t i0 = split(k0), i1 = split(k1);
+        std::merge(a.begin() + static_cast<std::ptrdiff_t>(i0),
+                   a.begin() + static_cast<std::ptrdiff_t>(i1),
+                   b.begin() + static_cast<std::ptrdiff_t>(k0 - i0),
+                   b.begin() + static_cast<std::ptrdiff_t>(k1 - i1),
+                   out.begin() + static_cast<std::ptrdiff_t>(k0));
+    });
+    return out;
 }
 
 // The forward problem of a search over the target pixels in `process`, from the sources in
@@ -95,6 +161,7 @@ public:
         }
         active_count_ = free_count_;
         query_.assign(static_cast<std::size_t>(L_.sw) * L_.sh, 0);
+        free_bits_ = pack_mask(free_);
         warm_ = reverse_.width() == L_.sw && reverse_.height() == L_.sh;
         if (!warm_) {
             reverse_ = Nnf(L_.sw, L_.sh);
@@ -107,6 +174,11 @@ public:
     ReverseRetrieval& operator=(const ReverseRetrieval&) = delete;
     ~ReverseRetrieval() {
         if (!first_round_.empty()) reverse_ = std::move(first_round_);
+    }
+
+    // After the last round: the run's last search (SearchSetup::last) releases the field.
+    void end_rounds() {
+        if (s_.last) reverse_ = Nnf();
     }
 
     std::size_t free_count() const { return free_count_; }
@@ -130,13 +202,13 @@ public:
     }
     const std::vector<std::uint8_t>& free_mask() const { return free_; }
 
-    // One reversed retrieval over the sources in query_mask(); returns collision-free
-    // candidates (one per target, the smallest error), sorted by error.
-    std::vector<Candidate> retrieve(int round) {
+    // One reversed retrieval over the sources in query_mask(); returns the keys (candidate_key)
+    // of the collision-free candidates (one per target, the smallest error), sorted by error
+    // (candidate() decodes one).
+    std::vector<std::uint64_t> retrieve(int round) {
         // After the first round, matches whose target was taken resume at the nearest free one.
         if (round > 0) update_nearest_free();
-        const std::vector<std::uint64_t> free_bits = pack_mask(free_);
-        ReverseProblem problem{L_, query_.data(), free_bits.data(), free_by_group_,
+        ReverseProblem problem{L_, query_.data(), free_bits_.data(), free_by_group_,
                                round > 0 ? nearest_free_.data() : nullptr};
         problem.uniform_draw = round == 0;
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
@@ -153,16 +225,43 @@ public:
         run_patchmatch(problem, reverse_, iterations, hash_keys(key, 1), s_.threads);
         // Later rounds pull the field toward the few targets still free; the next EM
         // iteration (all targets free again) starts better from this round's field.
-        if (round == 0 && &reverse_ != &own_reverse_) first_round_ = reverse_;
+        if (round == 0 && &reverse_ != &own_reverse_ && !s_.last) first_round_ = reverse_;
         return collision_free_candidates();
     }
 
     void assign(const Candidate& c) {
-        EXEMPLAR_DCHECK(free_[static_cast<std::size_t>(c.target)]);
-        free_[static_cast<std::size_t>(c.target)] = 0;
+        take(c);
         --free_count_;
-        nnf_[static_cast<std::size_t>(c.target)] =
-            Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
+    }
+
+    // Assigns the candidates of `keys` (from retrieve(): their targets and sources differ) and
+    // marks their sources in `used`. In parallel: only the packed bits share memory (atomic).
+    void assign_keys(std::span<const std::uint64_t> keys, std::vector<std::uint8_t>& used) {
+        parallel_for_ranges(0, static_cast<int>(keys.size()), s_.threads, 4096, [&](int b, int e) {
+            for (int i = b; i < e; ++i) {
+                const Candidate c = candidate(keys[static_cast<std::size_t>(i)]);
+                used[static_cast<std::size_t>(c.source)] = 1;
+                take(c);
+            }
+        });
+        free_count_ -= keys.size();
+    }
+
+    // Assigns the candidates of every row (distinct targets; a source may serve several) and
+    // marks their sources in `used`. Rows in parallel; returns how many.
+    std::size_t assign_rows(const std::vector<std::vector<Candidate>>& rows,
+                            std::vector<std::uint8_t>& used) {
+        parallel_for(0, static_cast<int>(rows.size()), s_.threads, [&](int y) {
+            for (const Candidate& c : rows[static_cast<std::size_t>(y)]) {
+                std::atomic_ref<std::uint8_t>(used[static_cast<std::size_t>(c.source)])
+                    .store(1, std::memory_order_relaxed);
+                take(c);
+            }
+        });
+        std::size_t count = 0;
+        for (const std::vector<Candidate>& row : rows) count += row.size();
+        free_count_ -= count;
+        return count;
     }
 
     // nearest_free_[t]: the free target pixel nearest to t (t itself if free; -1 if none).
@@ -181,13 +280,24 @@ public:
         }
     }
 
+    // The candidate of a key that retrieve() returned.
+    Candidate candidate(std::uint64_t key) const {
+        const auto si = static_cast<std::size_t>(key & kSourceMask);
+        const Match& m = reverse_[si];
+        return Candidate{m.error, static_cast<int>(si), static_cast<int>(L_.target_index(m.x, m.y)),
+                         -m.angle_rad};
+    }
+
     // Per target, the querying source with the smallest error (ties: smaller source index), as
-    // candidates sorted by (error, source). Parallel and deterministic: a candidate is one 64-bit
-    // key (error bits, source), errors are >= 0 so their bits order like the values, and each
-    // target keeps the minimum key (order-independent).
-    std::vector<Candidate> collision_free_candidates() const {
-        constexpr std::uint64_t kNone = ~std::uint64_t{0};
-        std::vector<std::uint64_t> best(free_.size(), kNone);
+    // keys sorted by (error, source), candidate_less's order. Parallel and deterministic: a
+    // candidate is one 64-bit key (error bits, source), errors are >= 0 so their bits order like
+    // the values, and each target keeps the source of the minimum key (order-independent) in a
+    // 32-bit slot (the slots are a round's largest array: guided2's peak of memory). Keys are
+    // unique (a source has one match).
+    std::vector<std::uint64_t> collision_free_candidates() const {
+        constexpr std::uint32_t kNone = ~std::uint32_t{0};
+        const auto key_of = [&](std::uint32_t si) { return candidate_key(reverse_[si].error, si); };
+        std::vector<std::uint32_t> best(free_.size(), kNone);
         const int threads = s_.threads;
         parallel_for(0, L_.sh, threads, [&](int y) {
             for (int x = 0; x < L_.sw; ++x) {
@@ -196,28 +306,19 @@ public:
                 const Match& m = reverse_[si];
                 if (!(m.error < kInf)) continue;
                 const std::uint64_t key = candidate_key(m.error, si);
-                std::atomic_ref<std::uint64_t> slot(best[L_.target_index(m.x, m.y)]);
-                std::uint64_t seen = slot.load(std::memory_order_relaxed);
-                while (key < seen &&
-                       !slot.compare_exchange_weak(seen, key, std::memory_order_relaxed)) {
+                std::atomic_ref<std::uint32_t> slot(best[L_.target_index(m.x, m.y)]);
+                std::uint32_t seen = slot.load(std::memory_order_relaxed);
+                while ((seen == kNone || key < key_of(seen)) &&
+                       !slot.compare_exchange_weak(seen, static_cast<std::uint32_t>(si),
+                                                   std::memory_order_relaxed)) {
                 }
             }
         });
-        // The targets' keys, compacted in place (no second array: at 1 Mpx each is 8 MB), then
-        // sorted. Keys are unique (a source has one match): the order is candidate_less's.
-        std::vector<std::uint64_t>& keys = best;
-        keys.erase(std::remove(keys.begin(), keys.end(), kNone), keys.end());
-        parallel_sort(keys, threads);
-        std::vector<Candidate> out(keys.size());
-        parallel_for_ranges(0, static_cast<int>(keys.size()), threads, 4096, [&](int b, int e) {
-            for (int i = b; i < e; ++i) {
-                const auto si = static_cast<int>(keys[static_cast<std::size_t>(i)] & kSourceMask);
-                const Match& m = reverse_[static_cast<std::size_t>(si)];
-                out[static_cast<std::size_t>(i)] = Candidate{
-                    m.error, si, static_cast<int>(L_.target_index(m.x, m.y)), -m.angle_rad};
-            }
-        });
-        return out;
+        // The targets' keys, compacted, then sorted: keys and no decoded candidates (16 bytes
+        // each), which were the largest arrays of a round (guided2's peak).
+        std::vector<std::uint64_t> keys = compact(best, kNone, key_of, threads);
+        std::vector<std::uint32_t>().swap(best);
+        return parallel_sort(std::move(keys), threads);
     }
 
     // Forward search from the free targets to the sources in `allowed` (nullptr = any);
@@ -250,10 +351,21 @@ public:
     }
 
 private:
+    // Gives the candidate's target its source (the free count is the caller's).
+    void take(const Candidate& c) {
+        const auto t = static_cast<std::size_t>(c.target);
+        EXEMPLAR_DCHECK(free_[t]);
+        free_[t] = 0;
+        std::atomic_ref<std::uint64_t>(free_bits_[t / 64])
+            .fetch_and(~(std::uint64_t{1} << (t % 64)), std::memory_order_relaxed);
+        nnf_[t] = Match{c.source % L_.sw, c.source / L_.sw, c.angle, c.error};
+    }
+
     const SearchSetup& s_;
     const Level& L_;
     Nnf& nnf_;
     std::vector<std::uint8_t> free_;
+    std::vector<std::uint64_t> free_bits_;  // free_, packed (pack_mask)
     std::vector<std::uint8_t> query_;
     std::vector<std::vector<int>> free_by_group_;
     std::vector<int> nearest_free_;
@@ -347,16 +459,17 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
     // Reversed retrieval rounds.
     while (rr.free_count() > 0 && stats.rounds < kUniformMaxReverseRounds) {
         rr.select_queries(has_capacity);  // counts and R are only read here
-        const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
+        const std::vector<std::uint64_t> keys = rr.retrieve(stats.rounds);
         ++stats.rounds;
         std::size_t assigned = 0;
-        for (const Candidate& c : candidates) assigned += try_assign(c) ? 1 : 0;
+        for (const std::uint64_t key : keys) assigned += try_assign(rr.candidate(key)) ? 1 : 0;
         stats.reverse_assigned += assigned;
         rr.rebuild_free_lists();
         // A round that assigns almost nothing means the reversed search is starving on a few
         // scattered free targets; the forward pass below finishes those efficiently.
         if (assigned == 0 || assigned * 200 < rr.free_count()) break;
     }
+    rr.end_rounds();
     // Remaining targets: forward search restricted to sources with capacity left, assigned in
     // order of increasing error under the same K/R rules. Each pass assigns at least one target.
     std::vector<std::uint8_t> allowed(count.size(), 0);
@@ -401,20 +514,25 @@ constexpr int kUnusedQueryStride = 4;
 // keeps the usage diverse); `query` keeps those, the unused ones on the rotating subset of round
 // `round` (kUnusedQueryStride).
 void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nnf& nnf,
-                 const std::vector<std::uint8_t>& used, int round,
-                 std::vector<std::uint8_t>& query) {
+                 const std::vector<std::uint8_t>& used, int round, std::vector<std::uint8_t>& query,
+                 int threads) {
+    // Rows in parallel: `near` is only ever set to 1 (relaxed stores, any order: the same mask).
     std::vector<std::uint8_t> near(query.size(), 0);
-    for (std::size_t t = 0; t < free.size(); ++t) {
-        if (!free[t]) continue;
-        const Match& m = nnf[t];
-        if (m.x < 0 || m.y < 0) continue;
-        for (int y = std::max(0, m.y - 1); y <= std::min(L.sh - 1, m.y + 1); ++y) {
-            for (int x = std::max(0, m.x - 1); x <= std::min(L.sw - 1, m.x + 1); ++x) {
-                near[L.source_index(x, y)] = 1;
+    parallel_for(0, L.th, threads, [&](int ty) {
+        for (int tx = 0; tx < L.tw; ++tx) {
+            const std::size_t t = L.target_index(tx, ty);
+            if (!free[t]) continue;
+            const Match& m = nnf[t];
+            if (m.x < 0 || m.y < 0) continue;
+            for (int y = std::max(0, m.y - 1); y <= std::min(L.sh - 1, m.y + 1); ++y) {
+                for (int x = std::max(0, m.x - 1); x <= std::min(L.sw - 1, m.x + 1); ++x) {
+                    std::atomic_ref<std::uint8_t>(near[L.source_index(x, y)])
+                        .store(1, std::memory_order_relaxed);
+                }
             }
         }
-    }
-    for (int y = 0; y < L.sh; ++y) {
+    });
+    parallel_for(0, L.sh, threads, [&](int y) {
         for (int x = 0; x < L.sw; ++x) {
             const std::size_t s = L.source_index(x, y);
             // Diagonal lines (x + 3y + round) mod stride = 0: spread over the source, shifted
@@ -422,7 +540,7 @@ void focus_query(const Level& L, const std::vector<std::uint8_t>& free, const Nn
             const bool in_turn = (x + 3 * y + round) % kUnusedQueryStride == 0;
             query[s] = query[s] && (near[s] || (!used[s] && in_turn));
         }
-    }
+    });
 }
 
 // A target pixel whose match continues the source region of fewer than this many of its four
@@ -646,8 +764,9 @@ std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const 
     constexpr std::array<std::array<int, 2>, 4> kSteps{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
     const Level& L = setup.level;
     const std::vector<std::uint8_t>& free = rr.free_mask();
-    // Each row's proposals apart, applied in row order: the memory follows the proposals (a
-    // whole-level table of candidates beside the round's own raised guided2's peak by 2.5 MB).
+    // Each row's proposals apart, then assigned row by row in parallel: the memory follows the
+    // proposals (a whole-level table of candidates beside the round's own raised guided2's peak
+    // by 2.5 MB).
     std::vector<std::vector<Candidate>> proposals(static_cast<std::size_t>(L.th));
     parallel_for(0, L.th, setup.threads, [&](int y) {
         std::vector<Candidate>& row = proposals[static_cast<std::size_t>(y)];
@@ -675,15 +794,7 @@ std::size_t grow_assigned(const SearchSetup& setup, ReverseRetrieval& rr, const 
             if (best.source >= 0) row.push_back(best);
         }
     });
-    std::size_t grown = 0;
-    for (const std::vector<Candidate>& row : proposals) {
-        for (const Candidate& c : row) {
-            used[static_cast<std::size_t>(c.source)] = 1;
-            rr.assign(c);
-            ++grown;
-        }
-    }
-    return grown;
+    return rr.assign_rows(proposals, used);
 }
 
 // StyLit §8.3.3: repeated reversed retrieval; each round assigns the collision-free candidates
@@ -701,34 +812,34 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
         rr.select_queries([](std::size_t) { return true; });
         if (stats.rounds > 0 &&
             static_cast<double>(rr.free_count()) < setup.options.budget_focus * target_total) {
-            focus_query(L, rr.free_mask(), rr.nnf(), used, stats.rounds, rr.query_mask());
+            focus_query(L, rr.free_mask(), rr.nnf(), used, stats.rounds, rr.query_mask(),
+                        setup.threads);
         }
-        const std::vector<Candidate> candidates = rr.retrieve(stats.rounds);
+        const std::vector<std::uint64_t> keys = rr.retrieve(stats.rounds);
         ++stats.rounds;
-        if (candidates.empty()) break;
-        std::vector<float> errors(candidates.size());
-        std::transform(candidates.begin(), candidates.end(), errors.begin(),
-                       [](const Candidate& c) { return c.error; });
+        if (keys.empty()) break;
+        std::vector<float> errors(keys.size());
+        std::transform(keys.begin(), keys.end(), errors.begin(), key_error);
         const KneeFit fit = fit_knee(errors);
         double budget = 0.0;
         for (std::size_t i = 0; i < fit.knee_index; ++i) budget += errors[i];
         double spent = 0.0;
         std::size_t assigned = 0;
-        for (const Candidate& c : candidates) {
+        for (const float error : errors) {
             // Always take the best candidate so that every round makes progress.
-            if (assigned > 0 && spent + c.error > budget) break;
-            spent += c.error;
-            used[static_cast<std::size_t>(c.source)] = 1;
-            rr.assign(c);
+            if (assigned > 0 && spent + error > budget) break;
+            spent += error;
             ++assigned;
         }
+        rr.assign_keys(std::span(keys).first(assigned), used);
         stats.reverse_assigned += assigned;
         if (setup.finest) {
-            stats.reverse_assigned += grow_assigned(
-                setup, rr, nnf, kGrowErrorFraction * candidates[assigned - 1].error, used);
+            stats.reverse_assigned +=
+                grow_assigned(setup, rr, nnf, kGrowErrorFraction * errors[assigned - 1], used);
         }
         rr.rebuild_free_lists();
     }
+    rr.end_rounds();
     if (rr.free_count() > 0) {
         stats.forward_assigned = rr.free_count();
         rr.forward_candidates(nullptr, 0);

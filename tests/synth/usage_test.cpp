@@ -390,5 +390,32 @@ TEST(Usage, StrategiesAreDeterministicAcrossThreadCounts) {
     }
 }
 
+// A level whose first rounds have over 4,096 candidates (5,816 and 4,276), which take the parallel
+// compaction, sort and merge, and the parallel assignment: the same field on 1 and 3 threads. The
+// run's last search (SearchSetup::last) finds the same field as any other and drops its reversed
+// field; a search kept for a next iteration keeps its first round's.
+TEST(ErrorBudget, LargeRoundsAreDeterministicAndTheLastSearchDropsItsReversedField) {
+    UsageFixture base = make(128, 112, 136, 120, UsageStrategy::ErrorBudget, false);
+    std::vector<Nnf> fields;
+    for (const auto& [threads, last] : {std::pair{1, false}, {3, false}, {3, true}}) {
+        UsageFixture f = base;
+        Nnf reverse;
+        SearchSetup setup{f.L, f.opt, 21, threads, &reverse};
+        setup.finest = true;
+        setup.last = last;
+        const SearchStats stats = search(setup, f.nnf);
+        EXPECT_GT(stats.reverse_assigned, 4096u);
+        EXPECT_EQ(reverse.empty(), last) << "threads " << threads;
+        fields.push_back(f.nnf);
+    }
+    for (std::size_t k = 1; k < fields.size(); ++k) {
+        for (std::size_t i = 0; i < fields[0].pixel_count(); ++i) {
+            ASSERT_EQ(fields[0][i].x, fields[k][i].x) << "run " << k << " pixel " << i;
+            ASSERT_EQ(fields[0][i].y, fields[k][i].y) << "run " << k << " pixel " << i;
+            ASSERT_EQ(fields[0][i].error, fields[k][i].error) << "run " << k << " pixel " << i;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace exemplar::synth
