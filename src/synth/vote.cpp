@@ -144,25 +144,60 @@ template <int kChannels>
 using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
                                 std::vector<double>>;
 
-// What every vote of one NNF shares: the parameters, the source, each rotated match's cosine
-// and sine (once: every pixel reads its patch_size² neighbours').
+// A rotated field's distinct angles with each one's patch offsets, rotate_offset's as
+// PixelVote::source_of computes them: the row vote looks a centre's offsets up instead of
+// rounding a rotation per vote. Fields with more distinct angles than this take the per-pixel
+// path (Brushables' fields have 32, one per orientation step).
+inline constexpr std::size_t kMaxVoteAngles = 256;
+
+// What every vote of one NNF shares: the parameters, the source and, for a rotated field, each
+// match's cosine and sine (the per-pixel path, once: every pixel reads its patch_size²
+// neighbours') or the row vote's offset tables.
 struct VoteSetup {
-    VoteSetup(const Nnf& nnf_, const Image& source_, const VoteParams& params_, int threads)
+    VoteSetup(const Nnf& nnf_, const Image& source_, const VoteParams& params_, int threads,
+              bool reference)
         : nnf(nnf_), source(source_), params(params_), w(nnf_.width()), h(nnf_.height()) {
         patch_r = params.patch_size / 2;
         vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
         blend_seams = params.blend_seams && vote_r < patch_r;
-        for (std::size_t i = 0; i < nnf.pixel_count() && !rotated; ++i) {
-            rotated = nnf[i].angle_rad != 0.0f;
+        angles.push_back(0.0f);  // table 0: unrotated
+        float last_angle = 0.0f;
+        for (std::size_t i = 0; i < nnf.pixel_count(); ++i) {
+            const float angle = nnf[i].angle_rad;
+            if (angle == 0.0f || angle == last_angle) continue;
+            rotated = true;
+            last_angle = angle;
+            if (reference || angles.size() > kMaxVoteAngles) continue;
+            const auto at = std::lower_bound(angles.begin() + 1, angles.end(), angle);
+            if (at == angles.end() || *at != angle) angles.insert(at, angle);
         }
-        if (!rotated) return;
-        rotation.resize(nnf.pixel_count());
-        parallel_for(0, h, threads, [&](int y) {
-            for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
-                const float angle = nnf[i].angle_rad;
-                if (angle != 0.0f) rotation[i] = {std::cos(angle), std::sin(angle)};
-            }
-        });
+        if (rotated && (reference || angles.size() > kMaxVoteAngles)) {
+            angles.clear();  // the per-pixel path
+            rotation.resize(nnf.pixel_count());
+            parallel_for(0, h, threads, [&](int y) {
+                for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
+                    const float angle = nnf[i].angle_rad;
+                    if (angle != 0.0f) rotation[i] = {std::cos(angle), std::sin(angle)};
+                }
+            });
+        }
+    }
+
+    // The table of `angle` (one of `angles`).
+    int table_of(float angle) const {
+        if (angle == 0.0f) return 0;
+        return static_cast<int>(std::lower_bound(angles.begin() + 1, angles.end(), angle) -
+                                angles.begin());
+    }
+
+    // Patch offset (dx, dy) of the match of pixel i, at `angle`.
+    RotatedOffset offset(std::size_t i, float angle, int dx, int dy) const {
+        if (angle == 0.0f || rotation.empty()) return turned(angle, dx, dy);
+        return rotate_offset(dx, dy, rotation[i][0], rotation[i][1]);
+    }
+    static RotatedOffset turned(float angle, int dx, int dy) {
+        if (angle == 0.0f) return {dx, dy};
+        return rotate_offset(dx, dy, std::cos(angle), std::sin(angle));
     }
 
     const Nnf& nnf;
@@ -170,6 +205,7 @@ struct VoteSetup {
     const VoteParams& params;
     int w, h, patch_r = 0, vote_r = 0;
     bool blend_seams = false, rotated = false;
+    std::vector<float> angles;  // sorted after the leading 0, empty on the per-pixel path
     std::vector<std::array<float, 2>> rotation;
 };
 
@@ -191,9 +227,7 @@ public:
         if (v_.params.active != nullptr && !v_.params.active[ci]) return false;
         const Match& m = v_.nnf[ci];
         if (m.x < 0) return false;  // not a patch centre
-        const RotatedOffset o = m.angle_rad == 0.0f
-                                    ? RotatedOffset{dx, dy}
-                                    : rotate_offset(dx, dy, v_.rotation[ci][0], v_.rotation[ci][1]);
+        const RotatedOffset o = v_.offset(ci, m.angle_rad, dx, dy);
         sx = m.x + o.dx;
         sy = m.y + o.dy;
         return true;
@@ -298,11 +332,13 @@ void vote_pixels(const VoteSetup& v, Image& out, int threads) {
 }
 
 // A voting patch centre as the row vote reads it: its weight (0 = it does not vote: inactive,
-// no match, or a weight that is not positive) and its match's source pixel index when the
-// match's footprint lies inside the source, else -1 (clamped reads, from the NNF).
+// no match, or a weight that is not positive), its match's source pixel index when the match's
+// rotated footprint lies inside the source, else -1 (clamped reads, from the NNF), and its
+// angle's offset table.
 struct Centre {
     float weight;
     std::int32_t index;
+    std::int32_t table;
 };
 
 // Adds the vote of weight w read from source pixel s to a pixel's sums: kChannels channels
@@ -318,15 +354,34 @@ inline void add_vote(double* sums, const float* s, float w, int channels) {
 // The same sums as vote_pixels, with the loops turned inside out: a row's pixels take the votes
 // of one patch offset (dy, dx) after another, so every pixel adds the same terms in the same
 // order as the reference (exact to the bit), while its chain of dependent double additions no
-// longer stalls the loop: neighbouring pixels' additions are independent. Unrotated fields
-// without source weights (every engine vote but Brushables'); seams and pixels without a
+// longer stalls the loop: neighbouring pixels' additions are independent. A rotated match reads
+// its offsets from its angle's table (VoteSetup::angles), each vote times its source pixel's
+// weight when there are source weights, as in PixelVote::gather. Seams and pixels without a
 // footprint patch take the reference's per-pixel path.
 template <int kChannels>
 void vote_rows(const VoteSetup& v, Image& out, int threads) {
     const VoteParams& params = v.params;
-    const int w = v.w, h = v.h, r = v.vote_r;
+    const int w = v.w, h = v.h, r = v.vote_r, P = 2 * r + 1;
     const int sw = v.source.width(), sh = v.source.height();
     const float* source = v.source.data().data();
+    const float* source_weights =
+        params.source_weights.empty() ? nullptr : params.source_weights.data();
+    // Per table, the footprint's offsets (row-major) and their index offsets in the source.
+    const auto area = static_cast<std::size_t>(P) * P;
+    std::vector<RotatedOffset> moves(v.angles.size() * area);
+    std::vector<std::int32_t> offsets(moves.size());
+    int reach = 0;  // the largest offset coordinate of any table
+    for (std::size_t t = 0; t < v.angles.size(); ++t) {
+        const float angle = v.angles[t];
+        for (int dy = -r, k = 0; dy <= r; ++dy) {
+            for (int dx = -r; dx <= r; ++dx, ++k) {
+                const RotatedOffset o = VoteSetup::turned(angle, dx, dy);
+                moves[t * area + static_cast<std::size_t>(k)] = o;
+                offsets[t * area + static_cast<std::size_t>(k)] = o.dy * sw + o.dx;
+                reach = std::max({reach, std::abs(o.dx), std::abs(o.dy)});
+            }
+        }
+    }
     // Bands of output rows, each with the centres of its rows and r rows around them (a table
     // of the whole field would add its size to the run's peak memory).
     constexpr int kBand = 8;
@@ -342,9 +397,12 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
             if ((params.active != nullptr && !params.active[i]) || m.x < 0 || !(weight > 0.0f)) {
                 weight = 0.0f;
             }
-            const bool inside = m.x - r >= 0 && m.y - r >= 0 && m.x + r < sw && m.y + r < sh;
+            const int table = weight > 0.0f ? v.table_of(m.angle_rad) : 0;
+            const int margin = table == 0 ? r : reach;
+            const bool inside =
+                m.x - margin >= 0 && m.y - margin >= 0 && m.x + margin < sw && m.y + margin < sh;
             centres[i - static_cast<std::size_t>(c0) * w] =
-                Centre{weight, inside ? m.y * sw + m.x : -1};
+                Centre{weight, inside ? m.y * sw + m.x : -1, table};
         }
         const int C = kChannels > 0 ? kChannels : v.source.channels();
         const std::size_t stride = static_cast<std::size_t>(C) + 1;  // the sums, then the total
@@ -357,15 +415,16 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
                 if (cy < 0 || cy >= h) continue;
                 const Centre* row = centres.data() + static_cast<std::size_t>(cy - c0) * w;
                 for (int dx = -r; dx <= r; ++dx) {
-                    const int offset = dy * sw + dx;
+                    const auto k = static_cast<std::size_t>((dy + r) * P + dx + r);
                     // The pixels x whose patch centre x - dx lies in the row.
                     for (int x = std::max(0, dx), x_end = std::min(w, w + dx); x < x_end; ++x) {
                         const Centre& c = row[x - dx];
                         if (!(c.weight > 0.0f)) continue;
-                        std::int32_t index = c.index + offset;
+                        const std::size_t at = static_cast<std::size_t>(c.table) * area + k;
+                        std::int32_t index = c.index + offsets[at];
                         if (c.index < 0) {
                             const Match& m = v.nnf.at(x - dx, cy);
-                            int sx = m.x + dx, sy = m.y + dy;
+                            int sx = m.x + moves[at].dx, sy = m.y + moves[at].dy;
                             if (params.clamp_source) {
                                 sx = std::clamp(sx, 0, sw - 1);
                                 sy = std::clamp(sy, 0, sh - 1);
@@ -373,8 +432,10 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
                             EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < sw && sy < sh);
                             index = sy * sw + sx;
                         }
+                        const float weight =
+                            source_weights == nullptr ? c.weight : c.weight * source_weights[index];
                         add_vote<kChannels>(sums.data() + static_cast<std::size_t>(x) * stride,
-                                            source + static_cast<std::size_t>(index) * C, c.weight,
+                                            source + static_cast<std::size_t>(index) * C, weight,
                                             C);
                     }
                 }
@@ -394,10 +455,10 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
 template <int kChannels>
 void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
                    int threads, bool reference) {
-    const VoteSetup setup(nnf, source, params, threads);
+    const VoteSetup setup(nnf, source, params, threads, reference);
     // The row vote's source indices are 32-bit.
     const bool small = source.pixel_count() <= static_cast<std::size_t>(INT32_MAX);
-    if (reference || setup.rotated || !params.source_weights.empty() || !small) {
+    if (reference || setup.angles.empty() || !small) {
         vote_pixels<kChannels>(setup, out, threads);
     } else {
         vote_rows<kChannels>(setup, out, threads);
