@@ -19,8 +19,56 @@ namespace exemplar::synth {
 // the stroke texture of the stylit and texbynum examples (docs/algorithms.md).
 constexpr double kWeightedVoteEpsilon = 0.01;
 
-std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
-                                float coherence, int threads) {
+namespace {
+
+// Fields with more distinct angles than this take the per-pixel paths of the vote and of the
+// coherence weights (Brushables' fields have 32, one per orientation step).
+constexpr std::size_t kMaxFieldAngles = 256;
+
+// The distinct angles of a field's matches: 0 (whether or not it occurs), then the others in
+// increasing order; empty when there are more than kMaxFieldAngles. The vote and the coherence
+// weights tabulate what they need per angle instead of per match.
+std::vector<float> field_angles(const Nnf& nnf) {
+    std::vector<float> angles{0.0f};
+    float last = 0.0f;
+    for (const Match& m : nnf.matches()) {
+        if (m.angle_rad == 0.0f || m.angle_rad == last) continue;
+        last = m.angle_rad;
+        const auto at = std::lower_bound(angles.begin() + 1, angles.end(), last);
+        if (at != angles.end() && *at == last) continue;
+        if (angles.size() > kMaxFieldAngles) return {};
+        angles.insert(at, last);
+    }
+    return angles;
+}
+
+// The index of `angle`, one of field_angles' `angles`.
+int angle_index(const std::vector<float>& angles, float angle) {
+    if (angle == 0.0f) return 0;
+    return static_cast<int>(std::lower_bound(angles.begin() + 1, angles.end(), angle) -
+                            angles.begin());
+}
+
+// One axis of a coherence term: exp(-e² / 2σ²) for e = dd + o, the difference dd of two
+// matches' coordinates and the rotated patch offset o along the axis.
+double coherence_factor(int dd, double o, double two_sigma2) {
+    const double e = static_cast<double>(dd) + o;
+    return std::exp(-(e * e) / two_sigma2);
+}
+
+// The coherence terms' cut: matches whose coordinates differ by more than this count 0. Their
+// factor is below e^-36 (1e-16, under a double's precision next to a match's own term of 1):
+// |e| >= reach - r√2 >= √(72σ²).
+int coherence_reach(int r, float coherence) {
+    return static_cast<int>(
+        std::ceil(static_cast<double>(r) * 1.41422 + std::sqrt(72.0 * coherence)));
+}
+
+// Tables with more entries than this (a wide coherence range) are not built.
+constexpr std::size_t kMaxCoherenceTable = std::size_t{1} << 20;
+
+std::vector<float> weights_of(const Nnf& nnf, const std::uint8_t* active, int patch_size,
+                              float coherence, int threads, bool reference) {
     auto votes = [&](std::size_t i) { return (active == nullptr || active[i]) && nnf[i].x >= 0; };
     double sum = 0.0;
     std::size_t n = 0;
@@ -31,7 +79,33 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
     }
     const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
     std::vector<float> weights(nnf.pixel_count(), 1.0f);
-    const int w = nnf.width(), h = nnf.height(), r = patch_size / 2;
+    const int w = nnf.width(), h = nnf.height(), r = patch_size / 2, P = 2 * r + 1;
+    const double two_sigma2 = 2.0 * coherence;
+    const int reach = coherence > 0.0f ? coherence_reach(r, coherence) : 0;
+    const std::size_t span = 2 * static_cast<std::size_t>(reach) + 1;
+    const std::size_t area = static_cast<std::size_t>(P) * P;
+    // Per angle and patch offset (dx, dy) (row-major), the factors of dd = -reach..reach for
+    // o = c·dx − s·dy. The y factor of (dx, dy), o = s·dx + c·dy, is the x factor of
+    // (dy, −dx): the same products and sum, to the bit.
+    std::vector<float> angles;
+    std::vector<double> table;
+    if (!reference && coherence > 0.0f) angles = field_angles(nnf);
+    if (angles.size() * area * span > kMaxCoherenceTable) angles.clear();
+    if (!angles.empty()) {
+        table.resize(angles.size() * area * span);
+        parallel_for(0, static_cast<int>(angles.size()), threads, [&](int a) {
+            const float angle = angles[static_cast<std::size_t>(a)];
+            const double c = std::cos(angle), s = std::sin(angle);
+            double* out = table.data() + static_cast<std::size_t>(a) * area * span;
+            for (int dy = -r; dy <= r; ++dy) {
+                for (int dx = -r; dx <= r; ++dx) {
+                    for (int dd = -reach; dd <= reach; ++dd) {
+                        *out++ = coherence_factor(dd, c * dx - s * dy, two_sigma2);
+                    }
+                }
+            }
+        });
+    }
     parallel_for(0, h, threads, [&](int y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * w + x;
@@ -42,7 +116,13 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
             if (!(coherence > 0.0f) || !votes(i)) continue;
             // Coherence: where this match puts each neighbour q, against q's own match.
             const Match& p = nnf[i];
-            const double c = std::cos(p.angle_rad), s = std::sin(p.angle_rad);
+            const double* factors =
+                angles.empty()
+                    ? nullptr
+                    : table.data() +
+                          static_cast<std::size_t>(angle_index(angles, p.angle_rad)) * area * span;
+            const double c = factors != nullptr ? 0.0 : std::cos(p.angle_rad);
+            const double s = factors != nullptr ? 0.0 : std::sin(p.angle_rad);
             double agree = 0.0;
             for (int dy = -r; dy <= r; ++dy) {
                 const int qy = y + dy;
@@ -53,15 +133,35 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
                     const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
                     if (!votes(qi)) continue;
                     const Match& q = nnf[qi];
-                    const double ex = p.x + c * dx - s * dy - q.x;
-                    const double ey = p.y + s * dx + c * dy - q.y;
-                    agree += std::exp(-(ex * ex + ey * ey) / (2.0 * coherence));
+                    const int ddx = p.x - q.x, ddy = p.y - q.y;
+                    if (std::abs(ddx) > reach || std::abs(ddy) > reach) continue;
+                    if (factors != nullptr) {
+                        const std::size_t kx = static_cast<std::size_t>((dy + r) * P + dx + r);
+                        const std::size_t ky = static_cast<std::size_t>((r - dx) * P + dy + r);
+                        agree += factors[kx * span + static_cast<std::size_t>(ddx + reach)] *
+                                 factors[ky * span + static_cast<std::size_t>(ddy + reach)];
+                    } else {
+                        agree += coherence_factor(ddx, c * dx - s * dy, two_sigma2) *
+                                 coherence_factor(ddy, s * dx + c * dy, two_sigma2);
+                    }
                 }
             }
             weight = static_cast<float>(weight * agree);
         }
     });
     return weights;
+}
+
+}  // namespace
+
+std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
+                                float coherence, int threads) {
+    return weights_of(nnf, active, patch_size, coherence, threads, /*reference=*/false);
+}
+
+std::vector<float> vote_weights_reference(const Nnf& nnf, const std::uint8_t* active,
+                                          int patch_size, float coherence, int threads) {
+    return weights_of(nnf, active, patch_size, coherence, threads, /*reference=*/true);
 }
 
 SourceHistogram::SourceHistogram(const Image& source) : source_(&source) {
@@ -144,15 +244,10 @@ template <int kChannels>
 using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
                                 std::vector<double>>;
 
-// A rotated field's distinct angles with each one's patch offsets, rotate_offset's as
-// PixelVote::source_of computes them: the row vote looks a centre's offsets up instead of
-// rounding a rotation per vote. Fields with more distinct angles than this take the per-pixel
-// path (Brushables' fields have 32, one per orientation step).
-inline constexpr std::size_t kMaxVoteAngles = 256;
-
-// What every vote of one NNF shares: the parameters, the source and, for a rotated field, each
-// match's cosine and sine (the per-pixel path, once: every pixel reads its patch_size²
-// neighbours') or the row vote's offset tables.
+// What every vote of one NNF shares: the parameters, the source and, for a rotated field, its
+// distinct angles (field_angles: the row vote's offset tables, one per angle) or, on the
+// per-pixel path, each match's cosine and sine (once: every pixel reads its patch_size²
+// neighbours').
 struct VoteSetup {
     VoteSetup(const Nnf& nnf_, const Image& source_, const VoteParams& params_, int threads,
               bool reference)
@@ -160,19 +255,10 @@ struct VoteSetup {
         patch_r = params.patch_size / 2;
         vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
         blend_seams = params.blend_seams && vote_r < patch_r;
-        angles.push_back(0.0f);  // table 0: unrotated
-        float last_angle = 0.0f;
-        for (std::size_t i = 0; i < nnf.pixel_count(); ++i) {
-            const float angle = nnf[i].angle_rad;
-            if (angle == 0.0f || angle == last_angle) continue;
-            rotated = true;
-            last_angle = angle;
-            if (reference || angles.size() > kMaxVoteAngles) continue;
-            const auto at = std::lower_bound(angles.begin() + 1, angles.end(), angle);
-            if (at == angles.end() || *at != angle) angles.insert(at, angle);
-        }
-        if (rotated && (reference || angles.size() > kMaxVoteAngles)) {
-            angles.clear();  // the per-pixel path
+        if (!reference) angles = field_angles(nnf);
+        const bool rotated =
+            std::ranges::any_of(nnf.matches(), [](const Match& m) { return m.angle_rad != 0.0f; });
+        if (rotated && angles.empty()) {
             rotation.resize(nnf.pixel_count());
             parallel_for(0, h, threads, [&](int y) {
                 for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
@@ -181,13 +267,6 @@ struct VoteSetup {
                 }
             });
         }
-    }
-
-    // The table of `angle` (one of `angles`).
-    int table_of(float angle) const {
-        if (angle == 0.0f) return 0;
-        return static_cast<int>(std::lower_bound(angles.begin() + 1, angles.end(), angle) -
-                                angles.begin());
     }
 
     // Patch offset (dx, dy) of the match of pixel i, at `angle`.
@@ -204,8 +283,8 @@ struct VoteSetup {
     const Image& source;
     const VoteParams& params;
     int w, h, patch_r = 0, vote_r = 0;
-    bool blend_seams = false, rotated = false;
-    std::vector<float> angles;  // sorted after the leading 0, empty on the per-pixel path
+    bool blend_seams = false;
+    std::vector<float> angles;  // field_angles; empty on the per-pixel path
     std::vector<std::array<float, 2>> rotation;
 };
 
@@ -397,7 +476,7 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
             if ((params.active != nullptr && !params.active[i]) || m.x < 0 || !(weight > 0.0f)) {
                 weight = 0.0f;
             }
-            const int table = weight > 0.0f ? v.table_of(m.angle_rad) : 0;
+            const int table = weight > 0.0f ? angle_index(v.angles, m.angle_rad) : 0;
             const int margin = table == 0 ? r : reach;
             const bool inside =
                 m.x - margin >= 0 && m.y - margin >= 0 && m.x + margin < sw && m.y + margin < sh;

@@ -48,6 +48,52 @@ TEST(VoteWeights, CoherenceCountsConsistentNeighbours) {
     EXPECT_EQ(vote_weights(nnf, nullptr, 5, 2.0f, 2), coherent);
 }
 
+// The tabulated coherence weights against the reference, compared bit for bit: a field of
+// pieces (coherent inside, matches one or a few pixels off and far apart across their borders),
+// no-match and inactive entries; unrotated, 32 steps and a few other angles, one angle per pixel
+// (more than the tables hold); σ² of 0.5, 2 and 100 (wide tables); 3x3 and
+// 5x5 patches; 1 and 3 threads.
+TEST(VoteWeights, TabulatedCoherenceEqualsReferenceExactly) {
+    const int w = 41, h = 27;
+    Nnf nnf(w, h);
+    std::vector<std::uint8_t> active(static_cast<std::size_t>(w) * h, 1);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            const int piece = (x / 7 + y / 6 * 3) % 5;
+            const int jitter = (x * 7 + y * 3) % 9 == 0 ? (x + y) % 3 - 1 : 0;
+            const float error = 0.02f + 0.1f * static_cast<float>((x * 5 + y * 11) % 7);
+            nnf[i] = Match{x + piece * 13 + jitter, y + piece * 4, 0.0f, error};
+            if ((x * 3 + y * 5) % 37 == 0) nnf[i] = Match{-1, -1, 0.0f, 0.0f};
+            active[i] = (x + 3 * y) % 19 == 0 ? 0 : 1;
+        }
+    }
+    for (int rotation = 0; rotation < 3; ++rotation) {
+        Nnf field = nnf;
+        for (int y = 0; y < h && rotation > 0; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const int piece = (x / 7 + y / 6 * 3) % 5;
+                float& angle = field[static_cast<std::size_t>(y) * w + x].angle_rad;
+                angle = rotation == 2 ? 0.001f * static_cast<float>(y * w + x) - 0.5f
+                        : piece == 2  ? 0.7f + 0.01f * static_cast<float>(x % 3)
+                                      : 6.28318531f * static_cast<float>(piece * 7 - 14) / 32.0f;
+            }
+        }
+        for (float coherence : {0.5f, 2.0f, 100.0f}) {
+            for (int patch_size : {3, 5}) {
+                const std::vector<float> expected =
+                    vote_weights_reference(field, active.data(), patch_size, coherence, 1);
+                for (int threads : {1, 3}) {
+                    EXPECT_EQ(vote_weights(field, active.data(), patch_size, coherence, threads),
+                              expected)
+                        << "rotation " << rotation << ", sigma^2 " << coherence << ", patch "
+                        << patch_size << ", " << threads << " threads";
+                }
+            }
+        }
+    }
+}
+
 // Colour histogram (Kopf et al. 2007, Brushables' w_h): a source half 0 and half 1 against a
 // target that is all 0. Bin 0 holds density 16 in the source (half of 32 bins' worth) and 32 in
 // the target, an excess of 16, so with strength k a 0-pixel weighs 1 / (1 + 16 k); the absent 1s
