@@ -82,71 +82,105 @@ std::vector<float> weights_of(const Nnf& nnf, const std::uint8_t* active, int pa
     const int w = nnf.width(), h = nnf.height(), r = patch_size / 2, P = 2 * r + 1;
     const double two_sigma2 = 2.0 * coherence;
     const int reach = coherence > 0.0f ? coherence_reach(r, coherence) : 0;
-    const std::size_t span = 2 * static_cast<std::size_t>(reach) + 1;
     const std::size_t area = static_cast<std::size_t>(P) * P;
-    // Per angle and patch offset (dx, dy) (row-major), the factors of dd = -reach..reach for
-    // o = c·dx − s·dy. The y factor of (dx, dy), o = s·dx + c·dy, is the x factor of
-    // (dy, −dx): the same products and sum, to the bit.
+    // Per angle and patch offset (dx, dy) (row-major), a row of the factors of dd = -reach..reach
+    // for o = c·dx − s·dy between two zeros (the factor of any dd beyond: adding a term of 0
+    // leaves a sum of non-negative terms as it is, as the reference's skipping it does). The y
+    // factor of (dx, dy), o = s·dx + c·dy, is the x factor of (dy, −dx): the same products and
+    // sum, to the bit.
     std::vector<float> angles;
     std::vector<double> table;
+    const std::size_t row = 2 * static_cast<std::size_t>(reach) + 3;
     if (!reference && coherence > 0.0f) angles = field_angles(nnf);
-    if (angles.size() * area * span > kMaxCoherenceTable) angles.clear();
+    if (angles.size() * area * row > kMaxCoherenceTable) angles.clear();
     if (!angles.empty()) {
-        table.resize(angles.size() * area * span);
+        table.resize(angles.size() * area * row, 0.0);
         parallel_for(0, static_cast<int>(angles.size()), threads, [&](int a) {
             const float angle = angles[static_cast<std::size_t>(a)];
             const double c = std::cos(angle), s = std::sin(angle);
-            double* out = table.data() + static_cast<std::size_t>(a) * area * span;
+            double* out = table.data() + static_cast<std::size_t>(a) * area * row;
             for (int dy = -r; dy <= r; ++dy) {
-                for (int dx = -r; dx <= r; ++dx) {
+                for (int dx = -r; dx <= r; ++dx, out += row) {
                     for (int dd = -reach; dd <= reach; ++dd) {
-                        *out++ = coherence_factor(dd, c * dx - s * dy, two_sigma2);
+                        out[dd + reach + 1] = coherence_factor(dd, c * dx - s * dy, two_sigma2);
                     }
                 }
             }
         });
     }
     parallel_for(0, h, threads, [&](int y) {
+        const std::size_t y0 = static_cast<std::size_t>(y) * w;
         for (int x = 0; x < w; ++x) {
-            const std::size_t i = static_cast<std::size_t>(y) * w + x;
-            float& weight = weights[i];
             if (mean > 0.0) {
-                weight = static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[i].error / mean));
+                weights[y0 + x] =
+                    static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[y0 + x].error / mean));
             }
-            if (!(coherence > 0.0f) || !votes(i)) continue;
-            // Coherence: where this match puts each neighbour q, against q's own match.
-            const Match& p = nnf[i];
-            const double* factors =
-                angles.empty()
-                    ? nullptr
-                    : table.data() +
-                          static_cast<std::size_t>(angle_index(angles, p.angle_rad)) * area * span;
-            const double c = factors != nullptr ? 0.0 : std::cos(p.angle_rad);
-            const double s = factors != nullptr ? 0.0 : std::sin(p.angle_rad);
-            double agree = 0.0;
-            for (int dy = -r; dy <= r; ++dy) {
-                const int qy = y + dy;
-                if (qy < 0 || qy >= h) continue;
-                for (int dx = -r; dx <= r; ++dx) {
-                    const int qx = x + dx;
-                    if (qx < 0 || qx >= w) continue;
-                    const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
-                    if (!votes(qi)) continue;
-                    const Match& q = nnf[qi];
-                    const int ddx = p.x - q.x, ddy = p.y - q.y;
-                    if (std::abs(ddx) > reach || std::abs(ddy) > reach) continue;
-                    if (factors != nullptr) {
-                        const std::size_t kx = static_cast<std::size_t>((dy + r) * P + dx + r);
-                        const std::size_t ky = static_cast<std::size_t>((r - dx) * P + dy + r);
-                        agree += factors[kx * span + static_cast<std::size_t>(ddx + reach)] *
-                                 factors[ky * span + static_cast<std::size_t>(ddy + reach)];
-                    } else {
+        }
+        if (!(coherence > 0.0f)) return;
+        // Coherence: where each match puts its neighbours q, against q's own matches.
+        if (angles.empty()) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = y0 + x;
+                if (!votes(i)) continue;
+                const Match& p = nnf[i];
+                const double c = std::cos(p.angle_rad), s = std::sin(p.angle_rad);
+                double agree = 0.0;
+                for (int dy = -r; dy <= r; ++dy) {
+                    const int qy = y + dy;
+                    if (qy < 0 || qy >= h) continue;
+                    for (int dx = -r; dx <= r; ++dx) {
+                        const int qx = x + dx;
+                        if (qx < 0 || qx >= w) continue;
+                        const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
+                        if (!votes(qi)) continue;
+                        const Match& q = nnf[qi];
+                        const int ddx = p.x - q.x, ddy = p.y - q.y;
+                        if (std::abs(ddx) > reach || std::abs(ddy) > reach) continue;
                         agree += coherence_factor(ddx, c * dx - s * dy, two_sigma2) *
                                  coherence_factor(ddy, s * dx + c * dy, two_sigma2);
                     }
                 }
+                weights[i] = static_cast<float>(weights[i] * agree);
             }
-            weight = static_cast<float>(weight * agree);
+            return;
+        }
+        // The same sums from the tables, the loops turned inside out: the row's pixels take
+        // the terms of one neighbour offset after another (each pixel's in the reference's
+        // order), so that a pixel's chain of dependent additions does not stall the loop.
+        std::vector<const double*> factors(static_cast<std::size_t>(w), nullptr);
+        std::vector<double> agree(static_cast<std::size_t>(w), 0.0);
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = y0 + x;
+            if (!votes(i)) continue;
+            factors[static_cast<std::size_t>(x)] =
+                table.data() +
+                static_cast<std::size_t>(angle_index(angles, nnf[i].angle_rad)) * area * row;
+        }
+        const int lo = -reach - 1, hi = reach + 1;
+        for (int dy = -r; dy <= r; ++dy) {
+            const int qy = y + dy;
+            if (qy < 0 || qy >= h) continue;
+            const std::size_t q0 = static_cast<std::size_t>(qy) * w;
+            for (int dx = -r; dx <= r; ++dx) {
+                const std::size_t kx = static_cast<std::size_t>((dy + r) * P + dx + r) * row;
+                const std::size_t ky = static_cast<std::size_t>((r - dx) * P + dy + r) * row;
+                for (int x = std::max(0, -dx), x_end = std::min(w, w - dx); x < x_end; ++x) {
+                    const double* f = factors[static_cast<std::size_t>(x)];
+                    const std::size_t qi = q0 + static_cast<std::size_t>(x + dx);
+                    if (f == nullptr || !votes(qi)) continue;
+                    const Match& p = nnf[y0 + x];
+                    const Match& q = nnf[qi];
+                    const int ddx = std::clamp(p.x - q.x, lo, hi) + reach + 1;
+                    const int ddy = std::clamp(p.y - q.y, lo, hi) + reach + 1;
+                    agree[static_cast<std::size_t>(x)] += f[kx + static_cast<std::size_t>(ddx)] *
+                                                          f[ky + static_cast<std::size_t>(ddy)];
+                }
+            }
+        }
+        for (int x = 0; x < w; ++x) {
+            if (factors[static_cast<std::size_t>(x)] == nullptr) continue;
+            weights[y0 + x] =
+                static_cast<float>(weights[y0 + x] * agree[static_cast<std::size_t>(x)]);
         }
     });
     return weights;
