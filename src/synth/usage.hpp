@@ -58,6 +58,10 @@ struct SearchSetup {
     /// pieces smaller than half a patch (merging them on the coarse levels lets a region grow
     /// over another; docs/algorithms.md, Error budget).
     bool finest = false;
+    /// The NNF's active entries are valid and their costs those of the level's target as it
+    /// stands (evaluate_field of all active pixels just ran): the forward search (usage None)
+    /// does not evaluate them again.
+    bool evaluated = false;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`
