@@ -8,8 +8,10 @@
 // 1 MPix (five overlapping strokes). Each case best of the repeats.
 // The exemplar: an RGBA blob of stripes and grain (synthetic, the default), or a file (RGB or
 // RGBA) given as the third argument; its directions are analysed once, outside the timing.
-// Usage: bench_paint [threads] [repeats] [exemplar.png | -] [one | all]  ("one": the 0.25 MPix
-// paint alone, for profiling)
+// Usage: bench_paint [threads] [repeats] [exemplar.png | -] [one | all] [PREFIX]  ("one": the
+// 0.25 MPix paint alone, for profiling; PREFIX: also save the paintings as PREFIXone.png,
+// PREFIXrepaint.png and PREFIXfive.png, to compare the bytes and look at them before and after
+// a change)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -109,6 +111,7 @@ int main(int argc, char** argv) {
     PaintSource source;
     source.image = blob(160);
     const bool only_one = argc > 4 && std::string(argv[4]) == "one";
+    const std::string prefix = argc > 5 ? argv[5] : "";
     if (argc > 3 && std::string(argv[3]) != "-") {
         auto loaded = load_image(argv[3]);
         if (!loaded.ok()) {
@@ -132,6 +135,10 @@ int main(int argc, char** argv) {
     auto failed = [](const Status& status) {
         std::fprintf(stderr, "%s\n", status.message().c_str());
         return 1;
+    };
+    // Saves a painting as PREFIX + name + ".png" when a prefix is given.
+    auto save = [&](const char* name, const Image& image) {
+        return prefix.empty() ? Status::ok() : save_image(image, prefix + name + ".png");
     };
     // The best of the repeats of `run` (a paint or repaint call) and its last result.
     auto best_of = [&](Timing& timing, const auto& run) {
@@ -160,6 +167,7 @@ int main(int argc, char** argv) {
     report("paint, one stroke", painted_mpix(quarter), paint_quarter);
     std::printf("  (mean patch error of the painted pixels' matches: %.4f)\n",
                 mean_match_error(quarter, first->nnf));
+    if (const Status saved = save("one", first->image); !saved.is_ok()) return failed(saved);
     if (only_one) return 0;
 
     const auto changed = quarter.add_stroke(wave(100.0f, 900.0f, 300.0f, -60.0f, 48.0f));
@@ -169,6 +177,7 @@ int main(int argc, char** argv) {
         return paint::repaint(source, quarter, first->image, *changed, options, context);
     });
     if (!second.ok()) return failed(second.status());
+    if (const Status saved = save("repaint", second->image); !saved.is_ok()) return failed(saved);
     const double changed_mpix =
         static_cast<double>(changed->x1 - changed->x0) * (changed->y1 - changed->y0) * 1e-6;
     report("repaint, a 48 px stroke (its box)", changed_mpix, repaint_stroke);
@@ -183,6 +192,7 @@ int main(int argc, char** argv) {
     const auto big =
         best_of(paint_mega, [&] { return paint::paint(source, mega, options, context); });
     if (!big.ok()) return failed(big.status());
+    if (const Status saved = save("five", big->image); !saved.is_ok()) return failed(saved);
     report("paint, five strokes", painted_mpix(mega), paint_mega);
     return 0;
 }

@@ -98,12 +98,21 @@ inline void prefetch_patch(const FeatureImage& features, int radius, int x, int 
     }
 }
 
+/// What evaluate_field computes besides making every active entry valid.
+enum class FieldCosts {
+    All,      ///< The cost of every active entry.
+    Invalid,  ///< Only replaced entries' and those without one (when only validity changed).
+    /// None: valid entries keep their stored error, replaced ones get infinity (for a field
+    /// whose costs nothing reads before they are evaluated again).
+    None,
+};
+
 /// Evaluates the cost of every active entry (entries whose position is no longer valid are
-/// replaced by a random valid one). Call after the problem's costs changed. With
-/// `only_invalid`, valid entries keep their stored cost (for when only validity changed).
+/// replaced by a random valid one) and sets its angle. Call after the problem's costs changed.
+/// `costs` says which costs are computed.
 template <class Problem>
 void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads,
-                    bool only_invalid = false) {
+                    FieldCosts costs = FieldCosts::All) {
     parallel_for(0, field.height(), threads, [&](int y) {
         for (int x = 0; x < field.width(); ++x) {
             const std::size_t qi = static_cast<std::size_t>(y) * field.width() + x;
@@ -112,7 +121,8 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
             const bool in_bounds =
                 m.x >= 0 && m.y >= 0 && m.x < P.db_width() && m.y < P.db_height();
             const bool valid = in_bounds && P.db_ok(qi, m.x, m.y);
-            if (valid && only_invalid && m.error < std::numeric_limits<float>::infinity()) {
+            if (valid && costs == FieldCosts::Invalid &&
+                m.error < std::numeric_limits<float>::infinity()) {
                 continue;
             }
             if (!valid) {
@@ -126,6 +136,10 @@ void evaluate_field(const Problem& P, Nnf& field, std::uint64_t key, int threads
                 m.y = dy;
             }
             m.angle_rad = P.angle(qi, m.x, m.y);
+            if (costs == FieldCosts::None) {
+                if (!valid) m.error = std::numeric_limits<float>::infinity();
+                continue;
+            }
             m.error = P.cost(x, y, m.x, m.y, m.angle_rad, std::numeric_limits<float>::infinity());
         }
     });

@@ -215,7 +215,8 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        candidates.empty() ? nullptr : &candidates,
                                        finest ? options.finest_first_round_iterations : 0,
                                        finest,
-                                       end_run && it + 1 == iterations};
+                                       end_run && it + 1 == iterations,
+                                       /*evaluated=*/it == 0};
         synth::search(setup, nnf);
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
@@ -486,7 +487,9 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         current = L.fixed_style.empty() ? Image(L.tw, L.th, L.style_channels) : L.fixed_style;
         current.set_channel_names(style_channel_names);
         set_target_style(L, current, threads);
-        evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads);
+        // Valid entries for the initial vote (an average: no costs); run_em evaluates the costs
+        // against the voted B'.
+        evaluate_field(all, nnf, hash_keys(level_key, 0x1), threads, synth::FieldCosts::None);
         const bool keep_initial = l == 0 && !L.fixed_style.empty() && L.target_fixed.empty();
         auto vote_initial = [&] {
             if (keep_initial) return;

@@ -214,7 +214,8 @@ public:
         const std::uint64_t key = hash_keys(s_.key, 0xBEEF, static_cast<std::uint64_t>(round));
         // Target features do not change between the rounds of one search, so after the first
         // round only entries whose target was taken need a new target.
-        evaluate_field(problem, reverse_, key, s_.threads, /*only_invalid=*/round > 0);
+        evaluate_field(problem, reverse_, key, s_.threads,
+                       round > 0 ? FieldCosts::Invalid : FieldCosts::All);
         // The first round starts from the previous EM iteration's first-round field (warm), an
         // upsampled coarser level's field or random matches; later rounds from this search's.
         const bool warm = round > 0 || warm_;
@@ -399,7 +400,8 @@ std::size_t search_border_targets(const SearchSetup& setup, Nnf& nnf) {
 SearchStats search_forward(const SearchSetup& setup, Nnf& nnf) {
     const ForwardProblem problem =
         forward_problem(setup, setup.level.target_active.data(), nullptr, nullptr);
-    evaluate_field(problem, nnf, hash_keys(setup.key, 0xA), setup.threads);
+    // The same validity and costs as the engine's evaluation of the level's active pixels.
+    if (!setup.evaluated) evaluate_field(problem, nnf, hash_keys(setup.key, 0xA), setup.threads);
     run_patchmatch(problem, nnf, search_iterations(setup), hash_keys(setup.key, 0xB),
                    setup.threads);
     SearchStats stats;

@@ -62,6 +62,10 @@ struct SearchSetup {
     /// is not copied for a next iteration (2.56 MB on guided2's finest level, at the peak of the
     /// rounds) and the field is released once the rounds end.
     bool last = false;
+    /// The NNF's active entries are valid and their costs those of the level's target as it
+    /// stands (evaluate_field of all active pixels just ran): the forward search (usage None)
+    /// does not evaluate them again.
+    bool evaluated = false;
 };
 
 /// Runs the E-step with `setup.options.usage` on the active target pixels, updating `nnf`

@@ -19,8 +19,56 @@ namespace exemplar::synth {
 // the stroke texture of the stylit and texbynum examples (docs/algorithms.md).
 constexpr double kWeightedVoteEpsilon = 0.01;
 
-std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
-                                float coherence, int threads) {
+namespace {
+
+// Fields with more distinct angles than this take the per-pixel paths of the vote and of the
+// coherence weights (Brushables' fields have 32, one per orientation step).
+constexpr std::size_t kMaxFieldAngles = 256;
+
+// The distinct angles of a field's matches: 0 (whether or not it occurs), then the others in
+// increasing order; empty when there are more than kMaxFieldAngles. The vote and the coherence
+// weights tabulate what they need per angle instead of per match.
+std::vector<float> field_angles(const Nnf& nnf) {
+    std::vector<float> angles{0.0f};
+    float last = 0.0f;
+    for (const Match& m : nnf.matches()) {
+        if (m.angle_rad == 0.0f || m.angle_rad == last) continue;
+        last = m.angle_rad;
+        const auto at = std::lower_bound(angles.begin() + 1, angles.end(), last);
+        if (at != angles.end() && *at == last) continue;
+        if (angles.size() > kMaxFieldAngles) return {};
+        angles.insert(at, last);
+    }
+    return angles;
+}
+
+// The index of `angle`, one of field_angles' `angles`.
+int angle_index(const std::vector<float>& angles, float angle) {
+    if (angle == 0.0f) return 0;
+    return static_cast<int>(std::lower_bound(angles.begin() + 1, angles.end(), angle) -
+                            angles.begin());
+}
+
+// One axis of a coherence term: exp(-e² / 2σ²) for e = dd + o, the difference dd of two
+// matches' coordinates and the rotated patch offset o along the axis.
+double coherence_factor(int dd, double o, double two_sigma2) {
+    const double e = static_cast<double>(dd) + o;
+    return std::exp(-(e * e) / two_sigma2);
+}
+
+// The coherence terms' cut: matches whose coordinates differ by more than this count 0. Their
+// factor is below e^-36 (1e-16, under a double's precision next to a match's own term of 1):
+// |e| >= reach - r√2 >= √(72σ²).
+int coherence_reach(int r, float coherence) {
+    return static_cast<int>(
+        std::ceil(static_cast<double>(r) * 1.41422 + std::sqrt(72.0 * coherence)));
+}
+
+// Tables with more entries than this (a wide coherence range) are not built.
+constexpr std::size_t kMaxCoherenceTable = std::size_t{1} << 20;
+
+std::vector<float> weights_of(const Nnf& nnf, const std::uint8_t* active, int patch_size,
+                              float coherence, int threads, bool reference) {
     auto votes = [&](std::size_t i) { return (active == nullptr || active[i]) && nnf[i].x >= 0; };
     double sum = 0.0;
     std::size_t n = 0;
@@ -31,37 +79,123 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
     }
     const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
     std::vector<float> weights(nnf.pixel_count(), 1.0f);
-    const int w = nnf.width(), h = nnf.height(), r = patch_size / 2;
-    parallel_for(0, h, threads, [&](int y) {
-        for (int x = 0; x < w; ++x) {
-            const std::size_t i = static_cast<std::size_t>(y) * w + x;
-            float& weight = weights[i];
-            if (mean > 0.0) {
-                weight = static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[i].error / mean));
-            }
-            if (!(coherence > 0.0f) || !votes(i)) continue;
-            // Coherence: where this match puts each neighbour q, against q's own match.
-            const Match& p = nnf[i];
-            const double c = std::cos(p.angle_rad), s = std::sin(p.angle_rad);
-            double agree = 0.0;
+    const int w = nnf.width(), h = nnf.height(), r = patch_size / 2, P = 2 * r + 1;
+    const double two_sigma2 = 2.0 * coherence;
+    const int reach = coherence > 0.0f ? coherence_reach(r, coherence) : 0;
+    const std::size_t area = static_cast<std::size_t>(P) * P;
+    // Per angle and patch offset (dx, dy) (row-major), a row of the factors of dd = -reach..reach
+    // for o = c·dx − s·dy between two zeros (the factor of any dd beyond: adding a term of 0
+    // leaves a sum of non-negative terms as it is, as the reference's skipping it does). The y
+    // factor of (dx, dy), o = s·dx + c·dy, is the x factor of (dy, −dx): the same products and
+    // sum, to the bit.
+    std::vector<float> angles;
+    std::vector<double> table;
+    const std::size_t row = 2 * static_cast<std::size_t>(reach) + 3;
+    if (!reference && coherence > 0.0f) angles = field_angles(nnf);
+    if (angles.size() * area * row > kMaxCoherenceTable) angles.clear();
+    if (!angles.empty()) {
+        table.resize(angles.size() * area * row, 0.0);
+        parallel_for(0, static_cast<int>(angles.size()), threads, [&](int a) {
+            const float angle = angles[static_cast<std::size_t>(a)];
+            const double c = std::cos(angle), s = std::sin(angle);
+            double* out = table.data() + static_cast<std::size_t>(a) * area * row;
             for (int dy = -r; dy <= r; ++dy) {
-                const int qy = y + dy;
-                if (qy < 0 || qy >= h) continue;
-                for (int dx = -r; dx <= r; ++dx) {
-                    const int qx = x + dx;
-                    if (qx < 0 || qx >= w) continue;
-                    const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
-                    if (!votes(qi)) continue;
-                    const Match& q = nnf[qi];
-                    const double ex = p.x + c * dx - s * dy - q.x;
-                    const double ey = p.y + s * dx + c * dy - q.y;
-                    agree += std::exp(-(ex * ex + ey * ey) / (2.0 * coherence));
+                for (int dx = -r; dx <= r; ++dx, out += row) {
+                    for (int dd = -reach; dd <= reach; ++dd) {
+                        out[dd + reach + 1] = coherence_factor(dd, c * dx - s * dy, two_sigma2);
+                    }
                 }
             }
-            weight = static_cast<float>(weight * agree);
+        });
+    }
+    parallel_for(0, h, threads, [&](int y) {
+        const std::size_t y0 = static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) {
+            if (mean > 0.0) {
+                weights[y0 + x] =
+                    static_cast<float>(1.0 / (kWeightedVoteEpsilon + nnf[y0 + x].error / mean));
+            }
+        }
+        if (!(coherence > 0.0f)) return;
+        // Coherence: where each match puts its neighbours q, against q's own matches.
+        if (angles.empty()) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = y0 + x;
+                if (!votes(i)) continue;
+                const Match& p = nnf[i];
+                const double c = std::cos(p.angle_rad), s = std::sin(p.angle_rad);
+                double agree = 0.0;
+                for (int dy = -r; dy <= r; ++dy) {
+                    const int qy = y + dy;
+                    if (qy < 0 || qy >= h) continue;
+                    for (int dx = -r; dx <= r; ++dx) {
+                        const int qx = x + dx;
+                        if (qx < 0 || qx >= w) continue;
+                        const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
+                        if (!votes(qi)) continue;
+                        const Match& q = nnf[qi];
+                        const int ddx = p.x - q.x, ddy = p.y - q.y;
+                        if (std::abs(ddx) > reach || std::abs(ddy) > reach) continue;
+                        agree += coherence_factor(ddx, c * dx - s * dy, two_sigma2) *
+                                 coherence_factor(ddy, s * dx + c * dy, two_sigma2);
+                    }
+                }
+                weights[i] = static_cast<float>(weights[i] * agree);
+            }
+            return;
+        }
+        // The same sums from the tables, the loops turned inside out: the row's pixels take
+        // the terms of one neighbour offset after another (each pixel's in the reference's
+        // order), so that a pixel's chain of dependent additions does not stall the loop.
+        std::vector<const double*> factors(static_cast<std::size_t>(w), nullptr);
+        std::vector<double> agree(static_cast<std::size_t>(w), 0.0);
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = y0 + x;
+            if (!votes(i)) continue;
+            factors[static_cast<std::size_t>(x)] =
+                table.data() +
+                static_cast<std::size_t>(angle_index(angles, nnf[i].angle_rad)) * area * row;
+        }
+        const int lo = -reach - 1, hi = reach + 1;
+        for (int dy = -r; dy <= r; ++dy) {
+            const int qy = y + dy;
+            if (qy < 0 || qy >= h) continue;
+            const std::size_t q0 = static_cast<std::size_t>(qy) * w;
+            for (int dx = -r; dx <= r; ++dx) {
+                const std::size_t kx = static_cast<std::size_t>((dy + r) * P + dx + r) * row;
+                const std::size_t ky = static_cast<std::size_t>((r - dx) * P + dy + r) * row;
+                for (int x = std::max(0, -dx), x_end = std::min(w, w - dx); x < x_end; ++x) {
+                    const double* f = factors[static_cast<std::size_t>(x)];
+                    const std::size_t qi = q0 + static_cast<std::size_t>(x + dx);
+                    if (f == nullptr || !votes(qi)) continue;
+                    const Match& p = nnf[y0 + x];
+                    const Match& q = nnf[qi];
+                    const int ddx = std::clamp(p.x - q.x, lo, hi) + reach + 1;
+                    const int ddy = std::clamp(p.y - q.y, lo, hi) + reach + 1;
+                    agree[static_cast<std::size_t>(x)] += f[kx + static_cast<std::size_t>(ddx)] *
+                                                          f[ky + static_cast<std::size_t>(ddy)];
+                }
+            }
+        }
+        for (int x = 0; x < w; ++x) {
+            if (factors[static_cast<std::size_t>(x)] == nullptr) continue;
+            weights[y0 + x] =
+                static_cast<float>(weights[y0 + x] * agree[static_cast<std::size_t>(x)]);
         }
     });
     return weights;
+}
+
+}  // namespace
+
+std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
+                                float coherence, int threads) {
+    return weights_of(nnf, active, patch_size, coherence, threads, /*reference=*/false);
+}
+
+std::vector<float> vote_weights_reference(const Nnf& nnf, const std::uint8_t* active,
+                                          int patch_size, float coherence, int threads) {
+    return weights_of(nnf, active, patch_size, coherence, threads, /*reference=*/true);
 }
 
 SourceHistogram::SourceHistogram(const Image& source) : source_(&source) {
@@ -144,32 +278,47 @@ template <int kChannels>
 using Sums = std::conditional_t<(kChannels > 0), std::array<double, std::max(kChannels, 1)>,
                                 std::vector<double>>;
 
-// What every vote of one NNF shares: the parameters, the source, each rotated match's cosine
-// and sine (once: every pixel reads its patch_size² neighbours').
+// What every vote of one NNF shares: the parameters, the source and, for a rotated field, its
+// distinct angles (field_angles: the row vote's offset tables, one per angle) or, on the
+// per-pixel path, each match's cosine and sine (once: every pixel reads its patch_size²
+// neighbours').
 struct VoteSetup {
-    VoteSetup(const Nnf& nnf_, const Image& source_, const VoteParams& params_, int threads)
+    VoteSetup(const Nnf& nnf_, const Image& source_, const VoteParams& params_, int threads,
+              bool reference)
         : nnf(nnf_), source(source_), params(params_), w(nnf_.width()), h(nnf_.height()) {
         patch_r = params.patch_size / 2;
         vote_r = params.footprint > 0 ? std::min(patch_r, params.footprint / 2) : patch_r;
         blend_seams = params.blend_seams && vote_r < patch_r;
-        for (std::size_t i = 0; i < nnf.pixel_count() && !rotated; ++i) {
-            rotated = nnf[i].angle_rad != 0.0f;
+        if (!reference) angles = field_angles(nnf);
+        const bool rotated =
+            std::ranges::any_of(nnf.matches(), [](const Match& m) { return m.angle_rad != 0.0f; });
+        if (rotated && angles.empty()) {
+            rotation.resize(nnf.pixel_count());
+            parallel_for(0, h, threads, [&](int y) {
+                for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
+                    const float angle = nnf[i].angle_rad;
+                    if (angle != 0.0f) rotation[i] = {std::cos(angle), std::sin(angle)};
+                }
+            });
         }
-        if (!rotated) return;
-        rotation.resize(nnf.pixel_count());
-        parallel_for(0, h, threads, [&](int y) {
-            for (std::size_t i = static_cast<std::size_t>(y) * w, end = i + w; i < end; ++i) {
-                const float angle = nnf[i].angle_rad;
-                if (angle != 0.0f) rotation[i] = {std::cos(angle), std::sin(angle)};
-            }
-        });
+    }
+
+    // Patch offset (dx, dy) of the match of pixel i, at `angle`.
+    RotatedOffset offset(std::size_t i, float angle, int dx, int dy) const {
+        if (angle == 0.0f || rotation.empty()) return turned(angle, dx, dy);
+        return rotate_offset(dx, dy, rotation[i][0], rotation[i][1]);
+    }
+    static RotatedOffset turned(float angle, int dx, int dy) {
+        if (angle == 0.0f) return {dx, dy};
+        return rotate_offset(dx, dy, std::cos(angle), std::sin(angle));
     }
 
     const Nnf& nnf;
     const Image& source;
     const VoteParams& params;
     int w, h, patch_r = 0, vote_r = 0;
-    bool blend_seams = false, rotated = false;
+    bool blend_seams = false;
+    std::vector<float> angles;  // field_angles; empty on the per-pixel path
     std::vector<std::array<float, 2>> rotation;
 };
 
@@ -191,9 +340,7 @@ public:
         if (v_.params.active != nullptr && !v_.params.active[ci]) return false;
         const Match& m = v_.nnf[ci];
         if (m.x < 0) return false;  // not a patch centre
-        const RotatedOffset o = m.angle_rad == 0.0f
-                                    ? RotatedOffset{dx, dy}
-                                    : rotate_offset(dx, dy, v_.rotation[ci][0], v_.rotation[ci][1]);
+        const RotatedOffset o = v_.offset(ci, m.angle_rad, dx, dy);
         sx = m.x + o.dx;
         sy = m.y + o.dy;
         return true;
@@ -298,11 +445,13 @@ void vote_pixels(const VoteSetup& v, Image& out, int threads) {
 }
 
 // A voting patch centre as the row vote reads it: its weight (0 = it does not vote: inactive,
-// no match, or a weight that is not positive) and its match's source pixel index when the
-// match's footprint lies inside the source, else -1 (clamped reads, from the NNF).
+// no match, or a weight that is not positive), its match's source pixel index when the match's
+// rotated footprint lies inside the source, else -1 (clamped reads, from the NNF), and its
+// angle's offset table.
 struct Centre {
     float weight;
     std::int32_t index;
+    std::int32_t table;
 };
 
 // Adds the vote of weight w read from source pixel s to a pixel's sums: kChannels channels
@@ -318,15 +467,34 @@ inline void add_vote(double* sums, const float* s, float w, int channels) {
 // The same sums as vote_pixels, with the loops turned inside out: a row's pixels take the votes
 // of one patch offset (dy, dx) after another, so every pixel adds the same terms in the same
 // order as the reference (exact to the bit), while its chain of dependent double additions no
-// longer stalls the loop: neighbouring pixels' additions are independent. Unrotated fields
-// without source weights (every engine vote but Brushables'); seams and pixels without a
+// longer stalls the loop: neighbouring pixels' additions are independent. A rotated match reads
+// its offsets from its angle's table (VoteSetup::angles), each vote times its source pixel's
+// weight when there are source weights, as in PixelVote::gather. Seams and pixels without a
 // footprint patch take the reference's per-pixel path.
 template <int kChannels>
 void vote_rows(const VoteSetup& v, Image& out, int threads) {
     const VoteParams& params = v.params;
-    const int w = v.w, h = v.h, r = v.vote_r;
+    const int w = v.w, h = v.h, r = v.vote_r, P = 2 * r + 1;
     const int sw = v.source.width(), sh = v.source.height();
     const float* source = v.source.data().data();
+    const float* source_weights =
+        params.source_weights.empty() ? nullptr : params.source_weights.data();
+    // Per table, the footprint's offsets (row-major) and their index offsets in the source.
+    const auto area = static_cast<std::size_t>(P) * P;
+    std::vector<RotatedOffset> moves(v.angles.size() * area);
+    std::vector<std::int32_t> offsets(moves.size());
+    int reach = 0;  // the largest offset coordinate of any table
+    for (std::size_t t = 0; t < v.angles.size(); ++t) {
+        const float angle = v.angles[t];
+        for (int dy = -r, k = 0; dy <= r; ++dy) {
+            for (int dx = -r; dx <= r; ++dx, ++k) {
+                const RotatedOffset o = VoteSetup::turned(angle, dx, dy);
+                moves[t * area + static_cast<std::size_t>(k)] = o;
+                offsets[t * area + static_cast<std::size_t>(k)] = o.dy * sw + o.dx;
+                reach = std::max({reach, std::abs(o.dx), std::abs(o.dy)});
+            }
+        }
+    }
     // Bands of output rows, each with the centres of its rows and r rows around them (a table
     // of the whole field would add its size to the run's peak memory).
     constexpr int kBand = 8;
@@ -342,9 +510,12 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
             if ((params.active != nullptr && !params.active[i]) || m.x < 0 || !(weight > 0.0f)) {
                 weight = 0.0f;
             }
-            const bool inside = m.x - r >= 0 && m.y - r >= 0 && m.x + r < sw && m.y + r < sh;
+            const int table = weight > 0.0f ? angle_index(v.angles, m.angle_rad) : 0;
+            const int margin = table == 0 ? r : reach;
+            const bool inside =
+                m.x - margin >= 0 && m.y - margin >= 0 && m.x + margin < sw && m.y + margin < sh;
             centres[i - static_cast<std::size_t>(c0) * w] =
-                Centre{weight, inside ? m.y * sw + m.x : -1};
+                Centre{weight, inside ? m.y * sw + m.x : -1, table};
         }
         const int C = kChannels > 0 ? kChannels : v.source.channels();
         const std::size_t stride = static_cast<std::size_t>(C) + 1;  // the sums, then the total
@@ -357,15 +528,16 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
                 if (cy < 0 || cy >= h) continue;
                 const Centre* row = centres.data() + static_cast<std::size_t>(cy - c0) * w;
                 for (int dx = -r; dx <= r; ++dx) {
-                    const int offset = dy * sw + dx;
+                    const auto k = static_cast<std::size_t>((dy + r) * P + dx + r);
                     // The pixels x whose patch centre x - dx lies in the row.
                     for (int x = std::max(0, dx), x_end = std::min(w, w + dx); x < x_end; ++x) {
                         const Centre& c = row[x - dx];
                         if (!(c.weight > 0.0f)) continue;
-                        std::int32_t index = c.index + offset;
+                        const std::size_t at = static_cast<std::size_t>(c.table) * area + k;
+                        std::int32_t index = c.index + offsets[at];
                         if (c.index < 0) {
                             const Match& m = v.nnf.at(x - dx, cy);
-                            int sx = m.x + dx, sy = m.y + dy;
+                            int sx = m.x + moves[at].dx, sy = m.y + moves[at].dy;
                             if (params.clamp_source) {
                                 sx = std::clamp(sx, 0, sw - 1);
                                 sy = std::clamp(sy, 0, sh - 1);
@@ -373,8 +545,10 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
                             EXEMPLAR_DCHECK(sx >= 0 && sy >= 0 && sx < sw && sy < sh);
                             index = sy * sw + sx;
                         }
+                        const float weight =
+                            source_weights == nullptr ? c.weight : c.weight * source_weights[index];
                         add_vote<kChannels>(sums.data() + static_cast<std::size_t>(x) * stride,
-                                            source + static_cast<std::size_t>(index) * C, c.weight,
+                                            source + static_cast<std::size_t>(index) * C, weight,
                                             C);
                     }
                 }
@@ -394,10 +568,10 @@ void vote_rows(const VoteSetup& v, Image& out, int threads) {
 template <int kChannels>
 void vote_channels(const Nnf& nnf, const Image& source, const VoteParams& params, Image& out,
                    int threads, bool reference) {
-    const VoteSetup setup(nnf, source, params, threads);
+    const VoteSetup setup(nnf, source, params, threads, reference);
     // The row vote's source indices are 32-bit.
     const bool small = source.pixel_count() <= static_cast<std::size_t>(INT32_MAX);
-    if (reference || setup.rotated || !params.source_weights.empty() || !small) {
+    if (reference || setup.angles.empty() || !small) {
         vote_pixels<kChannels>(setup, out, threads);
     } else {
         vote_rows<kChannels>(setup, out, threads);

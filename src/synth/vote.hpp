@@ -39,9 +39,17 @@ struct VoteParams {
 /// entry's coherence when `coherence` (σ², px²) is positive: the sum over the entries q of its
 /// patch_size x patch_size neighbourhood that vote of exp(-|R_p(q) - R_q(q)|² / 2σ²), R_q(q)
 /// the source position q maps to and R_p(q) where p's match (shifted and rotated) puts it
-/// (Lukáč et al. 2015, eq. 6.8).
+/// (Lukáč et al. 2015, eq. 6.8). Evaluated as the product of the x and y factors, each from the
+/// integer difference of the matches' coordinates plus the rotated offset; a term whose
+/// coordinates differ by more than r√2 + √(72σ²) (a factor below e^-36) counts 0. The
+/// factors are tabulated per distinct angle of the field (up to 256) and patch offset.
 std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
                                 float coherence, int threads);
+
+/// The same weights, every factor computed where it is used: the definition, and the oracle of
+/// the tests (vote_weights looks the same factors up: the same bytes).
+std::vector<float> vote_weights_reference(const Nnf& nnf, const std::uint8_t* active,
+                                          int patch_size, float coherence, int threads);
 
 /// Colour-histogram weights (Kopf et al. 2007, the w_h of Lukáč et al. 2015 eq. 7), one per
 /// source pixel: 1 / (1 + strength * Σ_c max(0, H_t,c(v_c) − H_s,c(v_c))) for the pixel's value

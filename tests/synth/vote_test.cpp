@@ -48,6 +48,52 @@ TEST(VoteWeights, CoherenceCountsConsistentNeighbours) {
     EXPECT_EQ(vote_weights(nnf, nullptr, 5, 2.0f, 2), coherent);
 }
 
+// The tabulated coherence weights against the reference, compared bit for bit: a field of
+// pieces (coherent inside, matches one or a few pixels off and far apart across their borders),
+// no-match and inactive entries; unrotated, 32 steps and a few other angles, one angle per pixel
+// (more than the tables hold); σ² of 0.5, 2 and 100 (wide tables); 3x3 and
+// 5x5 patches; 1 and 3 threads.
+TEST(VoteWeights, TabulatedCoherenceEqualsReferenceExactly) {
+    const int w = 41, h = 27;
+    Nnf nnf(w, h);
+    std::vector<std::uint8_t> active(static_cast<std::size_t>(w) * h, 1);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            const int piece = (x / 7 + y / 6 * 3) % 5;
+            const int jitter = (x * 7 + y * 3) % 9 == 0 ? (x + y) % 3 - 1 : 0;
+            const float error = 0.02f + 0.1f * static_cast<float>((x * 5 + y * 11) % 7);
+            nnf[i] = Match{x + piece * 13 + jitter, y + piece * 4, 0.0f, error};
+            if ((x * 3 + y * 5) % 37 == 0) nnf[i] = Match{-1, -1, 0.0f, 0.0f};
+            active[i] = (x + 3 * y) % 19 == 0 ? 0 : 1;
+        }
+    }
+    for (int rotation = 0; rotation < 3; ++rotation) {
+        Nnf field = nnf;
+        for (int y = 0; y < h && rotation > 0; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const int piece = (x / 7 + y / 6 * 3) % 5;
+                float& angle = field[static_cast<std::size_t>(y) * w + x].angle_rad;
+                angle = rotation == 2 ? 0.001f * static_cast<float>(y * w + x) - 0.5f
+                        : piece == 2  ? 0.7f + 0.01f * static_cast<float>(x % 3)
+                                      : 6.28318531f * static_cast<float>(piece * 7 - 14) / 32.0f;
+            }
+        }
+        for (float coherence : {0.5f, 2.0f, 100.0f}) {
+            for (int patch_size : {3, 5}) {
+                const std::vector<float> expected =
+                    vote_weights_reference(field, active.data(), patch_size, coherence, 1);
+                for (int threads : {1, 3}) {
+                    EXPECT_EQ(vote_weights(field, active.data(), patch_size, coherence, threads),
+                              expected)
+                        << "rotation " << rotation << ", sigma^2 " << coherence << ", patch "
+                        << patch_size << ", " << threads << " threads";
+                }
+            }
+        }
+    }
+}
+
 // Colour histogram (Kopf et al. 2007, Brushables' w_h): a source half 0 and half 1 against a
 // target that is all 0. Bin 0 holds density 16 in the source (half of 32 bins' worth) and 32 in
 // the target, an excess of 16, so with strength k a 0-pixel weighs 1 / (1 + 16 k); the absent 1s
@@ -157,8 +203,9 @@ TEST(Vote, BlendSeamsAveragesWholePatchesOnlyAcrossSeams) {
 // The row-by-row vote against the per-pixel reference, compared bit for bit: a field of pieces
 // with matches over the source border (clamped reads), no-match entries, inactive and fixed
 // pixels, weighted and unweighted votes, narrow footprints with and without seam blending,
-// 1, 3, 4 and 5 channels, 1 and 3 threads; rotated fields and source weights (the reference's
-// own path) agree too.
+// 1, 3, 4 and 5 channels, 1 and 3 threads; unrotated and rotated fields (angles of 32 steps and
+// a few others, as Brushables' fields, and one angle per pixel, more than the row vote's
+// tables hold), with and without source weights.
 TEST(Vote, RowVoteEqualsPerPixelReferenceExactly) {
     const int w = 37, h = 29, sw = 31, sh = 23;
     Nnf nnf(w, h);
@@ -178,6 +225,27 @@ TEST(Vote, RowVoteEqualsPerPixelReferenceExactly) {
     for (int y = 10; y < 14; ++y) {
         for (int x = 20; x < 24; ++x) nnf[static_cast<std::size_t>(y) * w + x].x = -1;
     }
+    std::vector<float> source_weights(static_cast<std::size_t>(sw) * sh);
+    for (std::size_t i = 0; i < source_weights.size(); ++i) {
+        source_weights[i] = 0.25f + 0.05f * static_cast<float>((i * 7) % 13);
+    }
+    // Rotations: none; per piece one of 32 steps or, in a few pieces, another angle; a
+    // different angle per pixel.
+    auto turn = [&](Nnf field, int rotation) {
+        for (int y = 0; y < h && rotation > 0; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const int piece = (x / 6 + y / 5 * 3) % 7;
+                float& angle = field[static_cast<std::size_t>(y) * w + x].angle_rad;
+                if (rotation == 1) {
+                    angle = piece == 3 ? 0.3f + 0.1f * static_cast<float>(x % 2)
+                                       : 6.28318531f * static_cast<float>(piece * 5 - 16) / 32.0f;
+                } else {
+                    angle = 0.001f * static_cast<float>(y * w + x) - 0.5f;
+                }
+            }
+        }
+        return field;
+    };
     for (int channels : {1, 3, 4, 5}) {
         const Image source = testing::texture(sw, sh, channels, 40 + channels);
         const std::vector<float> weights = vote_weights(nnf, active.data(), 5, 0.0f, 1);
@@ -193,32 +261,26 @@ TEST(Vote, RowVoteEqualsPerPixelReferenceExactly) {
             Nnf field = nnf;
             if (variant == 1) {  // without clamping, matches keep their patches inside
                 for (Match& m : field.matches()) {
-                    if (m.x >= 0) m = Match{std::clamp(m.x, 3, sw - 4), std::clamp(m.y, 3, sh - 4)};
+                    if (m.x >= 0) m = Match{std::clamp(m.x, 5, sw - 6), std::clamp(m.y, 5, sh - 6)};
                 }
             }
-            Image expected(w, h, channels, 0.25f);
-            vote_reference(field, source, params, expected, 1);
-            for (int threads : {1, 3}) {
-                Image fast(w, h, channels, 0.25f);
-                vote(field, source, params, fast, threads);
-                ASSERT_TRUE(std::ranges::equal(fast.data(), expected.data()))
-                    << channels << " channels, variant " << variant << ", " << threads
-                    << " threads";
+            for (int rotation = 0; rotation < 3; ++rotation) {
+                const Nnf turned = turn(field, rotation);
+                for (bool weighted : {false, true}) {
+                    params.source_weights = {};
+                    if (weighted) params.source_weights = source_weights;
+                    Image expected(w, h, channels, 0.25f);
+                    vote_reference(turned, source, params, expected, 1);
+                    for (int threads : {1, 3}) {
+                        Image fast(w, h, channels, 0.25f);
+                        vote(turned, source, params, fast, threads);
+                        ASSERT_TRUE(std::ranges::equal(fast.data(), expected.data()))
+                            << channels << " channels, variant " << variant << ", rotation "
+                            << rotation << (weighted ? ", source weights, " : ", ") << threads
+                            << " threads";
+                    }
+                }
             }
-        }
-        // The reference's own path: rotated matches, source weights.
-        VoteParams params;
-        params.clamp_source = true;
-        Nnf rotated = nnf;
-        rotated[5].angle_rad = 0.5f;
-        const std::vector<float> source_weights(static_cast<std::size_t>(sw) * sh, 0.5f);
-        for (int variant = 0; variant < 2; ++variant) {
-            if (variant == 1) params.source_weights = source_weights;
-            const Nnf& field = variant == 0 ? rotated : nnf;
-            Image expected(w, h, channels, 0.25f), fast(w, h, channels, 0.25f);
-            vote_reference(field, source, params, expected, 1);
-            vote(field, source, params, fast, 2);
-            EXPECT_TRUE(std::ranges::equal(fast.data(), expected.data()));
         }
     }
 }

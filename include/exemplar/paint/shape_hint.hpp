@@ -44,7 +44,12 @@ Image shape_edges(const Image& mask, const Image& labels = {});
 /// disc covered by edge pixels), in [0, 1]. `edges` from `shape_edges`; `angles` the direction
 /// field as angles (1 channel, same size; radians counter-clockwise on screen). Deterministic;
 /// `threads`: 0 = all, 1 = inline. Invalid options or sizes are programming errors (checked).
+/// Pixels whose ring lies where no edge is near are all 0 without being computed.
 Image shape_hint(const Image& edges, const Image& angles, const ShapeHintOptions& options = {},
                  int threads = 0);
+
+/// The same descriptors, every pixel computed: the oracle of the tests (the same bytes).
+Image shape_hint_reference(const Image& edges, const Image& angles,
+                           const ShapeHintOptions& options = {}, int threads = 0);
 
 }  // namespace exemplar::paint
