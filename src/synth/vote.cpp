@@ -18,6 +18,8 @@ namespace exemplar::synth {
 // matches dominate the average (ebsynth's 1/(1+E) on 0..255 SSD behaves like ~0.001); 0.01 keeps
 // the stroke texture of the stylit and texbynum examples (docs/algorithms.md).
 constexpr double kWeightedVoteEpsilon = 0.01;
+// Squared discrepancies (px²) whose coherence Gaussian vote_weights looks up.
+constexpr int kCoherenceTable = 1024;
 
 std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int patch_size,
                                 float coherence, int threads) {
@@ -32,6 +34,16 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
     const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
     std::vector<float> weights(nnf.pixel_count(), 1.0f);
     const int w = nnf.width(), h = nnf.height(), r = patch_size / 2;
+    // The Gaussian of an unrotated match's discrepancy, whose square is an integer: looked up
+    // for the small ones (the same doubles as computing it).
+    std::vector<double> gaussian;
+    if (coherence > 0.0f) {
+        gaussian.resize(kCoherenceTable);
+        for (int k = 0; k < kCoherenceTable; ++k) {
+            gaussian[static_cast<std::size_t>(k)] =
+                std::exp(-static_cast<double>(k) / (2.0 * coherence));
+        }
+    }
     parallel_for(0, h, threads, [&](int y) {
         for (int x = 0; x < w; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * w + x;
@@ -53,6 +65,14 @@ std::vector<float> vote_weights(const Nnf& nnf, const std::uint8_t* active, int 
                     const std::size_t qi = static_cast<std::size_t>(qy) * w + qx;
                     if (!votes(qi)) continue;
                     const Match& q = nnf[qi];
+                    if (p.angle_rad == 0.0f) {
+                        const std::int64_t ex = p.x + dx - q.x, ey = p.y + dy - q.y;
+                        const std::int64_t k = ex * ex + ey * ey;
+                        if (k < kCoherenceTable) {
+                            agree += gaussian[static_cast<std::size_t>(k)];
+                            continue;
+                        }
+                    }
                     const double ex = p.x + c * dx - s * dy - q.x;
                     const double ey = p.y + s * dx + c * dy - q.y;
                     agree += std::exp(-(ex * ex + ey * ey) / (2.0 * coherence));

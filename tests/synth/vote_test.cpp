@@ -48,6 +48,63 @@ TEST(VoteWeights, CoherenceCountsConsistentNeighbours) {
     EXPECT_EQ(vote_weights(nnf, nullptr, 5, 2.0f, 2), coherent);
 }
 
+// The coherence weights equal their definition to the bit, computed here term by term: on a
+// field whose discrepancies run from 0 to far beyond the looked-up Gaussians (k >= 1024 px²),
+// with rotated entries and entries without a match among them.
+TEST(VoteWeights, CoherenceMatchesItsDefinition) {
+    const int w = 23, h = 17;
+    Nnf nnf(w, h);
+    std::uint32_t state = 12345u;
+    auto next = [&] {
+        state = state * 1664525u + 1013904223u;
+        return state >> 8;
+    };
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const std::uint32_t r = next() % 8;
+            // Mostly a shared shift (coherent pieces), else a near or a far jump.
+            const int sx = r < 4   ? x + 7
+                           : r < 6 ? x + 7 + static_cast<int>(next() % 5)
+                                   : static_cast<int>(next() % 200);
+            const int sy = r < 4   ? y + 2
+                           : r < 6 ? y + static_cast<int>(next() % 4)
+                                   : static_cast<int>(next() % 150);
+            const float angle = next() % 11 == 0 ? 0.3f : 0.0f;
+            nnf.at(x, y) = next() % 13 == 0 ? Match{-1, -1, 0.0f, 0.0f}
+                                            : Match{sx, sy, angle, 0.1f + (next() % 100) / 50.0f};
+        }
+    }
+    for (const float coherence : {0.5f, 2.0f, 100.0f}) {
+        const std::vector<float> plain = vote_weights(nnf, nullptr, 5, 0.0f, 1);
+        const std::vector<float> weights = vote_weights(nnf, nullptr, 5, coherence, 1);
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y) * w + x;
+                const Match& p = nnf[i];
+                if (p.x < 0) {
+                    EXPECT_EQ(weights[i], plain[i]);
+                    continue;
+                }
+                const double c = std::cos(p.angle_rad), s = std::sin(p.angle_rad);
+                double agree = 0.0;
+                for (int dy = -2; dy <= 2; ++dy) {
+                    for (int dx = -2; dx <= 2; ++dx) {
+                        const int qx = x + dx, qy = y + dy;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h || nnf.at(qx, qy).x < 0)
+                            continue;
+                        const Match& q = nnf.at(qx, qy);
+                        const double ex = p.x + c * dx - s * dy - q.x;
+                        const double ey = p.y + s * dx + c * dy - q.y;
+                        agree += std::exp(-(ex * ex + ey * ey) / (2.0 * coherence));
+                    }
+                }
+                EXPECT_EQ(weights[i], static_cast<float>(plain[i] * agree)) << x << "," << y;
+            }
+        }
+        EXPECT_EQ(vote_weights(nnf, nullptr, 5, coherence, 3), weights);
+    }
+}
+
 // Colour histogram (Kopf et al. 2007, Brushables' w_h): a source half 0 and half 1 against a
 // target that is all 0. Bin 0 holds density 16 in the source (half of 32 bins' worth) and 32 in
 // the target, an excess of 16, so with strength k a 0-pixel weighs 1 / (1 + 16 k); the absent 1s
