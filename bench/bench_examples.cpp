@@ -12,6 +12,9 @@
 //   --fidelity         also print the output's patch fidelity (see patch_fidelity; a few seconds)
 //   --measure FILE     print texture kept and patch fidelity of FILE (e.g. another tool's output
 //                      for the same example) instead of synthesizing
+//   --fidelity-map F   with --fidelity or --measure: save the per-pixel fidelity map to F (red:
+//                      the distance, ×4; green: seams of the final NNF; blue: a 2 px band around
+//                      the first guide's region edges) and print where the distance sits
 //   --write-guides DIR inpaint3: write the guides of ebsynth's formulation (bench/vs_ebsynth.sh)
 //                      instead of synthesizing: DIR/inpaint3_filled.png (3.jpg with the hole at
 //                      the known pixels' mean colour, the start of inpainting_input),
@@ -60,9 +63,10 @@ struct Settings {
     double scale = 1.0;
     SynthesisOptions options;
     std::string out;
-    bool fidelity = false;  // also measure the output's patch fidelity (slower)
-    std::string measure;    // measure this image instead of synthesizing
-    std::string guides;     // inpaint3: write ebsynth's guides into this folder instead
+    bool fidelity = false;     // also measure the output's patch fidelity (slower)
+    std::string measure;       // measure this image instead of synthesizing
+    std::string guides;        // inpaint3: write ebsynth's guides into this folder instead
+    std::string fidelity_map;  // save the per-pixel fidelity map here
     float smooth_sigma = 8.0f;
 };
 
@@ -71,9 +75,9 @@ struct Settings {
 // only guide. Wash-out (blurred patches) and seams (patches found nowhere in the exemplar) both
 // raise it; a copy of exemplar regions scores 0. With `known` (inpainting; 1 channel, 1 = known):
 // only patches entirely inside it are the exemplar's, and the mean is taken over the hole
-// (known = 0) alone.
+// (known = 0) alone. `map` (if given) receives the per-pixel distances.
 double patch_fidelity(const Image& exemplar, const Image& output, int threads,
-                      const Image& known = {}) {
+                      const Image& known = {}, Image* map = nullptr) {
     SynthesisInput in;
     in.style = exemplar;
     in.source_mask = known;
@@ -89,6 +93,7 @@ double patch_fidelity(const Image& exemplar, const Image& output, int threads,
     RunContext context(threads);
     auto r = synthesize(in, o, context);
     if (!r.ok()) return -1.0;
+    if (map != nullptr) *map = r->error;
     double sum = 0.0;
     std::size_t count = 0;
     for (std::size_t i = 0; i < r->error.pixel_count(); ++i) {
@@ -127,7 +132,7 @@ struct Example {
 // Texture kept and patch fidelity; inpainting: of the output pasted into the hole of the
 // original (what a user of a tool that redraws everything would keep; the same image when the
 // outside is kept), and the largest and mean change outside the hole (in 255ths) before that.
-std::string quality(const Example& e, const Image& output, int threads) {
+std::string quality(const Example& e, const Image& output, int threads, Image* map = nullptr) {
     const Image& style = e.input.style;
     Image pasted = output;
     double outside = 0.0, outside_sum = 0.0;
@@ -148,7 +153,7 @@ std::string quality(const Example& e, const Image& output, int threads) {
     char text[160];
     std::snprintf(text, sizeof text, "texture %.3f  fidelity %.4f",
                   gradient_energy(pasted, e.hole) / gradient_energy(style, e.known),
-                  patch_fidelity(style, pasted, threads, e.known));
+                  patch_fidelity(style, pasted, threads, e.known, map));
     std::string out = text;
     if (!e.known.empty()) {
         double known_pixels = 0.0;
@@ -158,6 +163,97 @@ std::string quality(const Example& e, const Image& output, int threads) {
         out += text;
     }
     return out;
+}
+
+// Where the fidelity distance sits: each pixel's category (seam of `nnf` or within 2 px of one,
+// if given; within 2 px of an edge of `regions`), its share of the mean and its own mean. Saves
+// the map with the categories to `path`.
+void fidelity_map(const Image& map, const Image& regions, const Nnf* nnf, const std::string& path) {
+    const int w = map.width(), h = map.height();
+    auto near = [&](auto&& is_edge) {
+        std::vector<std::uint8_t> edge(map.pixel_count(), 0), band(map.pixel_count(), 0);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) edge[static_cast<std::size_t>(y) * w + x] = is_edge(x, y);
+        for (int y = 0; y < h; ++y) {
+            for (int x = 0; x < w; ++x) {
+                for (int dy = -2; dy <= 2; ++dy) {
+                    for (int dx = -2; dx <= 2; ++dx) {
+                        const int qx = x + dx, qy = y + dy;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+                        if (edge[static_cast<std::size_t>(qy) * w + qx])
+                            band[static_cast<std::size_t>(y) * w + x] = 1;
+                    }
+                }
+            }
+        }
+        return std::pair{edge, band};
+    };
+    const auto [region_edge, region_band] = near([&](int x, int y) {
+        const float* p = regions.pixel(x, y);
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const float* q = regions.pixel(qx, qy);
+            for (int c = 0; c < regions.channels(); ++c)
+                if (std::abs(p[c] - q[c]) > 0.1f) return true;
+        }
+        return false;
+    });
+    const auto [seam, seam_band] = near([&](int x, int y) {
+        if (nnf == nullptr) return false;
+        const Match& m = nnf->at(x, y);
+        if (m.x < 0) return false;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const Match& q = nnf->at(qx, qy);
+            if (q.x >= 0 && (q.x != m.x + dx || q.y != m.y + dy)) return true;
+        }
+        return false;
+    });
+    // Categories: seam / near a seam / inside a piece, each by region edge band or not.
+    const char* names[6] = {"seam, region edge",        "seam, inside a region",
+                            "near a seam, region edge", "near a seam, inside a region",
+                            "in a piece, region edge",  "in a piece, inside a region"};
+    double sum[6] = {}, count[6] = {}, total = 0.0;
+    Image out(w, h, 3);
+    for (std::size_t i = 0; i < map.pixel_count(); ++i) {
+        const int k = (seam[i] ? 0 : seam_band[i] ? 2 : 4) + (region_band[i] ? 0 : 1);
+        const double e = map.data()[i];
+        sum[k] += e;
+        count[k] += 1.0;
+        total += e;
+        out.data()[i * 3] = std::min(1.0f, map.data()[i] * 4.0f);
+        out.data()[i * 3 + 1] = seam[i] ? 0.5f : 0.0f;
+        out.data()[i * 3 + 2] = region_edge[i] ? 0.5f : 0.0f;
+    }
+    const double n = static_cast<double>(map.pixel_count());
+    for (int k = 0; k < 6; ++k) {
+        if (count[k] == 0.0) continue;
+        std::printf("  %-30s %5.1f%% of pixels  %.4f of the mean (%4.1f%%)  own mean %.4f\n",
+                    names[k], 100.0 * count[k] / n, sum[k] / n, 100.0 * sum[k] / total,
+                    sum[k] / count[k]);
+    }
+    // Per region, by the first guide's strongest channel (texbynum: sea, rock, sky).
+    const int nc = std::min(3, regions.channels());
+    std::vector<double> region_sum(nc, 0.0), region_seam(nc, 0.0), region_count(nc, 0.0);
+    for (std::size_t i = 0; i < map.pixel_count(); ++i) {
+        const float* p = regions.pixel(static_cast<int>(i % w), static_cast<int>(i / w));
+        const int r = static_cast<int>(std::max_element(p, p + nc) - p);
+        region_sum[r] += map.data()[i];
+        region_seam[r] += seam[i] ? 1.0 : 0.0;
+        region_count[r] += 1.0;
+    }
+    for (int r = 0; r < nc; ++r) {
+        if (region_count[r] == 0.0) continue;
+        std::printf(
+            "  guide channel %d strongest: %5.1f%% of pixels, %4.1f%% seams, %.4f of the "
+            "mean, own mean %.4f\n",
+            r, 100.0 * region_count[r] / n, 100.0 * region_seam[r] / region_count[r],
+            region_sum[r] / n, region_sum[r] / region_count[r]);
+    }
+    const Status saved = save_image(out, path);
+    if (!saved.is_ok()) std::fprintf(stderr, "%s\n", saved.message().c_str());
 }
 
 bool load(const std::string& path, double scale, Image& out) {
@@ -241,8 +337,11 @@ int run(const std::string& name, const Example& example, const Settings& setting
             std::fprintf(stderr, "%s\n", image.status().message().c_str());
             return 1;
         }
+        Image map;
         std::printf("%-10s %s  %s\n", name.c_str(), settings.measure.c_str(),
-                    quality(example, *image, settings.threads).c_str());
+                    quality(example, *image, settings.threads, &map).c_str());
+        if (!settings.fidelity_map.empty())
+            fidelity_map(map, in.guides.front().target, nullptr, settings.fidelity_map);
         return 0;
     }
     for (int r = 0; r < settings.repeats; ++r) {
@@ -287,7 +386,11 @@ int run(const std::string& name, const Example& example, const Settings& setting
             error_sum / static_cast<double>(result->error.pixel_count()),
             static_cast<double>(distinct) / static_cast<double>(std::max<std::size_t>(1, centres)));
         if (settings.fidelity) {
-            std::printf("  %s\n", quality(example, result->image, settings.threads).c_str());
+            Image map;
+            std::printf("  %s\n", quality(example, result->image, settings.threads, &map).c_str());
+            if (!settings.fidelity_map.empty()) {
+                fidelity_map(map, in.guides.front().target, &result->nnf, settings.fidelity_map);
+            }
         }
         std::printf("  time at the end of each level (and of the final 3x3 pass, if on):");
         for (double t : level_end) std::printf(" %.2f", t);
@@ -323,6 +426,8 @@ bool parse_options(int argc, char** argv, int first, Settings& settings) {
             settings.out = argv[++i];
         } else if (arg == "--fidelity") {
             settings.fidelity = true;
+        } else if (arg == "--fidelity-map" && has_value) {
+            settings.fidelity_map = argv[++i];
         } else if (arg == "--measure" && has_value) {
             settings.measure = argv[++i];
         } else if (arg == "--write-guides" && has_value) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "exemplar/io/folders.hpp"
+#include "option_help.hpp"
 
 namespace exemplar::cli {
 
@@ -195,10 +196,14 @@ std::string nnf_note(const SynthesisResult& result, const SynthesisOutputs& outp
     if (outputs.save_nnf.empty()) return "";
     const std::string p = std::to_string(result.nnf_patch_size);
     const std::string v = std::to_string(result.vote_size);
+    const std::string c =
+        result.vote_coherence > 0.0f ? format_number(result.vote_coherence) : std::string();
     return "exemplar: note: " + outputs.save_nnf + " was made with patch size " + p +
            " and voted with the central " + v + "x" + v + " of each patch" +
-           (result.vote_seams ? ", seams blended" : "") + " (apply-nnf --patch-size " + p +
-           " --vote-size " + v + (result.vote_seams ? " --vote-seams" : "") + ")\n";
+           (result.vote_seams ? ", seams blended" : "") +
+           (c.empty() ? "" : ", weighing coherence " + c) + " (apply-nnf --patch-size " + p +
+           " --vote-size " + v + (result.vote_seams ? " --vote-seams" : "") +
+           (c.empty() ? "" : " --vote-coherence " + c) + ")\n";
 }
 
 std::string guide_compression_note(const SynthesisResult& result, float guide_pca) {

@@ -38,6 +38,7 @@ class StylizeResult:
     nnf_patch_size: int
     vote_size: int
     vote_seams: bool
+    vote_coherence: float
     guide_channels: int
     explained_variance: float
     unlabelled_levels: list[int]

@@ -32,6 +32,7 @@ struct StylizeResult {
     int nnf_patch_size = 0;
     int vote_size = 0;
     bool vote_seams = false;
+    float vote_coherence = 0.0f;
     int guide_channels = 0;
     double explained_variance = 1.0;
     std::vector<int> unlabelled_levels;
@@ -46,6 +47,7 @@ StylizeResult make_result(SynthesisResult&& result, SampleType type, int guide_c
     out.nnf_patch_size = result.nnf_patch_size;
     out.vote_size = result.vote_size;
     out.vote_seams = result.vote_seams;
+    out.vote_coherence = result.vote_coherence;
     out.guide_channels = guide_channels;
     out.explained_variance = explained_variance;
     out.unlabelled_levels = std::move(result.unlabelled_levels);
@@ -391,6 +393,9 @@ void register_synthesis(py::module_& module) {
         .def_readonly("vote_seams", &StylizeResult::vote_seams,
                       "Whether the last vote blended seams (final_vote_seams); apply_nnf's "
                       "vote_seams.")
+        .def_readonly("vote_coherence", &StylizeResult::vote_coherence,
+                      "Coherence variance of the last vote's weights (vote_coherence, 0 = none); "
+                      "apply_nnf's vote_coherence.")
         .def_readonly("guide_channels", &StylizeResult::guide_channels,
                       "Guide channels the patch distance compared (fewer with guide_pca or a "
                       "stylit preview).")

@@ -112,12 +112,16 @@ def test_apply_nnf_reproduces_the_image(pair):
     np.testing.assert_array_equal(extra[..., :3], result.image)
     as_bytes = exemplar.apply_nnf(result.nnf, style, patch_size=5)
     assert as_bytes.dtype == np.uint8
-    # A run that blended its seams (quality best) is reproduced with vote_seams.
+    # A run that blended its seams and weighed coherence (quality best) is reproduced with
+    # vote_seams and vote_coherence.
     assert not result.vote_seams
+    assert result.vote_coherence == 0.0
     best = exemplar.stylize(style_float, [(source, target)], quality="best")
     assert best.vote_seams
+    assert best.vote_coherence == 2.0
     again = exemplar.apply_nnf(best.nnf, style_float, patch_size=best.nnf_patch_size,
-                               vote_size=best.vote_size, vote_seams=best.vote_seams)
+                               vote_size=best.vote_size, vote_seams=best.vote_seams,
+                               vote_coherence=best.vote_coherence)
     np.testing.assert_array_equal(again, best.image)
 
 

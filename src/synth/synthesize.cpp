@@ -534,6 +534,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             result.nnf_patch_size = L.patch_size;
             result.vote_size = last_vote_size(options, L.patch_size);
             result.vote_seams = options.final_vote_seams != 0;
+            result.vote_coherence =
+                options.vote == VoteMode::Weighted ? options.vote_coherence : 0.0f;
             result.error = final_errors(L, nnf, threads);
         }
     }

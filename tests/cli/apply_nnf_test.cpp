@@ -65,6 +65,23 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     EXPECT_LE(max_abs_diff(read("again_s.png"), read("seams5.png")), 1.0f / 255.0f);
     ASSERT_EQ(run(with(apply_seams, {"-q", "-o", path("narrow_s.png")})).code, 0);
     EXPECT_GT(max_abs_diff(read("narrow_s.png"), read("seams5.png")), 1.0f / 255.0f);
+    // A run whose votes weigh coherence (--vote-coherence 2, in --quality best) notes it and is
+    // reproduced with it.
+    auto coherent = with(stylize_args(), {"-o", path("coh5.png"), "--save-nnf", path("coh5.exr"),
+                                          "--vote-coherence", "2"});
+    coherent[coherent.size() - 7] = "0";  // --final-pass-iterations 0
+    const CliRun c = run(coherent);
+    ASSERT_EQ(c.code, 0) << c.err;
+    ASSERT_NE(c.err.find("weighing coherence 2 (apply-nnf --patch-size 5 --vote-size 3 "
+                         "--vote-coherence 2)"),
+              std::string::npos)
+        << c.err;
+    std::vector<std::string> apply_coherent = apply;
+    apply_coherent[2] = path("coh5.exr");
+    ASSERT_EQ(
+        run(with(apply_coherent, {"-q", "--vote-coherence", "2", "-o", path("again_c.png")})).code,
+        0);
+    EXPECT_LE(max_abs_diff(read("again_c.png"), read("coh5.png")), 1.0f / 255.0f);
     expect_failure(with(apply, {"--vote-size", "2"}), 1,
                    "--vote-size: 2 is invalid (must be 0 or odd, 0..31)");
     expect_failure(with(apply, {"--vote-coherence", "-2"}), 1,

@@ -94,6 +94,9 @@ struct SynthesisResult {
     int vote_size = 0;
     /// Whether that vote blended seams (SynthesisOptions::final_vote_seams).
     bool vote_seams = false;
+    /// The coherence variance of that vote's weights (SynthesisOptions::vote_coherence; 0 = none,
+    /// or not a weighted vote): apply_nnf's vote_coherence.
+    float vote_coherence = 0.0f;
     /// Per-pixel patch distance of the final NNF against the final image (1 channel; 0 where
     /// the pixel is not a patch centre).
     Image error;
