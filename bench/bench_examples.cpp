@@ -405,7 +405,9 @@ int run(const std::string& name, const Example& example, const Settings& setting
 }
 
 bool parse_options(int argc, char** argv, int first, Settings& settings) {
-    // The preset first, as the CLI does, so that --usage and --set override it in any order.
+    // The preset first (default when not given), as the CLI does, so that --usage and --set
+    // override it in any order.
+    settings.options = SynthesisOptions::preset(Quality::Default);
     for (int i = first; i + 1 < argc; ++i) {
         if (std::strcmp(argv[i], "--quality") != 0) continue;
         auto quality = parse_quality(argv[i + 1]);

@@ -211,11 +211,9 @@ Status StylitCommand::run_stylize(const Streams& streams) {
 
     // Checks that need no input file.
     StylitOptions options;
-    if (!quality_.empty()) {
-        auto quality = parse_quality(quality_);
-        if (!quality.ok()) return quality.status();
-        options.synthesis = SynthesisOptions::preset(*quality);
-    }
+    auto quality = quality_.empty() ? Result<Quality>(Quality::Default) : parse_quality(quality_);
+    if (!quality.ok()) return quality.status();
+    options.synthesis = SynthesisOptions::preset(*quality);
     options.preview = preview_;
     options.guidance_weight = guidance_weight_;
     options.synthesis.seed = seed_;

@@ -44,12 +44,11 @@ std::vector<float> parse_floats(const std::string& text, const char* flag) {
 }
 
 Status build_options(const StylizeJob& job, SynthesisOptions& options) {
-    // The quality preset first, so that explicit options override it.
-    if (!job.quality.empty()) {
-        auto quality = parse_quality(job.quality);
-        if (!quality.ok()) return quality.status();
-        options = SynthesisOptions::preset(*quality);
-    }
+    // The quality preset first (default when not given), so that explicit options override it.
+    auto quality =
+        job.quality.empty() ? Result<Quality>(Quality::Default) : parse_quality(job.quality);
+    if (!quality.ok()) return quality.status();
+    options = SynthesisOptions::preset(*quality);
     for (const auto& [name, value] : job.numeric) {
         const OptionSpec* spec = find_option(name);
         if (spec == nullptr) return invalid_argument("unknown option '" + name + "'");

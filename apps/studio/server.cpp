@@ -1132,7 +1132,7 @@ Result<JobWork> StudioServer::Impl::stylit_work(const json& body, const JobPaths
     StylitOptions stylit;
     auto quality = quality_field(body);
     if (!quality.ok()) return quality.status();
-    if (*quality) stylit.synthesis = SynthesisOptions::preset(**quality);
+    stylit.synthesis = SynthesisOptions::preset(quality->value_or(Quality::Default));
     if (body.contains("usage")) {
         auto usage = text_field(body, "usage");
         if (!usage.ok()) return usage.status();

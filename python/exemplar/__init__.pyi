@@ -91,7 +91,7 @@ def stylize(
     levels: int = 0,
     pyramid_ratio: float = 0.5,
     em_iterations: int = 6,
-    finest_em_iterations: int = 2,
+    finest_em_iterations: int = 1,
     second_finest_em_iterations: int = 4,
     search_iterations: int = 6,
     finest_search_radius: int = 0,
@@ -100,7 +100,7 @@ def stylize(
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
     final_vote_seams: int = 0,
-    vote_coherence: float = 0.0,
+    vote_coherence: float = 2.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
     falloff_sigma: float = 0.0,
@@ -109,7 +109,7 @@ def stylize(
     coherence_sweeps: int = 2,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
-    budget_polish_levels: int = 1,
+    budget_polish_levels: int = 2,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -171,7 +171,7 @@ def stylize(
       em_iterations (int, default 6)
           Search+vote iterations per pyramid level but the finest (StyLit: 6). Range 1..100
           iterations.
-      finest_em_iterations (int, default 2)
+      finest_em_iterations (int, default 1)
           Search+vote iterations on the finest level; 0 = em-iterations. It starts from the
           upsampled coarser solution and converges fast (StyLit: 6). Range 0..100
           iterations.
@@ -205,7 +205,7 @@ def stylize(
           seam between pieces), the pixel takes the plain average of the whole patches
           instead: seams blend, pieces keep their grain; closer to the exemplar, a little
           less grain. 0 = off. Range 0..1.
-      vote_coherence (float, default 0.0)
+      vote_coherence (float, default 2.0)
           Weighted vote: each patch also weighs by how many patches around it map
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
           coherent pieces of the exemplar outvote stray patches, but also thin strokes made
@@ -245,11 +245,11 @@ def stylize(
           finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
           (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
           (StyLit as published). Range 0..100 iterations.
-      budget_polish_levels (int, default 1)
-          With budget-polish-iterations: how many of the finest levels polish; the finest
-          runs budget-polish-iterations, the others (never the coarsest) keep their EM
-          iterations but search plain nearest neighbours from the upsampled field. 1 = the
-          finest only. Range 1..16 levels.
+      budget_polish_levels (int, default 2)
+          Error budget and uniform usage: how many of the finest levels polish; the finest
+          when budget-polish-iterations > 0 (else it keeps the usage), the others (never the
+          coarsest) keep their EM iterations but search plain nearest neighbours from the
+          upsampled field. 1 = the finest only. Range 1..16 levels.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -332,7 +332,7 @@ def stylit(
     levels: int = 0,
     pyramid_ratio: float = 0.5,
     em_iterations: int = 6,
-    finest_em_iterations: int = 2,
+    finest_em_iterations: int = 1,
     second_finest_em_iterations: int = 4,
     search_iterations: int = 6,
     finest_search_radius: int = 0,
@@ -341,7 +341,7 @@ def stylit(
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
     final_vote_seams: int = 0,
-    vote_coherence: float = 0.0,
+    vote_coherence: float = 2.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
     falloff_sigma: float = 0.0,
@@ -350,7 +350,7 @@ def stylit(
     coherence_sweeps: int = 2,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
-    budget_polish_levels: int = 1,
+    budget_polish_levels: int = 2,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -398,7 +398,7 @@ def stylit(
       em_iterations (int, default 6)
           Search+vote iterations per pyramid level but the finest (StyLit: 6). Range 1..100
           iterations.
-      finest_em_iterations (int, default 2)
+      finest_em_iterations (int, default 1)
           Search+vote iterations on the finest level; 0 = em-iterations. It starts from the
           upsampled coarser solution and converges fast (StyLit: 6). Range 0..100
           iterations.
@@ -432,7 +432,7 @@ def stylit(
           seam between pieces), the pixel takes the plain average of the whole patches
           instead: seams blend, pieces keep their grain; closer to the exemplar, a little
           less grain. 0 = off. Range 0..1.
-      vote_coherence (float, default 0.0)
+      vote_coherence (float, default 2.0)
           Weighted vote: each patch also weighs by how many patches around it map
           consistently (a Gaussian of their discrepancy with this variance; Brushables: 2);
           coherent pieces of the exemplar outvote stray patches, but also thin strokes made
@@ -472,11 +472,11 @@ def stylit(
           finest-em-iterations ones: the seams of its mosaic move to where the pieces agree
           (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
           (StyLit as published). Range 0..100 iterations.
-      budget_polish_levels (int, default 1)
-          With budget-polish-iterations: how many of the finest levels polish; the finest
-          runs budget-polish-iterations, the others (never the coarsest) keep their EM
-          iterations but search plain nearest neighbours from the upsampled field. 1 = the
-          finest only. Range 1..16 levels.
+      budget_polish_levels (int, default 2)
+          Error budget and uniform usage: how many of the finest levels polish; the finest
+          when budget-polish-iterations > 0 (else it keeps the usage), the others (never the
+          coarsest) keep their EM iterations but search plain nearest neighbours from the
+          upsampled field. 1 = the finest only. Range 1..16 levels.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -749,10 +749,10 @@ def animate(
           (closer to the exemplar, faster), but the finest grain partly washes out; 0 = off
           (StyLit as published). Range 0..100 iterations.
       budget_polish_levels (int, default 1)
-          With budget-polish-iterations: how many of the finest levels polish; the finest
-          runs budget-polish-iterations, the others (never the coarsest) keep their EM
-          iterations but search plain nearest neighbours from the upsampled field. 1 = the
-          finest only. Range 1..16 levels.
+          Error budget and uniform usage: how many of the finest levels polish; the finest
+          when budget-polish-iterations > 0 (else it keeps the usage), the others (never the
+          coarsest) keep their EM iterations but search plain nearest neighbours from the
+          upsampled field. 1 = the finest only. Range 1..16 levels.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.

@@ -557,8 +557,9 @@ def _verb_table_params(specs: list[dict[str, Any]], required: tuple[str, ...] = 
 
 
 def _table_params(verb: str) -> list[Param]:
-    # animate starts from its own engine defaults and owns `levels` (the solver's).
-    defaults = _exemplar._animate_defaults() if verb == "animate" else {}
+    # animate starts from its own engine defaults and owns `levels` (the solver's); stylize and
+    # stylit from the default quality preset.
+    defaults = _exemplar._animate_defaults() if verb == "animate" else _exemplar._stylize_defaults()
     params = []
     for spec in _exemplar.option_specs():
         if verb == "animate" and spec["name"] == "levels":

@@ -68,11 +68,11 @@ double number(const py::handle& value, const std::string& name) {
 }
 
 SynthesisOptions pop_synthesis_options(py::dict& kwargs) {
-    SynthesisOptions options;
-    // The quality preset first, so that explicit options override it (as on the CLI).
-    if (const py::object quality = pop(kwargs, "quality"); !quality.is_none()) {
-        options = SynthesisOptions::preset(take(parse_quality(text(quality, "quality"))));
-    }
+    // The quality preset first (default when not given), so that explicit options override it
+    // (as on the CLI).
+    const py::object quality = pop(kwargs, "quality");
+    SynthesisOptions options = SynthesisOptions::preset(
+        quality.is_none() ? Quality::Default : take(parse_quality(text(quality, "quality"))));
     for (const OptionSpec& spec : synthesis_option_specs()) {
         const std::string name = python_name(spec.name);
         const py::object value = pop(kwargs, name.c_str());

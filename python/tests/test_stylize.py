@@ -63,11 +63,13 @@ def test_a_quality_preset_is_its_options_and_explicit_options_override_it(pair):
                                    budget_max_rounds=1, finest_search_radius=8,
                                    budget_polish_levels=3)
     default = exemplar.stylize(style, [(source, target)])
+    # fast's options back at the default preset's values (and the default's own change fast
+    # does not make, the coherence of the votes).
     overridden = exemplar.stylize(style, [(source, target)], quality="fast",
-                                  finest_em_iterations=2, second_finest_em_iterations=4,
+                                  finest_em_iterations=1, second_finest_em_iterations=4,
                                   warm_search_iterations=2, budget_polish_iterations=0,
                                   em_iterations=6, budget_max_rounds=32, finest_search_radius=0,
-                                  budget_polish_levels=1)
+                                  budget_polish_levels=2, vote_coherence=2)
     np.testing.assert_array_equal(fast.nnf, spelled_out.nnf)
     assert not np.array_equal(fast.nnf, default.nnf)
     np.testing.assert_array_equal(overridden.nnf, default.nnf)
@@ -103,19 +105,20 @@ def test_apply_nnf_reproduces_the_image(pair):
     style_float = style.astype(np.float32) / np.float32(255)
     result = exemplar.stylize(style_float, [(source, target)])
     again = exemplar.apply_nnf(result.nnf, style_float, patch_size=result.nnf_patch_size,
-                               vote_size=result.vote_size)
+                               vote_size=result.vote_size, vote_coherence=result.vote_coherence)
     np.testing.assert_array_equal(again, result.image)
     # The field applies to any image on the style's grid, e.g. more channels.
     extra = exemplar.apply_nnf(result.nnf, np.dstack([style_float, style_float[..., :1]]),
-                               patch_size=result.nnf_patch_size, vote_size=result.vote_size)
+                               patch_size=result.nnf_patch_size, vote_size=result.vote_size,
+                               vote_coherence=result.vote_coherence)
     assert extra.shape == (26, 32, 4)
     np.testing.assert_array_equal(extra[..., :3], result.image)
     as_bytes = exemplar.apply_nnf(result.nnf, style, patch_size=5)
     assert as_bytes.dtype == np.uint8
-    # A run that blended its seams and weighed coherence (quality best) is reproduced with
-    # vote_seams and vote_coherence.
+    # The default preset weighs coherence (passed above); a run that also blended its seams
+    # (quality best) is reproduced with vote_seams and vote_coherence.
     assert not result.vote_seams
-    assert result.vote_coherence == 0.0
+    assert result.vote_coherence == 2.0
     best = exemplar.stylize(style_float, [(source, target)], quality="best")
     assert best.vote_seams
     assert best.vote_coherence == 2.0

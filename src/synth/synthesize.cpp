@@ -539,6 +539,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
             result.error = final_errors(L, nnf, threads);
         }
     }
+    // A cancel asked for at the run's last progress report (after its last check) cancels too.
+    if (context.cancelled()) return cancelled();
     result.image = std::move(current);
     result.nnf = std::move(nnf);
     return result;

@@ -15,11 +15,14 @@ protected:
         const CliRun r =
             run(with(stylize_args(), {"-o", path("styled.png"), "--save-nnf", path("nnf.exr")}));
         ASSERT_EQ(r.code, 0) << r.err;
-        ASSERT_NE(r.err.find("--patch-size 3"), std::string::npos) << r.err;
+        // The default preset's votes weigh coherence: the note says so.
+        ASSERT_NE(r.err.find("(apply-nnf --patch-size 3 --vote-size 3 --vote-coherence 2)"),
+                  std::string::npos)
+            << r.err;
     }
     std::vector<std::string> apply_args(const std::string& source) const {
-        return {"apply-nnf",    "--nnf", path("nnf.exr"), "--source", path(source),
-                "--patch-size", "3"};
+        return {"apply-nnf",    "--nnf", path("nnf.exr"),    "--source", path(source),
+                "--patch-size", "3",     "--vote-coherence", "2"};
     }
 };
 
@@ -41,9 +44,12 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     args[args.size() - 5] = "0";  // --final-pass-iterations 0
     const CliRun r = run(args);
     ASSERT_EQ(r.code, 0) << r.err;
-    ASSERT_NE(r.err.find("(apply-nnf --patch-size 5 --vote-size 3)"), std::string::npos) << r.err;
+    ASSERT_NE(r.err.find("(apply-nnf --patch-size 5 --vote-size 3 --vote-coherence 2)"),
+              std::string::npos)
+        << r.err;
     const std::vector<std::string> apply = {
-        "apply-nnf", "--nnf", path("nnf5.exr"), "--source", path("style.png"), "--patch-size", "5"};
+        "apply-nnf",    "--nnf", path("nnf5.exr"),   "--source", path("style.png"),
+        "--patch-size", "5",     "--vote-coherence", "2"};
     ASSERT_EQ(run(with(apply, {"-q", "-o", path("again5.png")})).code, 0);
     EXPECT_LE(max_abs_diff(read("again5.png"), read("styled5.png")), 1.0f / 255.0f);
     // Whole 5x5 patches average more: a different image.
@@ -56,8 +62,9 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     seams[seams.size() - 7] = "0";  // --final-pass-iterations 0
     const CliRun s = run(seams);
     ASSERT_EQ(s.code, 0) << s.err;
-    ASSERT_NE(s.err.find("seams blended (apply-nnf --patch-size 5 --vote-size 3 --vote-seams)"),
-              std::string::npos)
+    ASSERT_NE(
+        s.err.find("(apply-nnf --patch-size 5 --vote-size 3 --vote-seams --vote-coherence 2)"),
+        std::string::npos)
         << s.err;
     std::vector<std::string> apply_seams = apply;
     apply_seams[2] = path("seams5.exr");
@@ -65,26 +72,25 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     EXPECT_LE(max_abs_diff(read("again_s.png"), read("seams5.png")), 1.0f / 255.0f);
     ASSERT_EQ(run(with(apply_seams, {"-q", "-o", path("narrow_s.png")})).code, 0);
     EXPECT_GT(max_abs_diff(read("narrow_s.png"), read("seams5.png")), 1.0f / 255.0f);
-    // A run whose votes weigh coherence (--vote-coherence 2, in --quality best) notes it and is
-    // reproduced with it.
-    auto coherent = with(stylize_args(), {"-o", path("coh5.png"), "--save-nnf", path("coh5.exr"),
-                                          "--vote-coherence", "2"});
-    coherent[coherent.size() - 7] = "0";  // --final-pass-iterations 0
-    const CliRun c = run(coherent);
+    // A run whose votes do not weigh coherence (--vote-coherence 0; 2 in the default and best
+    // presets) notes no coherence and is reproduced without it; with it, a different image.
+    auto plain = with(stylize_args(), {"-o", path("plain5.png"), "--save-nnf", path("plain5.exr"),
+                                       "--vote-coherence", "0"});
+    plain[plain.size() - 7] = "0";  // --final-pass-iterations 0
+    const CliRun c = run(plain);
     ASSERT_EQ(c.code, 0) << c.err;
-    ASSERT_NE(c.err.find("weighing coherence 2 (apply-nnf --patch-size 5 --vote-size 3 "
-                         "--vote-coherence 2)"),
-              std::string::npos)
-        << c.err;
-    std::vector<std::string> apply_coherent = apply;
-    apply_coherent[2] = path("coh5.exr");
-    ASSERT_EQ(
-        run(with(apply_coherent, {"-q", "--vote-coherence", "2", "-o", path("again_c.png")})).code,
-        0);
-    EXPECT_LE(max_abs_diff(read("again_c.png"), read("coh5.png")), 1.0f / 255.0f);
+    ASSERT_NE(c.err.find("(apply-nnf --patch-size 5 --vote-size 3)"), std::string::npos) << c.err;
+    const std::vector<std::string> apply_plain = {
+        "apply-nnf",    "--nnf", path("plain5.exr"), "--source", path("style.png"),
+        "--patch-size", "5"};
+    ASSERT_EQ(run(with(apply_plain, {"-q", "-o", path("again_p.png")})).code, 0);
+    EXPECT_LE(max_abs_diff(read("again_p.png"), read("plain5.png")), 1.0f / 255.0f);
+    ASSERT_EQ(run(with(apply_plain, {"-q", "--vote-coherence", "2", "-o", path("coh_p.png")})).code,
+              0);
+    EXPECT_GT(max_abs_diff(read("coh_p.png"), read("plain5.png")), 1.0f / 255.0f);
     expect_failure(with(apply, {"--vote-size", "2"}), 1,
                    "--vote-size: 2 is invalid (must be 0 or odd, 0..31)");
-    expect_failure(with(apply, {"--vote-coherence", "-2"}), 1,
+    expect_failure(with(apply_plain, {"--vote-coherence", "-2"}), 1,
                    "vote-coherence: -2 is invalid (must be 0..100)");
 }
 

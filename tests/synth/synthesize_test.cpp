@@ -578,19 +578,12 @@ TEST(Synthesize, TurnedTargetPatchesAreAsClose) {
     EXPECT_GT(turned, 0.9 * before);
 }
 
-// The quality dial: Default is the default-constructed options; the other presets are the
-// defaults with exactly their listed changes, each naming a real option, in range, and changing
-// it; Fast iterates less and Best more on every level; names parse and bad names are rejected.
+// The quality dial: each preset is the default-constructed options with exactly its listed
+// changes, each naming a real option, in range, and changing it; Fast iterates less and Best more
+// than Default on every level; names parse and bad names are rejected.
 TEST(SynthesisOptions, QualityPresets) {
     const SynthesisOptions defaults;
-    const SynthesisOptions preset = SynthesisOptions::preset(Quality::Default);
-    for (const OptionSpec& spec : synthesis_option_specs()) {
-        EXPECT_EQ(get_option(preset, spec), get_option(defaults, spec)) << spec.name;
-    }
-    EXPECT_EQ(preset.usage, defaults.usage);
-    EXPECT_EQ(preset.vote, defaults.vote);
-    EXPECT_TRUE(quality_changes(Quality::Default).empty());
-    for (Quality q : {Quality::Fast, Quality::Best}) {
+    for (Quality q : {Quality::Fast, Quality::Default, Quality::Best}) {
         const SynthesisOptions o = SynthesisOptions::preset(q);
         EXPECT_TRUE(validate(o).is_ok()) << to_string(q);
         EXPECT_EQ(o.usage, defaults.usage);
@@ -614,16 +607,25 @@ TEST(SynthesisOptions, QualityPresets) {
         }
     }
     const SynthesisOptions fast = SynthesisOptions::preset(Quality::Fast);
+    const SynthesisOptions dflt = SynthesisOptions::preset(Quality::Default);
     const SynthesisOptions best = SynthesisOptions::preset(Quality::Best);
     for (int depth = 0; depth < 5; ++depth) {
-        const int d = em_iterations_of_level(defaults, depth, 5);
+        const int d = em_iterations_of_level(dflt, depth, 5);
         EXPECT_LE(em_iterations_of_level(fast, depth, 5), d) << depth;
         EXPECT_GE(em_iterations_of_level(best, depth, 5), d) << depth;
     }
-    EXPECT_LT(em_iterations_of_level(fast, 0, 5), em_iterations_of_level(defaults, 0, 5));
-    EXPECT_GT(em_iterations_of_level(best, 0, 5), em_iterations_of_level(defaults, 0, 5));
-    EXPECT_LE(fast.warm_search_iterations, defaults.warm_search_iterations);
-    EXPECT_GE(best.warm_search_iterations, defaults.warm_search_iterations);
+    EXPECT_LT(em_iterations_of_level(fast, 1, 5), em_iterations_of_level(dflt, 1, 5));
+    EXPECT_GT(em_iterations_of_level(best, 0, 5), em_iterations_of_level(dflt, 0, 5));
+    EXPECT_LE(fast.warm_search_iterations, dflt.warm_search_iterations);
+    EXPECT_GE(best.warm_search_iterations, dflt.warm_search_iterations);
+    // Default polishes the level before the finest only; fast the three finest; best the finest.
+    EXPECT_FALSE(polishes_level(dflt, 0, 5));
+    EXPECT_TRUE(polishes_level(dflt, 1, 5));
+    EXPECT_FALSE(polishes_level(dflt, 2, 5));
+    EXPECT_FALSE(polishes_level(dflt, 1, 2));  // never the coarsest
+    EXPECT_TRUE(polishes_level(fast, 0, 5) && polishes_level(fast, 2, 5));
+    EXPECT_TRUE(polishes_level(best, 0, 5) && !polishes_level(best, 1, 5));
+    EXPECT_FALSE(polishes_level(defaults, 0, 5) || polishes_level(defaults, 1, 5));
     for (Quality q : {Quality::Fast, Quality::Default, Quality::Best}) {
         auto parsed = parse_quality(to_string(q));
         ASSERT_TRUE(parsed.ok());

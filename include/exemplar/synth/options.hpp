@@ -186,11 +186,13 @@ struct SynthesisOptions {
     /// as published; the `best` preset uses it). Not in the 3x3 final pass. Measurements in
     /// docs/PERFORMANCE.md.
     int budget_polish_iterations = 0;
-    /// With budget_polish_iterations: how many of the finest levels polish. The finest runs
-    /// budget_polish_iterations; the others (never the coarsest, which starts from scratch)
-    /// keep their EM iterations but search plain nearest neighbours from the upsampled field
-    /// the usage laid out on the coarser levels. 1 (default) = the finest only; the `fast`
-    /// preset polishes three levels (a third less CPU, as much texture; docs/PERFORMANCE.md).
+    /// Error budget and uniform usage: how many of the finest levels polish. The finest polishes
+    /// when budget_polish_iterations > 0 (its iterations; else it keeps the usage); the others
+    /// up to this count (never the coarsest, which starts from scratch) keep their EM
+    /// iterations but search plain nearest neighbours from the upsampled field the usage laid
+    /// out on the coarser levels. 1 (default) = the finest only; the `fast` preset polishes
+    /// three levels (a third less CPU, as much texture), the `default` preset the level before
+    /// the finest only (docs/PERFORMANCE.md).
     int budget_polish_levels = 1;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
@@ -205,26 +207,32 @@ struct SynthesisOptions {
     float occurrence_threshold = 0.0f;
     std::uint64_t seed = 1;  ///< Random seed; same seed → same output for any thread count.
 
-    /// The options of a quality preset: the defaults above with quality_changes(quality) applied
-    /// (preset(Quality::Default) is a default-constructed SynthesisOptions). Callers that also
-    /// set options explicitly apply them after the preset, so explicit values win.
+    /// The options of a quality preset: the defaults above with quality_changes(quality) applied.
+    /// The stylize verbs (stylize, stylit; CLI, studio, Python) start from
+    /// preset(Quality::Default) when no quality is given; the defaults above are the plain
+    /// engine the other verbs (fluid, paint, fill, ...) build on. Callers that also set options
+    /// explicitly apply them after the preset, so explicit values win.
     static SynthesisOptions preset(Quality quality);
 };
+
+/// Whether the usage lays the field out with reversed retrieval (error budget, uniform), which
+/// a polish can follow with plain nearest neighbours.
+inline bool usage_lays_out(const SynthesisOptions& options) {
+    return options.usage == UsageStrategy::ErrorBudget || options.usage == UsageStrategy::Uniform;
+}
 
 /// Whether the finest level searches plain nearest neighbours instead of the error budget
 /// (SynthesisOptions::budget_polish_iterations).
 inline bool budget_polish(const SynthesisOptions& options) {
-    return (options.usage == UsageStrategy::ErrorBudget ||
-            options.usage == UsageStrategy::Uniform) &&
-           options.budget_polish_iterations > 0;
+    return usage_lays_out(options) && options.budget_polish_iterations > 0;
 }
 
 /// Whether the level `depth` steps above the finest (0 = finest) of a pyramid with `levels`
 /// levels polishes (SynthesisOptions::budget_polish_levels): the finest when budget_polish, the
 /// next ones up to budget_polish_levels but never the coarsest.
 inline bool polishes_level(const SynthesisOptions& options, int depth, int levels) {
-    if (!budget_polish(options)) return false;
-    return depth == 0 || (depth < options.budget_polish_levels && depth < levels - 1);
+    if (depth == 0) return budget_polish(options);
+    return usage_lays_out(options) && depth < options.budget_polish_levels && depth < levels - 1;
 }
 
 /// EM iterations of the level `depth` steps above the finest (0 = finest) of a pyramid with
