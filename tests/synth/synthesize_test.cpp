@@ -618,13 +618,13 @@ TEST(SynthesisOptions, QualityPresets) {
     EXPECT_GT(em_iterations_of_level(best, 0, 5), em_iterations_of_level(dflt, 0, 5));
     EXPECT_LE(fast.warm_search_iterations, dflt.warm_search_iterations);
     EXPECT_GE(best.warm_search_iterations, dflt.warm_search_iterations);
-    // Default polishes the level before the finest only; fast the three finest; best the finest.
+    // Default polishes the level before the finest only; fast the three finest; best two.
     EXPECT_FALSE(polishes_level(dflt, 0, 5));
     EXPECT_TRUE(polishes_level(dflt, 1, 5));
     EXPECT_FALSE(polishes_level(dflt, 2, 5));
     EXPECT_FALSE(polishes_level(dflt, 1, 2));  // never the coarsest
     EXPECT_TRUE(polishes_level(fast, 0, 5) && polishes_level(fast, 2, 5));
-    EXPECT_TRUE(polishes_level(best, 0, 5) && !polishes_level(best, 1, 5));
+    EXPECT_TRUE(polishes_level(best, 1, 5) && !polishes_level(best, 2, 5));
     EXPECT_FALSE(polishes_level(defaults, 0, 5) || polishes_level(defaults, 1, 5));
     for (Quality q : {Quality::Fast, Quality::Default, Quality::Best}) {
         auto parsed = parse_quality(to_string(q));
