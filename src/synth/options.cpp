@@ -76,12 +76,12 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // strays while the EM converges): more texture and closer to the exemplar on all four
     // examples, for 5-10% more CPU (issue 15, "texbynum's fidelity"). The level before the finest
     // polishes too: 18-27% less CPU and closer on all four (texbynum 0.0536 -> 0.0502 over seeds
-    // 1-3), 1-3% less texture on stylit and facestyle (issue 15, "default at half the CPU"). Default (what the stylize
-    // verbs run when no quality is given): the level before the finest polishes (plain nearest
-    // neighbours from the budget's layout), the finest keeps one budget iteration (it places the
-    // exemplar's rare patches, StyLit's highlights) and votes weigh coherence: 40-45% less CPU,
-    // as close to the exemplar or closer and as much texture or more on all four examples
-    // (issue 15, "default at half the CPU").
+    // 1-3), 1-3% less texture on stylit and facestyle (issue 15, "default at half the CPU").
+    // Default (what the stylize verbs run when no quality is given): the level before the finest
+    // polishes (plain nearest neighbours from the budget's layout), the finest keeps one budget
+    // iteration (it places the exemplar's rare patches, StyLit's highlights) and votes weigh
+    // coherence: 40-45% less CPU, as close to the exemplar or closer and as much texture or more on
+    // all four examples (issue 15, "default at half the CPU").
     static constexpr std::array kDefault{
         QualityChange{"finest-em-iterations", 1},
         QualityChange{"budget-polish-levels", 2},
