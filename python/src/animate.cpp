@@ -190,11 +190,7 @@ void register_animate(py::module_& module) {
     // signature shows these.
     module.def("_animate_defaults", [] {
         const SynthesisOptions defaults = animate::animate_synthesis_options(Quality::Default);
-        py::dict out;
-        for (const OptionSpec& spec : synthesis_option_specs()) {
-            out[py::str(python_option_name(spec))] =
-                python_option_value(spec, get_option(defaults, spec));
-        }
+        py::dict out = python_option_values(defaults);
         out["usage"] = std::string(to_string(defaults.usage));
         return out;
     });

@@ -98,6 +98,15 @@ std::string python_option_name(const OptionSpec& spec) {
     return python_name(spec.name);
 }
 
+py::dict python_option_values(const SynthesisOptions& options) {
+    py::dict out;
+    for (const OptionSpec& spec : synthesis_option_specs()) {
+        out[py::str(python_option_name(spec))] =
+            python_option_value(spec, get_option(options, spec));
+    }
+    return out;
+}
+
 py::object python_option_value(const OptionSpec& spec, double value) {
     if (!std::holds_alternative<float SynthesisOptions::*>(spec.field)) {
         return py::int_(static_cast<long long>(value));

@@ -53,6 +53,9 @@ std::string python_option_name(const OptionSpec& spec);
 /// option's float (0.95, not 0.949999988079071).
 py::object python_option_value(const OptionSpec& spec, double value);
 
+/// Every option of `options` as Python shows it: {keyword name: value}.
+py::dict python_option_values(const SynthesisOptions& options);
+
 /// The option table for Python: one dict per option (name with '_', doc, unit, min, max,
 /// default, type "int" or "float"), in the table's order.
 py::list option_specs_for_python();

@@ -413,15 +413,8 @@ void register_synthesis(py::module_& module) {
         });
     // stylize and stylit start from the default quality preset when no quality is given: the
     // signature shows its values.
-    module.def("_stylize_defaults", [] {
-        const SynthesisOptions defaults = SynthesisOptions::preset(Quality::Default);
-        py::dict out;
-        for (const OptionSpec& spec : synthesis_option_specs()) {
-            out[py::str(python_option_name(spec))] =
-                python_option_value(spec, get_option(defaults, spec));
-        }
-        return out;
-    });
+    module.def("_stylize_defaults",
+               [] { return python_option_values(SynthesisOptions::preset(Quality::Default)); });
     module.def("_stylize", &stylize, py::arg("style"), py::arg("guides"));
     module.def("_apply_nnf", &apply_nnf_py, py::arg("nnf"), py::arg("source"));
     module.def("_stylit", &stylit_py, py::arg("exemplar"), py::arg("source"), py::arg("target"));
