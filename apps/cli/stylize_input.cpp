@@ -129,11 +129,8 @@ Status load_inpainting(const StylizeJob& job, StylizeInput& loaded) {
     auto known = inpainting_known(*mask, name);
     if (!known.ok()) return known.status();
     SynthesisInput& in = loaded.input;
-    auto inpainting = inpainting_input(in.style, *known);
-    if (!inpainting.ok()) {
-        const std::string& message = inpainting.status().message();
-        return invalid_argument(name + message.substr(message.find(':')));
-    }
+    auto inpainting = inpainting_input(in.style, *known, name);
+    if (!inpainting.ok()) return inpainting.status();
     in.initial_target = std::move(inpainting->initial_target);
     in.target_mask = std::move(inpainting->target_mask);
     in.source_mask = std::move(inpainting->source_mask);

@@ -29,15 +29,16 @@ Result<Image> inpainting_known(const Image& mask, const std::string& what) {
     return known;
 }
 
-Result<SynthesisInput> inpainting_input(const Image& image, const Image& known) {
+Result<SynthesisInput> inpainting_input(const Image& image, const Image& known,
+                                        const std::string& what) {
     if (known.width() != image.width() || known.height() != image.height()) {
-        return invalid_argument("inpaint mask: is " + std::to_string(known.width()) + "x" +
+        return invalid_argument(what + ": is " + std::to_string(known.width()) + "x" +
                                 std::to_string(known.height()) + " but the image is " +
                                 std::to_string(image.width()) + "x" +
                                 std::to_string(image.height()));
     }
     if (known.channels() != 1) {
-        return invalid_argument("inpaint mask: has " + std::to_string(known.channels()) +
+        return invalid_argument(what + ": has " + std::to_string(known.channels()) +
                                 " channels (pass it through inpainting_known)");
     }
     const auto channels = static_cast<std::size_t>(image.channels());

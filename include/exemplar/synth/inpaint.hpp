@@ -4,6 +4,8 @@
 /// texture-synthesis): fill a hole of an image with patches of the rest of it, keeping the rest
 /// as it is.
 
+#include <string>
+
 #include "exemplar/core/image.hpp"
 #include "exemplar/core/status.hpp"
 #include "exemplar/synth/synthesize.hpp"
@@ -24,8 +26,9 @@ Result<Image> inpainting_known(const Image& mask, const std::string& what = "inp
 /// inside them are copied, so nothing that the hole covers, such as a painted mark, comes back);
 /// inside the hole the initial target is the mean colour of the known pixels (the covered
 /// content is not information: the painted mark's colour would pull the first matches). Guide
-/// pairs may be added (both on the image's grid). Errors: sizes that differ, `known` of more than
-/// 1 channel.
-Result<SynthesisInput> inpainting_input(const Image& image, const Image& known);
+/// pairs may be added (both on the image's grid). Errors, naming `what` (the mask): sizes that
+/// differ, `known` of more than 1 channel.
+Result<SynthesisInput> inpainting_input(const Image& image, const Image& known,
+                                        const std::string& what = "inpaint mask");
 
 }  // namespace exemplar
