@@ -74,6 +74,13 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
                       std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
                       float bound);
 
+/// The SIMD kernel of the chosen target one row at a time: each row's lanes summed, added and
+/// the bound checked before the next row. The definition of ssd_rows' SIMD value, to the bit (on
+/// 512-bit targets ssd_rows sums four rows' lanes at once and checks the bound at the end).
+float ssd_rows_per_row(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                       std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
+                       float bound);
+
 /// Whether ssd_rows uses the SIMD kernel (default true); false routes it to the scalar
 /// reference, for benchmarks and tests. Not thread-safe: set it before running.
 void set_simd_enabled(bool enabled);

@@ -13,54 +13,103 @@ namespace exemplar::synth {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// A row is processed as one run of bytes, whatever the pixel stride: Lanes(df) bytes per step,
-// the last step masked by zero weights (the bytes and floats it reads past the row are finite:
-// see kSsdSlack).
+// A row's vector of weighted squared differences, whose lanes add up to the row's sum. A row is
+// processed as one run of bytes, whatever the pixel stride: Lanes(df) bytes per step, the last
+// step masked by zero weights (the bytes and floats it reads past the row are finite: see
+// kSsdSlack).
 template <class DF>
-float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
-               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
+HWY_INLINE hn::Vec<DF> RowTerms(DF df, const std::uint8_t* a, const std::uint8_t* b, const float* w,
+                                int row_bytes) {
     const hn::RebindToSigned<DF> di;
     const hn::Rebind<std::uint8_t, DF> d8;
     const int lanes = static_cast<int>(hn::Lanes(df));
     const int full = row_bytes / lanes * lanes;
-    const auto tail_mask = hn::FirstN(df, static_cast<std::size_t>(row_bytes - full));
+    auto acc0 = hn::Zero(df);
+    auto acc1 = hn::Zero(df);
+    auto diff = [&](int i) {
+        return hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, a + i)),
+                                         hn::PromoteTo(di, hn::LoadU(d8, b + i))));
+    };
+    int i = 0;
+    // Two accumulators to shorten the dependency chain.
+    for (; i + 2 * lanes <= full; i += 2 * lanes) {
+        const auto d0 = diff(i);
+        const auto d1 = diff(i + lanes);
+        acc0 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i), d0), d0, acc0);
+        acc1 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i + lanes), d1), d1, acc1);
+    }
+    if (i < full) {
+        const auto d0 = diff(i);
+        acc0 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i), d0), d0, acc0);
+        i += lanes;
+    }
+    if (i < row_bytes) {
+        const auto d1 = diff(i);
+        const auto tail_mask = hn::FirstN(df, static_cast<std::size_t>(row_bytes - full));
+        const auto wt = hn::IfThenElseZero(tail_mask, hn::LoadU(df, w + i));
+        acc1 = hn::MulAdd(hn::Mul(wt, d1), d1, acc1);
+    }
+    return hn::Add(acc0, acc1);
+}
+
+// Row after row: each row's lanes summed, added to the running sum, and the bound checked.
+template <class DF>
+HWY_INLINE float SumRows(DF df, const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                         std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
+                         float bound) {
     float sum = 0.0f;
     const float* w = weights.data;
     for (int r = 0; r < rows; ++r, a += a_stride, b += b_stride, w += weights.row_step) {
-        auto acc0 = hn::Zero(df);
-        auto acc1 = hn::Zero(df);
-        auto diff = [&](int i) {
-            return hn::ConvertTo(df, hn::Sub(hn::PromoteTo(di, hn::LoadU(d8, a + i)),
-                                             hn::PromoteTo(di, hn::LoadU(d8, b + i))));
-        };
-        int i = 0;
-        // Two accumulators to shorten the dependency chain.
-        for (; i + 2 * lanes <= full; i += 2 * lanes) {
-            const auto d0 = diff(i);
-            const auto d1 = diff(i + lanes);
-            acc0 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i), d0), d0, acc0);
-            acc1 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i + lanes), d1), d1, acc1);
-        }
-        if (i < full) {
-            const auto d0 = diff(i);
-            acc0 = hn::MulAdd(hn::Mul(hn::LoadU(df, w + i), d0), d0, acc0);
-            i += lanes;
-        }
-        if (i < row_bytes) {
-            const auto d1 = diff(i);
-            const auto wt = hn::IfThenElseZero(tail_mask, hn::LoadU(df, w + i));
-            acc1 = hn::MulAdd(hn::Mul(wt, d1), d1, acc1);
-        }
-        sum += hn::GetLane(hn::SumOfLanes(df, hn::Add(acc0, acc1)));
+        sum += hn::GetLane(hn::SumOfLanes(df, RowTerms(df, a, b, w, row_bytes)));
         if (sum > bound) return sum;
     }
     return sum;
+}
+
+// SumRows for any shape: the definition of ssd_rows' SIMD value.
+template <class DF>
+HWY_NOINLINE float SsdRowsPerRowT(DF df, const std::uint8_t* a, std::size_t a_stride,
+                                  const std::uint8_t* b, std::size_t b_stride, int rows,
+                                  int row_bytes, SsdWeights weights, float bound) {
+    return SumRows(df, a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
+}
+
+// The same operations with the shape known when compiling: the row loop unrolled, the vector
+// steps and the tail's mask fixed, no loop counters.
+template <int kRows, int kRowBytes, class DF>
+HWY_NOINLINE float SsdRowsFixedT(DF df, const std::uint8_t* a, std::size_t a_stride,
+                                 const std::uint8_t* b, std::size_t b_stride, SsdWeights weights,
+                                 float bound) {
+    return SumRows(df, a, a_stride, b, b_stride, kRows, kRowBytes, weights, bound);
+}
+
+// 5x5 patches of 3, 4 and 6 channels (colour; colour and one guide; colour and a colour guide),
+// most of a search's distances; every other shape takes the loops.
+template <class DF>
+float SsdRowsT(DF df, const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
+    if (rows == 5) {
+        switch (row_bytes) {
+            case 15: return SsdRowsFixedT<5, 15>(df, a, a_stride, b, b_stride, weights, bound);
+            case 20: return SsdRowsFixedT<5, 20>(df, a, a_stride, b, b_stride, weights, bound);
+            case 30: return SsdRowsFixedT<5, 30>(df, a, a_stride, b, b_stride, weights, bound);
+            default: break;
+        }
+    }
+    return SsdRowsPerRowT(df, a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
 }
 
 float SsdRows(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
               std::size_t b_stride, int rows, int row_bytes, SsdWeights weights, float bound) {
     const hn::ScalableTag<float> df;
     return SsdRowsT(df, a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
+}
+
+float SsdRowsPerRow(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                    std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
+                    float bound) {
+    const hn::ScalableTag<float> df;
+    return SsdRowsPerRowT(df, a, a_stride, b, b_stride, rows, row_bytes, weights, bound);
 }
 
 // Two roundings per term, (w * d) * d, as the scalar expression: Mul, never MulAdd.
@@ -85,6 +134,7 @@ namespace exemplar::synth {
 
 HWY_EXPORT(SsdRows);
 HWY_EXPORT(SsdTerms);
+HWY_EXPORT(SsdRowsPerRow);
 
 namespace {
 std::atomic<bool> g_simd{true};
@@ -132,6 +182,13 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
         if (sum > bound) return sum;
     }
     return sum;
+}
+
+float ssd_rows_per_row(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
+                       std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
+                       float bound) {
+    return HWY_DYNAMIC_DISPATCH(SsdRowsPerRow)(a, a_stride, b, b_stride, rows, row_bytes, weights,
+                                               bound);
 }
 
 void ssd_terms_scalar(const std::uint8_t* a, const std::uint8_t* b, const float* w, int n,

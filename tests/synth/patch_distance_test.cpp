@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -391,6 +392,49 @@ TEST(SsdRows, SimdMatchesScalarForEveryShape) {
     EXPECT_GT(cut, full * 0.3f);
     EXPECT_LT(cut, full);
     EXPECT_NE(std::string(simd_target_name()), "");
+}
+
+// ssd_rows (on 512-bit targets: four rows' lane sums at once, the bound checked at the end) gives
+// the per-row kernel's value to the bit, for any shape, weights and bound, including the partial
+// sum returned when a bound is exceeded after any row.
+TEST(SsdRows, EqualsThePerRowKernelExactly) {
+    const std::vector<std::uint8_t> a = random_codes(16384, 31), b = random_codes(16384, 32);
+    const std::vector<float> w = random_weights(8192, 33);
+    ASSERT_TRUE(simd_enabled());
+    int compared = 0;
+    for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
+         targets &= targets - 1) {
+        const int64_t target = targets & -targets;
+        hwy::SetSupportedTargetsForTest(target);
+        set_simd_enabled(true);
+        for (int row_bytes : {1, 3, 15, 16, 17, 20, 30, 32, 33, 40, 48, 75, 80, 160}) {
+            for (int rows = 1; rows <= 17; ++rows) {
+                for (std::size_t row_step : {std::size_t{0}, std::size_t{173}}) {
+                    const SsdWeights weights{w.data() + 3, row_step};
+                    const float full =
+                        ssd_rows_per_row(a.data(), 900, b.data() + 7, 901, rows, row_bytes, weights,
+                                         std::numeric_limits<float>::infinity());
+                    ASSERT_GT(full, 0.0f);
+                    // Bounds that stop the sum after every row, and none.
+                    for (float f : {0.0f, 0.05f, 0.2f, 0.35f, 0.5f, 0.65f, 0.8f, 0.95f, 2.0f}) {
+                        const float bound = full * f;
+                        const float per_row = ssd_rows_per_row(a.data(), 900, b.data() + 7, 901,
+                                                               rows, row_bytes, weights, bound);
+                        const float batched = ssd_rows(a.data(), 900, b.data() + 7, 901, rows,
+                                                       row_bytes, weights, bound);
+                        ASSERT_EQ(std::bit_cast<std::uint32_t>(batched),
+                                  std::bit_cast<std::uint32_t>(per_row))
+                            << hwy::TargetName(target) << " row_bytes=" << row_bytes
+                            << " rows=" << rows << " step=" << row_step << " bound=" << f;
+                        ++compared;
+                    }
+                }
+            }
+        }
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    set_simd_enabled(true);
+    EXPECT_GT(compared, 4000);
 }
 
 // The terms the gathered path adds in the reference's order: the same floats as the scalar
