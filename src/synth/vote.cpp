@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "coherence.hpp"
 #include "exemplar/core/check.hpp"
 #include "exemplar/core/parallel.hpp"
 #include "patch_distance.hpp"
@@ -147,8 +148,22 @@ std::vector<float> weights_of(const Nnf& nnf, const std::uint8_t* active, int pa
         // The same sums from the tables, the loops turned inside out: the row's pixels take
         // the terms of one neighbour offset after another (each pixel's in the reference's
         // order), so that a pixel's chain of dependent additions does not stall the loop.
-        std::vector<const double*> factors(static_cast<std::size_t>(w), nullptr);
         std::vector<double> agree(static_cast<std::size_t>(w), 0.0);
+        if (angles.size() == 1) {
+            // Unrotated: the SIMD kernel, several pixels per step (coherence.hpp).
+            add_coherence_row(
+                CoherenceRow{nnf.matches().data(), active, w, h, r, reach, table.data(), row}, y,
+                agree.data());
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = y0 + x;
+                if (votes(i)) {
+                    weights[i] =
+                        static_cast<float>(weights[i] * agree[static_cast<std::size_t>(x)]);
+                }
+            }
+            return;
+        }
+        std::vector<const double*> factors(static_cast<std::size_t>(w), nullptr);
         for (int x = 0; x < w; ++x) {
             const std::size_t i = y0 + x;
             if (!votes(i)) continue;

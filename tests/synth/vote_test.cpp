@@ -1,6 +1,7 @@
 #include "vote.hpp"
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,9 +51,10 @@ TEST(VoteWeights, CoherenceCountsConsistentNeighbours) {
 
 // The tabulated coherence weights against the reference, compared bit for bit: a field of
 // pieces (coherent inside, matches one or a few pixels off and far apart across their borders),
-// no-match and inactive entries; unrotated, 32 steps and a few other angles, one angle per pixel
-// (more than the tables hold); σ² of 0.5, 2 and 100 (wide tables); 3x3 and
-// 5x5 patches; 1 and 3 threads.
+// no-match and inactive entries (or no mask); unrotated (the SIMD kernel of coherence.hpp, rows
+// of 41: whole vectors and a padded tail on every target), 32 steps and a few other angles, one
+// angle per pixel (more than the tables hold); σ² of 0.5, 2 and 100 (wide tables); 3x3 and 5x5
+// patches; 1 and 3 threads.
 TEST(VoteWeights, TabulatedCoherenceEqualsReferenceExactly) {
     const int w = 41, h = 27;
     Nnf nnf(w, h);
@@ -81,13 +83,23 @@ TEST(VoteWeights, TabulatedCoherenceEqualsReferenceExactly) {
         }
         for (float coherence : {0.5f, 2.0f, 100.0f}) {
             for (int patch_size : {3, 5}) {
-                const std::vector<float> expected =
-                    vote_weights_reference(field, active.data(), patch_size, coherence, 1);
-                for (int threads : {1, 3}) {
-                    EXPECT_EQ(vote_weights(field, active.data(), patch_size, coherence, threads),
-                              expected)
-                        << "rotation " << rotation << ", sigma^2 " << coherence << ", patch "
-                        << patch_size << ", " << threads << " threads";
+                for (const std::uint8_t* mask : {static_cast<const std::uint8_t*>(active.data()),
+                                                 static_cast<const std::uint8_t*>(nullptr)}) {
+                    const std::vector<float> expected =
+                        vote_weights_reference(field, mask, patch_size, coherence, 1);
+                    // Every SIMD target this CPU supports.
+                    for (int64_t targets = hwy::SupportedTargets() & HWY_TARGETS; targets != 0;
+                         targets &= targets - 1) {
+                        hwy::SetSupportedTargetsForTest(targets & -targets);
+                        for (int threads : {1, 3}) {
+                            EXPECT_EQ(vote_weights(field, mask, patch_size, coherence, threads),
+                                      expected)
+                                << "rotation " << rotation << ", sigma^2 " << coherence
+                                << ", patch " << patch_size << ", " << threads << " threads, mask "
+                                << (mask != nullptr) << ", " << hwy::TargetName(targets & -targets);
+                        }
+                    }
+                    hwy::SetSupportedTargetsForTest(0);
                 }
             }
         }
