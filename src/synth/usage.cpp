@@ -267,7 +267,7 @@ public:
 
     // nearest_free_[t]: the free target pixel nearest to t (t itself if free; -1 if none).
     void update_nearest_free() {
-        nearest_free_ = nearest_set_pixel(free_, L_.tw, L_.th, s_.threads);
+        nearest_set_pixel(free_, L_.tw, L_.th, s_.threads, nearest_free_);
     }
 
     void rebuild_free_lists() {
@@ -932,15 +932,16 @@ KneeFit fit_knee(std::span<const float> sorted_errors) {
 // The separable exact transform of Felzenszwalb and Huttenlocher (2012): the nearest set pixel of
 // every column, then per row the lower envelope of the parabolas (x - x')^2 + dy(x')^2. Both
 // passes are parallel over fixed pieces, so the result does not depend on the thread count.
-std::vector<int> nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h,
-                                   int threads) {
+void nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h, int threads,
+                       std::vector<int>& nearest) {
     EXEMPLAR_CHECK_EQ(set.size(), static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     auto index = [w](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
                static_cast<std::size_t>(x);
     };
-    // Pass 1: per pixel, the row of the nearest set pixel in its column (-1: none).
-    std::vector<int> column_row(set.size(), -1);
+    // Pass 1: per pixel, the row of the nearest set pixel in its column (-1: none). Every entry
+    // is written, so the buffer needs no filling first.
+    std::vector<int> column_row(set.size());
     constexpr int kChunk = 64;
     parallel_for(0, (w + kChunk - 1) / kChunk, threads, [&](int chunk) {
         const int x0 = chunk * kChunk, x1 = std::min(w, x0 + kChunk);
@@ -964,40 +965,55 @@ std::vector<int> nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, 
             }
         }
     });
-    // Pass 2: per row, the lower envelope of the columns' parabolas.
-    std::vector<int> nearest(set.size(), -1);
-    parallel_for(0, h, threads, [&](int y) {
+    // Pass 2: per row, the lower envelope of the columns' parabolas (each row writes all of its
+    // entries). The envelope's arrays and each column's parabola at x = 0 serve a whole range
+    // of rows.
+    nearest.resize(set.size());
+    parallel_for_ranges(0, h, threads, 1, [&](int y_begin, int y_end) {
         std::vector<int> v(static_cast<std::size_t>(w));         // envelope's columns
         std::vector<double> z(static_cast<std::size_t>(w) + 1);  // their left borders
-        auto g = [&](int x) {
-            const double dy = y - column_row[index(x, y)];
-            return dy * dy + static_cast<double>(x) * x;
-        };
-        int k = -1;
-        for (int q = 0; q < w; ++q) {
-            if (column_row[index(q, y)] < 0) continue;
-            double border = -std::numeric_limits<double>::infinity();
-            while (k >= 0) {
-                const int p = v[static_cast<std::size_t>(k)];
-                border = (g(q) - g(p)) / (2.0 * (q - p));
-                if (border > z[static_cast<std::size_t>(k)]) break;
-                --k;
-                border = -std::numeric_limits<double>::infinity();
+        std::vector<double> g(static_cast<std::size_t>(w));      // dy² + x² per column
+        for (int y = y_begin; y < y_end; ++y) {
+            const int* rows = column_row.data() + index(0, y);
+            int* out = nearest.data() + index(0, y);
+            int k = -1;
+            for (int q = 0; q < w; ++q) {
+                if (rows[q] < 0) continue;
+                const double dy = y - rows[q];
+                const double gq = dy * dy + static_cast<double>(q) * q;
+                g[static_cast<std::size_t>(q)] = gq;
+                double border = -std::numeric_limits<double>::infinity();
+                while (k >= 0) {
+                    const int p = v[static_cast<std::size_t>(k)];
+                    border = (gq - g[static_cast<std::size_t>(p)]) / (2.0 * (q - p));
+                    if (border > z[static_cast<std::size_t>(k)]) break;
+                    --k;
+                    border = -std::numeric_limits<double>::infinity();
+                }
+                ++k;
+                v[static_cast<std::size_t>(k)] = q;
+                z[static_cast<std::size_t>(k)] = border;
             }
-            ++k;
-            v[static_cast<std::size_t>(k)] = q;
-            z[static_cast<std::size_t>(k)] = border;
-        }
-        if (k < 0) return;
-        const int count = k + 1;
-        z[static_cast<std::size_t>(count)] = std::numeric_limits<double>::infinity();
-        k = 0;
-        for (int x = 0; x < w; ++x) {
-            while (z[static_cast<std::size_t>(k) + 1] < x) ++k;
-            const int column = v[static_cast<std::size_t>(k)];
-            nearest[index(x, y)] = static_cast<int>(index(column, column_row[index(column, y)]));
+            if (k < 0) {
+                std::fill_n(out, w, -1);
+                continue;
+            }
+            const int count = k + 1;
+            z[static_cast<std::size_t>(count)] = std::numeric_limits<double>::infinity();
+            k = 0;
+            for (int x = 0; x < w; ++x) {
+                while (z[static_cast<std::size_t>(k) + 1] < x) ++k;
+                const int column = v[static_cast<std::size_t>(k)];
+                out[x] = static_cast<int>(index(column, rows[column]));
+            }
         }
     });
+}
+
+std::vector<int> nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h,
+                                   int threads) {
+    std::vector<int> nearest;
+    nearest_set_pixel(set, w, h, threads, nearest);
     return nearest;
 }
 

@@ -75,6 +75,9 @@ SearchStats search(const SearchSetup& setup, Nnf& nnf);
 /// Per pixel of a w x h grid, the index of the nearest pixel (Euclidean) whose `set` entry is
 /// non-zero (itself if set), or -1 if none is set. Ties go to a fixed one, whatever `threads`.
 std::vector<int> nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h, int threads);
+/// The same into `nearest` (resized to w x h; its storage is reused from call to call).
+void nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h, int threads,
+                       std::vector<int>& nearest);
 
 /// Number of active target pixels whose NNF centre is each source pixel (sw*sh counts).
 std::vector<float> usage_counts(const Level& level, const Nnf& nnf);
