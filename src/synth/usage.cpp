@@ -322,9 +322,9 @@ public:
         return parallel_sort(std::move(keys), threads);
     }
 
-    // Forward search from the free targets to the sources in `allowed` (nullptr = any);
-    // returns one candidate per free target, sorted by error.
-    std::vector<Candidate> forward_candidates(const std::uint8_t* allowed, int pass) {
+    // Forward search from the free targets to the sources in `allowed` (nullptr = any): their
+    // entries of the field become the nearest neighbours found.
+    void forward_search(const std::uint8_t* allowed, int pass) {
         ForwardProblem problem = forward_problem(s_, free_.data(), allowed, nullptr);
         std::vector<std::vector<int>> lists;
         if (allowed != nullptr) {
@@ -339,6 +339,11 @@ public:
         const std::uint64_t key = hash_keys(s_.key, 0xF0F0, static_cast<std::uint64_t>(pass));
         evaluate_field(problem, nnf_, key, s_.threads);
         run_patchmatch(problem, nnf_, search_iterations(s_), hash_keys(key, 1), s_.threads);
+    }
+
+    // forward_search, then one candidate per free target, sorted by error.
+    std::vector<Candidate> forward_candidates(const std::uint8_t* allowed, int pass) {
+        forward_search(allowed, pass);
         std::vector<Candidate> out;
         for (std::size_t t = 0; t < free_.size(); ++t) {
             if (!free_[t]) continue;
@@ -493,7 +498,7 @@ SearchStats search_uniform(const SearchSetup& setup, Nnf& nnf) {
         // sources all vanished). Those few keep unconstrained nearest neighbours.
         if (assigned == 0) {
             stats.forward_assigned += rr.free_count();
-            rr.forward_candidates(nullptr, pass + 1);
+            rr.forward_search(nullptr, pass + 1);
             break;
         }
     }
@@ -844,7 +849,7 @@ SearchStats search_error_budget(const SearchSetup& setup, Nnf& nnf) {
     rr.end_rounds();
     if (rr.free_count() > 0) {
         stats.forward_assigned = rr.free_count();
-        rr.forward_candidates(nullptr, 0);
+        rr.forward_search(nullptr, 0);
     }
     if (setup.options.coherence_sweeps > 0) merge_stray_matches(setup, nnf);
     return stats;
