@@ -257,6 +257,55 @@ TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
     EXPECT_TRUE(same_pixels(run(2, 2, nullptr), run(1, 2, nullptr)));
 }
 
+// polish-patch-size: the levels that polish (here the finest two) search and vote with wider
+// patches, the coarsest keeps patch-size (its frames do not change); the finest NNF reports the
+// width; a level too small for the wider patch keeps patch-size; the same bytes for any thread
+// count.
+TEST(Synthesize, PolishPatchSizeWidensOnlyThePolishedLevels) {
+    SynthesisInput in = identity_input(64, 56);
+    in.guides[0].target = testing::texture(68, 60, 3, 9);
+    in.guides[1].target = testing::ramp(68, 60);
+    SynthesisOptions opt;
+    opt.levels = 3;
+    opt.budget_polish_iterations = 1;
+    opt.budget_polish_levels = 2;
+    auto run = [&](int polish_patch_size, int threads, std::vector<LevelImage>* frames) {
+        opt.polish_patch_size = polish_patch_size;
+        DebugSink sink;
+        if (frames != nullptr) {
+            sink = [&](const DebugFrame& f) { frames->push_back(LevelImage{f.level, *f.current}); };
+        }
+        auto result = synthesize(in, opt, RunContext{threads}, sink);
+        EXPECT_TRUE(result.ok());
+        return result.ok() ? *result : SynthesisResult{};
+    };
+    std::vector<LevelImage> frames_five, frames_seven;
+    const SynthesisResult five = run(0, 2, &frames_five);
+    const SynthesisResult seven = run(7, 2, &frames_seven);
+    EXPECT_EQ(five.nnf_patch_size, 5);
+    EXPECT_EQ(seven.nnf_patch_size, 7);
+    ASSERT_EQ(frames_five.size(), frames_seven.size());  // the same iterations per level
+    bool middle_differs = false;
+    for (std::size_t i = 0; i < frames_five.size(); ++i) {
+        ASSERT_EQ(frames_five[i].level, frames_seven[i].level);
+        const bool same = same_pixels(frames_five[i].current, frames_seven[i].current);
+        if (frames_five[i].level == 0) {
+            EXPECT_TRUE(same) << "frame " << i;
+        } else if (frames_five[i].level == 1 && !same) {
+            middle_differs = true;
+        }
+    }
+    EXPECT_TRUE(middle_differs);
+    EXPECT_FALSE(same_pixels(five.image, seven.image));
+    EXPECT_TRUE(same_pixels(run(7, 1, nullptr).image, seven.image));
+    // 6x6: one level, which polishes but has no room for a 7x7 patch; 5x5 patches as without.
+    in = identity_input(6, 6);
+    opt.levels = 0;
+    const SynthesisResult small = run(7, 2, nullptr);
+    EXPECT_EQ(small.nnf_patch_size, 5);
+    EXPECT_TRUE(same_pixels(small.image, run(0, 2, nullptr).image));
+}
+
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
 // the style, and the result does not depend on the thread count.
 TEST(Synthesize, CompressedGuidesKeepIdentityAndDeterminism) {
@@ -618,13 +667,18 @@ TEST(SynthesisOptions, QualityPresets) {
     EXPECT_GT(em_iterations_of_level(best, 0, 5), em_iterations_of_level(dflt, 0, 5));
     EXPECT_LE(fast.warm_search_iterations, dflt.warm_search_iterations);
     EXPECT_GE(best.warm_search_iterations, dflt.warm_search_iterations);
-    // Default polishes the level before the finest only; fast the three finest; best two.
+    // Default polishes the level before the finest only; fast and best the three finest, best
+    // with 7x7 patches there (where they fit) and patch-size elsewhere.
     EXPECT_FALSE(polishes_level(dflt, 0, 5));
     EXPECT_TRUE(polishes_level(dflt, 1, 5));
     EXPECT_FALSE(polishes_level(dflt, 2, 5));
     EXPECT_FALSE(polishes_level(dflt, 1, 2));  // never the coarsest
     EXPECT_TRUE(polishes_level(fast, 0, 5) && polishes_level(fast, 2, 5));
-    EXPECT_TRUE(polishes_level(best, 1, 5) && !polishes_level(best, 2, 5));
+    EXPECT_TRUE(polishes_level(best, 2, 5) && !polishes_level(best, 3, 5));
+    EXPECT_EQ(patch_size_of_level(best, 2, 5, true), 7);
+    EXPECT_EQ(patch_size_of_level(best, 2, 5, false), 5);
+    EXPECT_EQ(patch_size_of_level(best, 3, 5, true), 5);
+    EXPECT_EQ(patch_size_of_level(dflt, 1, 5, true), 5);
     EXPECT_FALSE(polishes_level(defaults, 0, 5) || polishes_level(defaults, 1, 5));
     for (Quality q : {Quality::Fast, Quality::Default, Quality::Best}) {
         auto parsed = parse_quality(to_string(q));
