@@ -247,8 +247,7 @@ inline bool polishes_level(const SynthesisOptions& options, int depth, int level
 /// Patch width of the level `depth` steps above the finest (0 = finest) of a pyramid with
 /// `levels` levels: polish_patch_size on a level that polishes (polishes_level) when set and
 /// `fits` it, else patch_size.
-inline int patch_size_of_level(const SynthesisOptions& options, int depth, int levels,
-                               bool fits) {
+inline int patch_size_of_level(const SynthesisOptions& options, int depth, int levels, bool fits) {
     if (options.polish_patch_size > 0 && fits && polishes_level(options, depth, levels)) {
         return options.polish_patch_size;
     }
