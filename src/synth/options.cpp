@@ -78,9 +78,9 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // polishes too: 18-27% less CPU and closer on all four (texbynum 0.0536 -> 0.0502 over seeds
     // 1-3), 1-3% less texture on stylit and facestyle (issue 15, "default at half the CPU").
     // The three finest levels polish, with 7x7 patches: their seams fall where wider strips of the
-    // exemplar agree, 9-19% closer on all five examples (texbynum 0.0502 -> 0.0448 over seeds
-    // 1-3, 12% closer than ebsynth), as much texture (stylit -1%, texbynum +4%), for -3..+30% CPU
-    // (issue 15, "best 10% closer than ebsynth").
+    // exemplar agree, 10-19% closer on all five examples (texbynum 0.0502 -> 0.0448 over seeds
+    // 1-3, 12% closer than ebsynth), as much texture (stylit -1%, texbynum +4%), for 5-16% more CPU
+    // (issue 15, "`best` 10% closer than ebsynth on texbynum").
     // Default (what the stylize verbs run when no quality is given): the level before the finest
     // polishes (plain nearest neighbours from the budget's layout), the finest keeps one budget
     // iteration (it places the exemplar's rare patches, StyLit's highlights) and votes weigh

@@ -191,8 +191,9 @@ struct SynthesisOptions {
     /// up to this count (never the coarsest, which starts from scratch) keep their EM
     /// iterations but search plain nearest neighbours from the upsampled field the usage laid
     /// out on the coarser levels. 1 (default) = the finest only; the `fast` preset polishes
-    /// three levels (a third less CPU, as much texture), the `default` preset the level before
-    /// the finest only (docs/PERFORMANCE.md).
+    /// three levels (a third less CPU, as much texture), the `best` preset three with 7x7
+    /// patches (polish_patch_size), the `default` preset the level before the finest only
+    /// (docs/PERFORMANCE.md).
     int budget_polish_levels = 1;
     /// Error budget and uniform usage: patch width of the levels that polish (see
     /// budget_polish_levels), each where it fits (its sides at least the patch); odd, 0 =
