@@ -110,6 +110,7 @@ def stylize(
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 2,
+    polish_patch_size: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -250,6 +251,11 @@ def stylize(
           when budget-polish-iterations > 0 (else it keeps the usage), the others (never the
           coarsest) keep their EM iterations but search plain nearest neighbours from the
           upsampled field. 1 = the finest only. Range 1..16 levels.
+      polish_patch_size (int, default 0)
+          Error budget and uniform usage: patch width of the levels that polish (where it
+          fits); wider patches place the seams between the pieces the usage laid out where
+          wider strips of the exemplar agree: closer to the exemplar, for more CPU; odd, 0 =
+          patch-size. Range 0..31 px.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -351,6 +357,7 @@ def stylit(
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 2,
+    polish_patch_size: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -477,6 +484,11 @@ def stylit(
           when budget-polish-iterations > 0 (else it keeps the usage), the others (never the
           coarsest) keep their EM iterations but search plain nearest neighbours from the
           upsampled field. 1 = the finest only. Range 1..16 levels.
+      polish_patch_size (int, default 0)
+          Error budget and uniform usage: patch width of the levels that polish (where it
+          fits); wider patches place the seams between the pieces the usage laid out where
+          wider strips of the exemplar agree: closer to the exemplar, for more CPU; odd, 0 =
+          patch-size. Range 0..31 px.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.
@@ -601,6 +613,7 @@ def animate(
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 1,
+    polish_patch_size: int = 0,
     budget_max_rounds: int = 32,
     budget_focus: float = 1.0,
     occurrence_strength: float = 0.05,
@@ -753,6 +766,11 @@ def animate(
           when budget-polish-iterations > 0 (else it keeps the usage), the others (never the
           coarsest) keep their EM iterations but search plain nearest neighbours from the
           upsampled field. 1 = the finest only. Range 1..16 levels.
+      polish_patch_size (int, default 0)
+          Error budget and uniform usage: patch width of the levels that polish (where it
+          fits); wider patches place the seams between the pieces the usage laid out where
+          wider strips of the exemplar agree: closer to the exemplar, for more CPU; odd, 0 =
+          patch-size. Range 0..31 px.
       budget_max_rounds (int, default 32)
           Error budget: maximal reversed-retrieval rounds per EM iteration. Range 1..1000
           rounds.

@@ -422,14 +422,24 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
                   synth::automatic_levels(min_side, options.patch_size, options.pyramid_ratio),
                   synth::max_levels(min_side, options.patch_size, options.pyramid_ratio, rotated));
     synth::LevelBuilder builder(in, options, levels, threads);
+    // Patch width of level l (polish_patch_size where it polishes and fits, as patch_size must).
+    const int polish_room =
+        options.polish_patch_size > 0
+            ? synth::max_levels(min_side, options.polish_patch_size, options.pyramid_ratio, rotated)
+            : 0;
+    const auto level_patch_size = [&](int l) {
+        const int depth = levels - 1 - l;
+        return patch_size_of_level(options, depth, levels, depth < polish_room);
+    };
 
-    // Progress is proportional to target pixels x EM iterations (x patch area, final pass).
+    // Progress is proportional to target pixels x EM iterations x patch area.
     double total_work = 0.0;
     for (int l = 0; l < levels; ++l) {
-        const int depth = levels - 1 - l;
+        const int depth = levels - 1 - l, p = level_patch_size(l);
         total_work += static_cast<double>(pyramid_level_size(tw, options.pyramid_ratio, depth)) *
                       pyramid_level_size(th, options.pyramid_ratio, depth) *
-                      em_iterations_of_level(options, depth, levels);
+                      em_iterations_of_level(options, depth, levels) * p * p /
+                      (options.patch_size * options.patch_size);
     }
     if (options.final_pass_iterations > 0 && options.patch_size > 3) {
         total_work += static_cast<double>(tw) * th * options.final_pass_iterations * 9.0 /
@@ -446,7 +456,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
     const std::vector<std::string> style_channel_names = in.style.channel_names();
     for (int l = 0; l < levels; ++l) {
         if (context.cancelled()) return cancelled();
-        synth::Level L = builder.build(l);
+        synth::Level L = builder.build(l, level_patch_size(l));
         if (l == levels - 1) L.search_radius = options.finest_search_radius;
         if (!in.source_labels.empty() && L.target_label.empty()) {
             result.unlabelled_levels.push_back(levels - 1 - l);

@@ -463,6 +463,12 @@ TEST_F(Cli, OutOfRangeValues) {
                    "finest-first-round-iterations: 1.5 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--final-vote-size", "4"}), 1,
                    "final-vote-size: 4 is invalid (must be 0 or odd, 0..31)");
+    expect_failure(with(stylize_args(), {"--polish-patch-size", "6"}), 1,
+                   "polish-patch-size: 6 is invalid (must be 0 or odd, 3..31)");
+    expect_failure(with(stylize_args(), {"--polish-patch-size", "1"}), 1,
+                   "polish-patch-size: 1 is invalid (must be 0 or odd, 3..31)");
+    expect_failure(with(stylize_args(), {"--polish-patch-size", "33"}), 1,
+                   "polish-patch-size: 33 is invalid (must be 0 or odd, 3..31)");
     expect_failure(with(stylize_args(), {"--quality", "superb"}), 1,
                    "quality: 'superb' is invalid (must be one of fast, default, best)");
     expect_failure(with(stylize_args(), {"--coherence-sweeps", "-1"}), 1,

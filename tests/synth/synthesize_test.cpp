@@ -89,19 +89,49 @@ struct LevelImage {
 };
 
 // synthesize with `threads`; with `frames`, collects every iteration's level and B'.
-Image synthesize_frames(const SynthesisInput& in, const SynthesisOptions& opt, int threads,
-                        std::vector<LevelImage>* frames) {
+SynthesisResult synthesize_result(const SynthesisInput& in, const SynthesisOptions& opt,
+                                  int threads, std::vector<LevelImage>* frames) {
     DebugSink sink;
     if (frames != nullptr) {
         sink = [&](const DebugFrame& f) { frames->push_back(LevelImage{f.level, *f.current}); };
     }
     auto result = synthesize(in, opt, RunContext{threads}, sink);
     EXPECT_TRUE(result.ok());
-    return result.ok() ? result->image : Image();
+    return result.ok() ? std::move(result).value() : SynthesisResult{};
+}
+
+Image synthesize_frames(const SynthesisInput& in, const SynthesisOptions& opt, int threads,
+                        std::vector<LevelImage>* frames) {
+    return synthesize_result(in, opt, threads, frames).image;
 }
 
 bool same_pixels(const Image& a, const Image& b) {
     return std::equal(a.data().begin(), a.data().end(), b.data().begin(), b.data().end());
+}
+
+// Two runs' frames, level by level: the coarsest level's the same, some of the next level's not.
+void expect_the_level_above_the_coarsest_differs(const std::vector<LevelImage>& a,
+                                                 const std::vector<LevelImage>& b) {
+    ASSERT_EQ(a.size(), b.size());  // the same iterations per level
+    bool middle_differs = false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        ASSERT_EQ(a[i].level, b[i].level);
+        const bool same = same_pixels(a[i].current, b[i].current);
+        if (a[i].level == 0) {
+            EXPECT_TRUE(same) << "frame " << i;
+        } else if (a[i].level == 1 && !same) {
+            middle_differs = true;
+        }
+    }
+    EXPECT_TRUE(middle_differs);
+}
+
+// The identity on a target a little larger than the style: three levels of 64x56 and more.
+SynthesisInput three_level_input() {
+    SynthesisInput in = identity_input(64, 56);
+    in.guides[0].target = testing::texture(68, 60, 3, 9);
+    in.guides[1].target = testing::ramp(68, 60);
+    return in;
 }
 
 // finest-first-round-iterations: 0 means warm-search-iterations; another count changes the
@@ -224,9 +254,7 @@ TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
 // budget-polish-levels: the level before the finest polishes too (its frames change, the
 // coarsest's do not); never the coarsest level; the same bytes for any thread count.
 TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
-    SynthesisInput in = identity_input(64, 56);
-    in.guides[0].target = testing::texture(68, 60, 3, 9);
-    in.guides[1].target = testing::ramp(68, 60);
+    const SynthesisInput in = three_level_input();
     SynthesisOptions opt;
     opt.levels = 3;
     opt.budget_polish_iterations = 1;
@@ -237,24 +265,43 @@ TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
     std::vector<LevelImage> frames_one, frames_two;
     const Image one = run(1, 2, &frames_one);
     const Image two = run(2, 2, &frames_two);
-    ASSERT_EQ(frames_one.size(), frames_two.size());  // the same iterations per level
-    bool middle_differs = false;
-    for (std::size_t i = 0; i < frames_one.size(); ++i) {
-        EXPECT_EQ(frames_one[i].level, frames_two[i].level);
-        const bool same = same_pixels(frames_one[i].current, frames_two[i].current);
-        if (frames_one[i].level == 0) {
-            EXPECT_TRUE(same) << "frame " << i;
-        } else if (frames_one[i].level == 1 && !same) {
-            middle_differs = true;
-        }
-    }
-    EXPECT_TRUE(middle_differs);
+    expect_the_level_above_the_coarsest_differs(frames_one, frames_two);
     EXPECT_FALSE(same_pixels(one, two));
     EXPECT_TRUE(same_pixels(run(2, 1, nullptr), two));
     // More levels than the pyramid's: the coarsest still runs the usage strategy.
     EXPECT_TRUE(same_pixels(run(3, 2, nullptr), two));
     opt.levels = 2;
     EXPECT_TRUE(same_pixels(run(2, 2, nullptr), run(1, 2, nullptr)));
+}
+
+// polish-patch-size: the levels that polish (here the finest two) search and vote with wider
+// patches, the coarsest keeps patch-size (its frames do not change); the finest NNF reports the
+// width; a level too small for the wider patch keeps patch-size; the same bytes for any thread
+// count.
+TEST(Synthesize, PolishPatchSizeWidensOnlyThePolishedLevels) {
+    SynthesisInput in = three_level_input();
+    SynthesisOptions opt;
+    opt.levels = 3;
+    opt.budget_polish_iterations = 1;
+    opt.budget_polish_levels = 2;
+    auto run = [&](int polish_patch_size, int threads, std::vector<LevelImage>* frames) {
+        opt.polish_patch_size = polish_patch_size;
+        return synthesize_result(in, opt, threads, frames);
+    };
+    std::vector<LevelImage> frames_five, frames_seven;
+    const SynthesisResult five = run(0, 2, &frames_five);
+    const SynthesisResult seven = run(7, 2, &frames_seven);
+    EXPECT_EQ(five.nnf_patch_size, 5);
+    EXPECT_EQ(seven.nnf_patch_size, 7);
+    expect_the_level_above_the_coarsest_differs(frames_five, frames_seven);
+    EXPECT_FALSE(same_pixels(five.image, seven.image));
+    EXPECT_TRUE(same_pixels(run(7, 1, nullptr).image, seven.image));
+    // 6x6: one level, which polishes but has no room for a 7x7 patch; 5x5 patches as without.
+    in = identity_input(6, 6);
+    opt.levels = 0;
+    const SynthesisResult small = run(7, 2, nullptr);
+    EXPECT_EQ(small.nnf_patch_size, 5);
+    EXPECT_TRUE(same_pixels(small.image, run(0, 2, nullptr).image));
 }
 
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
@@ -618,13 +665,18 @@ TEST(SynthesisOptions, QualityPresets) {
     EXPECT_GT(em_iterations_of_level(best, 0, 5), em_iterations_of_level(dflt, 0, 5));
     EXPECT_LE(fast.warm_search_iterations, dflt.warm_search_iterations);
     EXPECT_GE(best.warm_search_iterations, dflt.warm_search_iterations);
-    // Default polishes the level before the finest only; fast the three finest; best two.
+    // Default polishes the level before the finest only; fast and best the three finest, best
+    // with 7x7 patches there (where they fit) and patch-size elsewhere.
     EXPECT_FALSE(polishes_level(dflt, 0, 5));
     EXPECT_TRUE(polishes_level(dflt, 1, 5));
     EXPECT_FALSE(polishes_level(dflt, 2, 5));
     EXPECT_FALSE(polishes_level(dflt, 1, 2));  // never the coarsest
     EXPECT_TRUE(polishes_level(fast, 0, 5) && polishes_level(fast, 2, 5));
-    EXPECT_TRUE(polishes_level(best, 1, 5) && !polishes_level(best, 2, 5));
+    EXPECT_TRUE(polishes_level(best, 2, 5) && !polishes_level(best, 3, 5));
+    EXPECT_EQ(patch_size_of_level(best, 2, 5, true), 7);
+    EXPECT_EQ(patch_size_of_level(best, 2, 5, false), 5);
+    EXPECT_EQ(patch_size_of_level(best, 3, 5, true), 5);
+    EXPECT_EQ(patch_size_of_level(dflt, 1, 5, true), 5);
     EXPECT_FALSE(polishes_level(defaults, 0, 5) || polishes_level(defaults, 1, 5));
     for (Quality q : {Quality::Fast, Quality::Default, Quality::Best}) {
         auto parsed = parse_quality(to_string(q));

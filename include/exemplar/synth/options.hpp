@@ -191,9 +191,19 @@ struct SynthesisOptions {
     /// up to this count (never the coarsest, which starts from scratch) keep their EM
     /// iterations but search plain nearest neighbours from the upsampled field the usage laid
     /// out on the coarser levels. 1 (default) = the finest only; the `fast` preset polishes
-    /// three levels (a third less CPU, as much texture), the `default` preset the level before
-    /// the finest only (docs/PERFORMANCE.md).
+    /// three levels (a third less CPU, as much texture), the `best` preset three with 7x7
+    /// patches (polish_patch_size), the `default` preset the level before the finest only
+    /// (docs/PERFORMANCE.md).
     int budget_polish_levels = 1;
+    /// Error budget and uniform usage: patch width of the levels that polish (see
+    /// budget_polish_levels), each where it fits (its sides at least the patch); odd, 0 =
+    /// patch_size (default). Their plain nearest-neighbour search then matches wider patches
+    /// against the pieces the usage laid out, so a piece continues into its neighbours over a
+    /// wider band and the seams between pieces fall where wider strips of the exemplar agree:
+    /// closer to the exemplar, as much texture, for the wider patches' CPU (the `best` preset
+    /// uses 7; measurements in docs/PERFORMANCE.md). The finest level's NNF then has this patch
+    /// size (SynthesisResult::nnf_patch_size).
+    int polish_patch_size = 0;
     /// Error budget: maximal number of reversed-retrieval rounds per EM iteration.
     int budget_max_rounds = 32;
     /// Error budget: once fewer than this fraction of the target patches are still free, a
@@ -233,6 +243,16 @@ inline bool budget_polish(const SynthesisOptions& options) {
 inline bool polishes_level(const SynthesisOptions& options, int depth, int levels) {
     if (depth == 0) return budget_polish(options);
     return usage_lays_out(options) && depth < options.budget_polish_levels && depth < levels - 1;
+}
+
+/// Patch width of the level `depth` steps above the finest (0 = finest) of a pyramid with
+/// `levels` levels: polish_patch_size on a level that polishes (polishes_level) when set and
+/// `fits` it, else patch_size.
+inline int patch_size_of_level(const SynthesisOptions& options, int depth, int levels, bool fits) {
+    if (options.polish_patch_size > 0 && fits && polishes_level(options, depth, levels)) {
+        return options.polish_patch_size;
+    }
+    return options.patch_size;
 }
 
 /// EM iterations of the level `depth` steps above the finest (0 = finest) of a pyramid with
