@@ -107,6 +107,10 @@ def stylize(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    piece_sweeps: int = 0,
+    finest_piece_sweeps: int = 0,
+    piece_weight: float = 1.0,
+    piece_levels: int = 3,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 2,
@@ -233,6 +237,22 @@ def stylize(
           level in a piece smaller than half a patch) takes a neighbour's shifted match
           where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
           published). Range 0..100 iterations.
+      piece_sweeps (int, default 0)
+          Sweeps after every search on the levels above the finest (up to piece-levels) in
+          which each target takes, of its own match and its neighbours' shifted matches
+          (within the vote's footprint), the one of least patch distance + piece-weight x
+          mean distance x (neighbours it does not continue): larger exemplar pieces, fewer
+          seams, closer to the exemplar; 0 = off. Range 0..100 iterations.
+      finest_piece_sweeps (int, default 0)
+          The same sweeps on the finest level (over the last vote's footprint); 0 = none.
+          Range 0..100 iterations.
+      piece_weight (float, default 1.0)
+          Piece sweeps: cost of a neighbour a match does not continue, relative to the
+          field's mean patch distance; larger = larger pieces, guides followed less. Range
+          0.0..100.0.
+      piece_levels (int, default 3)
+          How many of the finest levels run piece sweeps, the finest included (never the
+          coarsest). Range 1..16 levels.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or
@@ -348,6 +368,10 @@ def stylit(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    piece_sweeps: int = 0,
+    finest_piece_sweeps: int = 0,
+    piece_weight: float = 1.0,
+    piece_levels: int = 3,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 2,
@@ -460,6 +484,22 @@ def stylit(
           level in a piece smaller than half a patch) takes a neighbour's shifted match
           where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
           published). Range 0..100 iterations.
+      piece_sweeps (int, default 0)
+          Sweeps after every search on the levels above the finest (up to piece-levels) in
+          which each target takes, of its own match and its neighbours' shifted matches
+          (within the vote's footprint), the one of least patch distance + piece-weight x
+          mean distance x (neighbours it does not continue): larger exemplar pieces, fewer
+          seams, closer to the exemplar; 0 = off. Range 0..100 iterations.
+      finest_piece_sweeps (int, default 0)
+          The same sweeps on the finest level (over the last vote's footprint); 0 = none.
+          Range 0..100 iterations.
+      piece_weight (float, default 1.0)
+          Piece sweeps: cost of a neighbour a match does not continue, relative to the
+          field's mean patch distance; larger = larger pieces, guides followed less. Range
+          0.0..100.0.
+      piece_levels (int, default 3)
+          How many of the finest levels run piece sweeps, the finest included (never the
+          coarsest). Range 1..16 levels.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or
@@ -598,6 +638,10 @@ def animate(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    piece_sweeps: int = 0,
+    finest_piece_sweeps: int = 0,
+    piece_weight: float = 1.0,
+    piece_levels: int = 3,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 1,
@@ -736,6 +780,22 @@ def animate(
           level in a piece smaller than half a patch) takes a neighbour's shifted match
           where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
           published). Range 0..100 iterations.
+      piece_sweeps (int, default 0)
+          Sweeps after every search on the levels above the finest (up to piece-levels) in
+          which each target takes, of its own match and its neighbours' shifted matches
+          (within the vote's footprint), the one of least patch distance + piece-weight x
+          mean distance x (neighbours it does not continue): larger exemplar pieces, fewer
+          seams, closer to the exemplar; 0 = off. Range 0..100 iterations.
+      finest_piece_sweeps (int, default 0)
+          The same sweeps on the finest level (over the last vote's footprint); 0 = none.
+          Range 0..100 iterations.
+      piece_weight (float, default 1.0)
+          Piece sweeps: cost of a neighbour a match does not continue, relative to the
+          field's mean patch distance; larger = larger pieces, guides followed less. Range
+          0.0..100.0.
+      piece_levels (int, default 3)
+          How many of the finest levels run piece sweeps, the finest included (never the
+          coarsest). Range 1..16 levels.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or

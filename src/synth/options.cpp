@@ -140,7 +140,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 28> kSpecs{{
+const std::array<OptionSpec, 32> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -214,6 +214,22 @@ const std::array<OptionSpec, 28> kSpecs{{
      "smaller than half a patch) takes a neighbour's shifted match where that is closer: fewer "
      "seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
+    {"piece-sweeps",
+     "Sweeps after every search on the levels above the finest (up to piece-levels) in which "
+     "each target takes, of its own match and its neighbours' shifted matches (within the vote's "
+     "footprint), the one of least patch distance + piece-weight x mean distance x (neighbours it "
+     "does not continue): larger exemplar pieces, fewer seams, closer to the exemplar; 0 = off.",
+     "iterations", 0, 100, &O::piece_sweeps},
+    {"finest-piece-sweeps",
+     "The same sweeps on the finest level (over the last vote's footprint); 0 = none.",
+     "iterations", 0, 100, &O::finest_piece_sweeps},
+    {"piece-weight",
+     "Piece sweeps: cost of a neighbour a match does not continue, relative to the field's mean "
+     "patch distance; larger = larger pieces, guides followed less.",
+     "", 0, 100, &O::piece_weight},
+    {"piece-levels",
+     "How many of the finest levels run piece sweeps, the finest included (never the coarsest).",
+     "levels", 1, 16, &O::piece_levels},
     {"uniform-coherence-sweeps",
      "Uniform usage: sweeps after the assignment in which every stray match takes a neighbour's "
      "shifted source where that lowers the summed error, moving to it or swapping sources with "

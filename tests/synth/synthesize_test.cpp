@@ -221,12 +221,18 @@ TEST(Synthesize, BudgetPolishOnlyChangesTheFinestLevel) {
     EXPECT_TRUE(same(run(0).back().current, run(3).back().current));
 }
 
-// budget-polish-levels: the level before the finest polishes too (its frames change, the
-// coarsest's do not); never the coarsest level; the same bytes for any thread count.
-TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
+// A 64x56 style onto a 68x60 target (texture and ramp guides), for runs over three levels.
+SynthesisInput three_level_input() {
     SynthesisInput in = identity_input(64, 56);
     in.guides[0].target = testing::texture(68, 60, 3, 9);
     in.guides[1].target = testing::ramp(68, 60);
+    return in;
+}
+
+// budget-polish-levels: the level before the finest polishes too (its frames change, the
+// coarsest's do not); never the coarsest level; the same bytes for any thread count.
+TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
+    const SynthesisInput in = three_level_input();
     SynthesisOptions opt;
     opt.levels = 3;
     opt.budget_polish_iterations = 1;
@@ -255,6 +261,76 @@ TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
     EXPECT_TRUE(same_pixels(run(3, 2, nullptr), two));
     opt.levels = 2;
     EXPECT_TRUE(same_pixels(run(2, 2, nullptr), run(1, 2, nullptr)));
+}
+
+// Piece sweeps run on their levels only: piece-sweeps on the levels above the finest up to
+// piece-levels (never the coarsest), finest-piece-sweeps on the finest; with both the final field
+// has fewer seams (4-neighbours that do not continue each other) and the same bytes come out for
+// any thread count.
+TEST(Synthesize, PieceSweepsRunOnTheirLevelsAndMergePieces) {
+    const SynthesisInput in = three_level_input();
+    SynthesisOptions opt;
+    opt.levels = 3;
+    struct Run {
+        Image image;
+        Nnf nnf;
+        std::vector<LevelImage> frames;
+    };
+    auto run = [&](int sweeps, int finest_sweeps, int threads) {
+        opt.piece_sweeps = sweeps;
+        opt.finest_piece_sweeps = finest_sweeps;
+        Run r;
+        auto result = synthesize(in, opt, RunContext{threads}, [&](const DebugFrame& f) {
+            r.frames.push_back(LevelImage{f.level, *f.current});
+        });
+        EXPECT_TRUE(result.ok());
+        if (result.ok()) r.image = result->image, r.nnf = result->nnf;
+        return r;
+    };
+    const auto seams = [](const Nnf& nnf) {
+        int n = 0;
+        for (int y = 0; y < nnf.height(); ++y) {
+            for (int x = 0; x < nnf.width(); ++x) {
+                const Match& m = nnf.at(x, y);
+                if (x + 1 < nnf.width()) {
+                    const Match& r = nnf.at(x + 1, y);
+                    n += r.x == m.x + 1 && r.y == m.y ? 0 : 1;
+                }
+                if (y + 1 < nnf.height()) {
+                    const Match& b = nnf.at(x, y + 1);
+                    n += b.x == m.x && b.y == m.y + 1 ? 0 : 1;
+                }
+            }
+        }
+        return n;
+    };
+    const Run off = run(0, 0, 2);
+    const Run coarse = run(2, 0, 2);
+    const Run finest = run(0, 1, 2);
+    const Run both = run(2, 1, 2);
+    ASSERT_EQ(off.frames.size(), coarse.frames.size());
+    ASSERT_EQ(off.frames.size(), finest.frames.size());
+    bool middle_differs = false;
+    for (std::size_t i = 0; i < off.frames.size(); ++i) {
+        const int level = off.frames[i].level;
+        // The coarsest never sweeps; the finest-only run changes nothing before the finest.
+        if (level == 0) {
+            EXPECT_TRUE(same_pixels(off.frames[i].current, coarse.frames[i].current)) << i;
+        }
+        if (level < 2) {
+            EXPECT_TRUE(same_pixels(off.frames[i].current, finest.frames[i].current)) << i;
+        }
+        if (level == 1) {
+            middle_differs |= !same_pixels(off.frames[i].current, coarse.frames[i].current);
+        }
+    }
+    EXPECT_TRUE(middle_differs);
+    EXPECT_FALSE(same_pixels(off.image, finest.image));
+    EXPECT_LT(seams(both.nnf), seams(off.nnf));
+    EXPECT_TRUE(same_pixels(run(2, 1, 1).image, both.image));
+    // piece-levels 1: only the finest level sweeps.
+    opt.piece_levels = 1;
+    EXPECT_TRUE(same_pixels(run(2, 1, 2).image, finest.image));
 }
 
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
