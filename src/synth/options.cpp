@@ -77,6 +77,10 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // examples, for 5-10% more CPU (issue 15, "texbynum's fidelity"). The level before the finest
     // polishes too: 18-27% less CPU and closer on all four (texbynum 0.0536 -> 0.0502 over seeds
     // 1-3), 1-3% less texture on stylit and facestyle (issue 15, "default at half the CPU").
+    // Its searches are followed by piece sweeps (two on the levels above the finest, one on the
+    // finest): larger exemplar pieces, closer to the exemplar on all five examples (stylit -13%,
+    // facestyle -7%, texbynum -3%) with 3-20% more texture, for 4-16% more CPU (issue 15, "Larger
+    // exemplar pieces").
     // Default (what the stylize verbs run when no quality is given): the level before the finest
     // polishes (plain nearest neighbours from the budget's layout), the finest keeps one budget
     // iteration (it places the exemplar's rare patches, StyLit's highlights) and votes weigh
@@ -104,6 +108,8 @@ std::span<const QualityChange> quality_changes(Quality quality) {
         QualityChange{"budget-polish-iterations", 4},
         QualityChange{"final-vote-seams", 1},
         QualityChange{"vote-coherence", 2},
+        QualityChange{"piece-sweeps", 2},
+        QualityChange{"finest-piece-sweeps", 1},
         QualityChange{"budget-polish-levels", 2},
     };
     switch (quality) {

@@ -175,11 +175,11 @@ struct SynthesisOptions {
     /// many similar patches is marginally closest, so neighbours take unrelated sources: a
     /// mosaic of small pieces whose seams no exemplar patch contains. The sweeps merge them into
     /// larger pieces (Image Analogies' coherence, Ashikhmin's coherent candidates; Kwatra's
-    /// graph-cut textures place seams by the same kind of energy). 0 = off (default; measurements
-    /// in docs/performance-history.md, "Larger exemplar pieces").
+    /// graph-cut textures place seams by the same kind of energy). 0 = off (default; the `best`
+    /// preset uses 2; measurements in docs/performance-history.md, "Larger exemplar pieces").
     int piece_sweeps = 0;
     /// The same sweeps on the finest level (its searches' window: the last vote's footprint);
-    /// 0 = none (default).
+    /// 0 = none (default; the `best` preset uses 1).
     int finest_piece_sweeps = 0;
     /// The Potts weight of piece_sweeps: the cost of one neighbour a match does not continue,
     /// relative to the field's mean patch distance.
