@@ -220,7 +220,9 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        /*evaluated=*/it == 0};
         synth::search(setup, nnf);
         const bool last_vote = end_run && it + 1 == iterations;
-        if (piece_sweeps > 0) {
+        const bool sweeps_now =
+            finest || options.piece_iterations == 0 || it + options.piece_iterations >= iterations;
+        if (piece_sweeps > 0 && sweeps_now) {
             // The window of the seams counted: the footprint of the vote that follows.
             const int footprint = last_vote ? last_vote_size(options, L.patch_size) : L.patch_size;
             synth::grow_pieces(L, nnf, piece_sweeps, options.piece_weight, footprint / 2, threads);

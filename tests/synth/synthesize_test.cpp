@@ -264,7 +264,8 @@ TEST(Synthesize, BudgetPolishLevelsNeverPolishTheCoarsest) {
 }
 
 // Piece sweeps run on their levels only: piece-sweeps on the levels above the finest up to
-// piece-levels (never the coarsest), finest-piece-sweeps on the finest; with both the final field
+// piece-levels (never the coarsest; after their last piece-iterations iterations, 0 = all),
+// finest-piece-sweeps on the finest; with both the final field
 // has fewer seams (4-neighbours that do not continue each other) and the same bytes come out for
 // any thread count.
 TEST(Synthesize, PieceSweepsRunOnTheirLevelsAndMergePieces) {
@@ -328,6 +329,19 @@ TEST(Synthesize, PieceSweepsRunOnTheirLevelsAndMergePieces) {
     EXPECT_FALSE(same_pixels(off.image, finest.image));
     EXPECT_LT(seams(both.nnf), seams(off.nnf));
     EXPECT_TRUE(same_pixels(run(2, 1, 1).image, both.image));
+    // piece-iterations 1: the level above the finest sweeps after its last iteration only (its
+    // earlier frames as without sweeps), the coarsest never.
+    opt.piece_iterations = 1;
+    const Run last = run(2, 0, 2);
+    ASSERT_EQ(off.frames.size(), last.frames.size());
+    for (std::size_t i = 0; i + 1 < off.frames.size(); ++i) {
+        if (off.frames[i].level == 1 && off.frames[i + 1].level == 1) {
+            EXPECT_TRUE(same_pixels(off.frames[i].current, last.frames[i].current)) << i;
+        }
+    }
+    EXPECT_FALSE(same_pixels(off.image, last.image));
+    EXPECT_FALSE(same_pixels(coarse.image, last.image));
+    opt.piece_iterations = 0;
     // piece-levels 1: only the finest level sweeps.
     opt.piece_levels = 1;
     EXPECT_TRUE(same_pixels(run(2, 1, 2).image, finest.image));

@@ -175,15 +175,22 @@ struct SynthesisOptions {
     /// many similar patches is marginally closest, so neighbours take unrelated sources: a
     /// mosaic of small pieces whose seams no exemplar patch contains. The sweeps merge them into
     /// larger pieces (Image Analogies' coherence, Ashikhmin's coherent candidates; Kwatra's
-    /// graph-cut textures place seams by the same kind of energy). 0 = off (default; the `best`
-    /// preset uses 2; measurements in docs/performance-history.md, "Larger exemplar pieces").
+    /// graph-cut textures place seams by the same kind of energy). 0 = off (default; the `default`
+    /// and `best` presets use 2; measurements in docs/performance-history.md, "Larger exemplar
+    /// pieces").
     int piece_sweeps = 0;
     /// The same sweeps on the finest level (its searches' window: the last vote's footprint);
-    /// 0 = none (default; the `best` preset uses 1).
+    /// 0 = none (default; the `default` and `best` presets use 1).
     int finest_piece_sweeps = 0;
     /// The Potts weight of piece_sweeps: the cost of one neighbour a match does not continue,
     /// relative to the field's mean patch distance.
     float piece_weight = 1.0f;
+    /// Of each level above the finest, how many of the last EM iterations are followed by piece
+    /// sweeps; 0 = every iteration (default; the `best` preset). The `default` preset sweeps
+    /// after each level's last iteration only: every sweep also lets pieces grow across region
+    /// edges the guides hardly mark (a painted shadow up a self-shadowed object), and one sweep
+    /// per level keeps most of the gain.
+    int piece_iterations = 0;
     /// How many of the finest levels run piece sweeps, the finest included (never the coarsest,
     /// whose field starts at random): 3 = the finest and the two before it.
     int piece_levels = 3;
