@@ -237,12 +237,17 @@ void fidelity_map(const Image& map, const Image& regions, const Nnf* nnf, const 
     // Per region, by the first guide's strongest channel (texbynum: sea, rock, sky).
     const int nc = std::min(3, regions.channels());
     std::vector<double> region_sum(nc, 0.0), region_seam(nc, 0.0), region_count(nc, 0.0);
+    // Per region and place (seam, near a seam, in a piece): pixels and summed distance.
+    std::vector<std::array<double, 3>> place_count(nc), place_sum(nc);
     for (std::size_t i = 0; i < map.pixel_count(); ++i) {
         const float* p = regions.pixel(static_cast<int>(i % w), static_cast<int>(i / w));
         const int r = static_cast<int>(std::max_element(p, p + nc) - p);
         region_sum[r] += map.data()[i];
         region_seam[r] += seam[i] ? 1.0 : 0.0;
         region_count[r] += 1.0;
+        const int place = seam[i] ? 0 : seam_band[i] ? 1 : 2;
+        place_count[r][place] += 1.0;
+        place_sum[r][place] += map.data()[i];
     }
     for (int r = 0; r < nc; ++r) {
         if (region_count[r] == 0.0) continue;
@@ -251,6 +256,16 @@ void fidelity_map(const Image& map, const Image& regions, const Nnf* nnf, const 
             "mean, own mean %.4f\n",
             r, 100.0 * region_count[r] / n, 100.0 * region_seam[r] / region_count[r],
             region_sum[r] / n, region_sum[r] / region_count[r]);
+        if (nnf == nullptr) continue;
+        std::printf(
+            "    seam / near a seam / in a piece: %4.1f / %4.1f / %4.1f%% of its pixels, "
+            "own mean %.4f / %.4f / %.4f\n",
+            100.0 * place_count[r][0] / region_count[r],
+            100.0 * place_count[r][1] / region_count[r],
+            100.0 * place_count[r][2] / region_count[r],
+            place_sum[r][0] / std::max(1.0, place_count[r][0]),
+            place_sum[r][1] / std::max(1.0, place_count[r][1]),
+            place_sum[r][2] / std::max(1.0, place_count[r][2]));
     }
     const Status saved = save_image(out, path);
     if (!saved.is_ok()) std::fprintf(stderr, "%s\n", saved.message().c_str());

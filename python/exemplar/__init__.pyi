@@ -99,7 +99,7 @@ def stylize(
     finest_first_round_iterations: int = 1,
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
-    final_vote_seams: int = 0,
+    final_vote_seams: int = 1,
     vote_coherence: float = 2.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
@@ -107,6 +107,11 @@ def stylize(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    piece_sweeps: int = 2,
+    finest_piece_sweeps: int = 1,
+    piece_weight: float = 1.0,
+    piece_iterations: int = 1,
+    piece_levels: int = 3,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 2,
@@ -201,7 +206,7 @@ def stylize(
       final_vote_size (int, default 3)
           The last vote averages only the central NxN pixels of each patch, which keeps the
           exemplar's fine grain; odd, 0 = the whole patch. Range 0..31 px.
-      final_vote_seams (int, default 0)
+      final_vote_seams (int, default 1)
           1: where the patches of the last vote's footprint disagree on a pixel's source (a
           seam between pieces), the pixel takes the plain average of the whole patches
           instead: seams blend, pieces keep their grain; closer to the exemplar, a little
@@ -234,6 +239,25 @@ def stylize(
           level in a piece smaller than half a patch) takes a neighbour's shifted match
           where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
           published). Range 0..100 iterations.
+      piece_sweeps (int, default 2)
+          Sweeps after every search on the levels above the finest (up to piece-levels) in
+          which each target takes, of its own match and its neighbours' shifted matches
+          (within the vote's footprint), the one of least patch distance + piece-weight x
+          mean distance x (neighbours it does not continue): larger exemplar pieces, fewer
+          seams, closer to the exemplar; 0 = off. Range 0..100 iterations.
+      finest_piece_sweeps (int, default 1)
+          The same sweeps on the finest level (over the last vote's footprint); 0 = none.
+          Range 0..100 iterations.
+      piece_weight (float, default 1.0)
+          Piece sweeps: cost of a neighbour a match does not continue, relative to the
+          field's mean patch distance; larger = larger pieces, guides followed less. Range
+          0.0..100.0.
+      piece_iterations (int, default 1)
+          Of each level above the finest, how many of the last EM iterations are followed by
+          piece sweeps; 0 = every iteration. Range 0..100 iterations.
+      piece_levels (int, default 3)
+          How many of the finest levels run piece sweeps, the finest included (never the
+          coarsest). Range 1..16 levels.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or
@@ -346,7 +370,7 @@ def stylit(
     finest_first_round_iterations: int = 1,
     final_pass_iterations: int = 0,
     final_vote_size: int = 3,
-    final_vote_seams: int = 0,
+    final_vote_seams: int = 1,
     vote_coherence: float = 2.0,
     vote_histogram: float = 0.0,
     style_weight: float = 1.0,
@@ -354,6 +378,11 @@ def stylit(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    piece_sweeps: int = 2,
+    finest_piece_sweeps: int = 1,
+    piece_weight: float = 1.0,
+    piece_iterations: int = 1,
+    piece_levels: int = 3,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 2,
@@ -434,7 +463,7 @@ def stylit(
       final_vote_size (int, default 3)
           The last vote averages only the central NxN pixels of each patch, which keeps the
           exemplar's fine grain; odd, 0 = the whole patch. Range 0..31 px.
-      final_vote_seams (int, default 0)
+      final_vote_seams (int, default 1)
           1: where the patches of the last vote's footprint disagree on a pixel's source (a
           seam between pieces), the pixel takes the plain average of the whole patches
           instead: seams blend, pieces keep their grain; closer to the exemplar, a little
@@ -467,6 +496,25 @@ def stylit(
           level in a piece smaller than half a patch) takes a neighbour's shifted match
           where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
           published). Range 0..100 iterations.
+      piece_sweeps (int, default 2)
+          Sweeps after every search on the levels above the finest (up to piece-levels) in
+          which each target takes, of its own match and its neighbours' shifted matches
+          (within the vote's footprint), the one of least patch distance + piece-weight x
+          mean distance x (neighbours it does not continue): larger exemplar pieces, fewer
+          seams, closer to the exemplar; 0 = off. Range 0..100 iterations.
+      finest_piece_sweeps (int, default 1)
+          The same sweeps on the finest level (over the last vote's footprint); 0 = none.
+          Range 0..100 iterations.
+      piece_weight (float, default 1.0)
+          Piece sweeps: cost of a neighbour a match does not continue, relative to the
+          field's mean patch distance; larger = larger pieces, guides followed less. Range
+          0.0..100.0.
+      piece_iterations (int, default 1)
+          Of each level above the finest, how many of the last EM iterations are followed by
+          piece sweeps; 0 = every iteration. Range 0..100 iterations.
+      piece_levels (int, default 3)
+          How many of the finest levels run piece sweeps, the finest included (never the
+          coarsest). Range 1..16 levels.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or
@@ -610,6 +658,11 @@ def animate(
     guide_pca: float = 0.0,
     budget_coverage: float = 0.95,
     coherence_sweeps: int = 2,
+    piece_sweeps: int = 0,
+    finest_piece_sweeps: int = 0,
+    piece_weight: float = 1.0,
+    piece_iterations: int = 0,
+    piece_levels: int = 3,
     uniform_coherence_sweeps: int = 0,
     budget_polish_iterations: int = 0,
     budget_polish_levels: int = 1,
@@ -749,6 +802,25 @@ def animate(
           level in a piece smaller than half a patch) takes a neighbour's shifted match
           where that is closer: fewer seams, closer to the exemplar; 0 = off (StyLit as
           published). Range 0..100 iterations.
+      piece_sweeps (int, default 0)
+          Sweeps after every search on the levels above the finest (up to piece-levels) in
+          which each target takes, of its own match and its neighbours' shifted matches
+          (within the vote's footprint), the one of least patch distance + piece-weight x
+          mean distance x (neighbours it does not continue): larger exemplar pieces, fewer
+          seams, closer to the exemplar; 0 = off. Range 0..100 iterations.
+      finest_piece_sweeps (int, default 0)
+          The same sweeps on the finest level (over the last vote's footprint); 0 = none.
+          Range 0..100 iterations.
+      piece_weight (float, default 1.0)
+          Piece sweeps: cost of a neighbour a match does not continue, relative to the
+          field's mean patch distance; larger = larger pieces, guides followed less. Range
+          0.0..100.0.
+      piece_iterations (int, default 0)
+          Of each level above the finest, how many of the last EM iterations are followed by
+          piece sweeps; 0 = every iteration. Range 0..100 iterations.
+      piece_levels (int, default 3)
+          How many of the finest levels run piece sweeps, the finest included (never the
+          coarsest). Range 1..16 levels.
       uniform_coherence_sweeps (int, default 0)
           Uniform usage: sweeps after the assignment in which every stray match takes a
           neighbour's shifted source where that lowers the summed error, moving to it or

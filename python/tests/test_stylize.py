@@ -105,20 +105,26 @@ def test_apply_nnf_reproduces_the_image(pair):
     style_float = style.astype(np.float32) / np.float32(255)
     result = exemplar.stylize(style_float, [(source, target)])
     again = exemplar.apply_nnf(result.nnf, style_float, patch_size=result.nnf_patch_size,
-                               vote_size=result.vote_size, vote_coherence=result.vote_coherence)
+                               vote_size=result.vote_size, vote_coherence=result.vote_coherence,
+                               vote_seams=result.vote_seams)
     np.testing.assert_array_equal(again, result.image)
     # The field applies to any image on the style's grid, e.g. more channels.
     extra = exemplar.apply_nnf(result.nnf, np.dstack([style_float, style_float[..., :1]]),
                                patch_size=result.nnf_patch_size, vote_size=result.vote_size,
-                               vote_coherence=result.vote_coherence)
+                               vote_coherence=result.vote_coherence, vote_seams=result.vote_seams)
     assert extra.shape == (26, 32, 4)
     np.testing.assert_array_equal(extra[..., :3], result.image)
     as_bytes = exemplar.apply_nnf(result.nnf, style, patch_size=5)
     assert as_bytes.dtype == np.uint8
-    # The default preset weighs coherence (passed above); a run that also blended its seams
-    # (quality best) is reproduced with vote_seams and vote_coherence.
-    assert not result.vote_seams
+    # The default preset weighs coherence and blends its seams (passed above); a run that does
+    # not blend them is reproduced without vote_seams, and quality best with both.
+    assert result.vote_seams
     assert result.vote_coherence == 2.0
+    narrow = exemplar.stylize(style_float, [(source, target)], final_vote_seams=0)
+    assert not narrow.vote_seams
+    again = exemplar.apply_nnf(narrow.nnf, style_float, patch_size=narrow.nnf_patch_size,
+                               vote_size=narrow.vote_size, vote_coherence=narrow.vote_coherence)
+    np.testing.assert_array_equal(again, narrow.image)
     best = exemplar.stylize(style_float, [(source, target)], quality="best")
     assert best.vote_seams
     assert best.vote_coherence == 2.0

@@ -81,15 +81,24 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // exemplar agree, 10-19% closer on all five examples (texbynum 0.0502 -> 0.0448 over seeds
     // 1-3, 12% closer than ebsynth), as much texture (stylit -1%, texbynum +4%), for 5-16% more CPU
     // (issue 15, "`best` 10% closer than ebsynth on texbynum").
+    // Its searches are followed by piece sweeps (two on the levels above the finest, one on the
+    // finest): larger exemplar pieces, closer to the exemplar on all five examples (stylit -13%,
+    // facestyle -7%, texbynum -3%) with 3-20% more texture, for 4-16% more CPU (issue 15, "Larger
+    // exemplar pieces").
     // Default (what the stylize verbs run when no quality is given): the level before the finest
     // polishes (plain nearest neighbours from the budget's layout), the finest keeps one budget
     // iteration (it places the exemplar's rare patches, StyLit's highlights) and votes weigh
     // coherence: 40-45% less CPU, as close to the exemplar or closer and as much texture or more on
-    // all four examples (issue 15, "default at half the CPU").
+    // all four examples (issue 15, "default at half the CPU"). Piece sweeps after each level's
+    // last search (two above the finest, one on it) and seams blended in the last vote: 15-22%
+    // closer to the exemplar on all five examples with as much texture or more, for about 5% more
+    // CPU (issue 15, "Larger exemplar pieces"; sweeping after every iteration, as `best` does,
+    // loses RenderStylit's cow to the painted shadow).
     static constexpr std::array kDefault{
-        QualityChange{"finest-em-iterations", 1},
+        QualityChange{"finest-em-iterations", 1}, QualityChange{"final-vote-seams", 1},
+        QualityChange{"vote-coherence", 2},       QualityChange{"piece-sweeps", 2},
+        QualityChange{"finest-piece-sweeps", 1},  QualityChange{"piece-iterations", 1},
         QualityChange{"budget-polish-levels", 2},
-        QualityChange{"vote-coherence", 2},
     };
     static constexpr std::array kFast{
         QualityChange{"budget-polish-iterations", 1},
@@ -110,6 +119,8 @@ std::span<const QualityChange> quality_changes(Quality quality) {
         QualityChange{"vote-coherence", 2},
         QualityChange{"budget-polish-levels", 3},
         QualityChange{"polish-patch-size", 7},
+        QualityChange{"piece-sweeps", 2},
+        QualityChange{"finest-piece-sweeps", 1},
     };
     switch (quality) {
         case Quality::Fast: return kFast;
@@ -145,7 +156,7 @@ namespace {
 using O = SynthesisOptions;
 // The one description of every numeric option: CLI flags, JSON keys, validation and docs come
 // from here.
-const std::array<OptionSpec, 29> kSpecs{{
+const std::array<OptionSpec, 34> kSpecs{{
     {"patch-size", "Patch width; odd. Larger patches keep larger structures but blur detail.", "px",
      3, 31, &O::patch_size},
     {"levels", "Pyramid levels; 0 = automatic (coarsest level about 5 patches across).", "levels",
@@ -219,6 +230,26 @@ const std::array<OptionSpec, 29> kSpecs{{
      "smaller than half a patch) takes a neighbour's shifted match where that is closer: fewer "
      "seams, closer to the exemplar; 0 = off (StyLit as published).",
      "iterations", 0, 100, &O::coherence_sweeps},
+    {"piece-sweeps",
+     "Sweeps after every search on the levels above the finest (up to piece-levels) in which "
+     "each target takes, of its own match and its neighbours' shifted matches (within the vote's "
+     "footprint), the one of least patch distance + piece-weight x mean distance x (neighbours it "
+     "does not continue): larger exemplar pieces, fewer seams, closer to the exemplar; 0 = off.",
+     "iterations", 0, 100, &O::piece_sweeps},
+    {"finest-piece-sweeps",
+     "The same sweeps on the finest level (over the last vote's footprint); 0 = none.",
+     "iterations", 0, 100, &O::finest_piece_sweeps},
+    {"piece-weight",
+     "Piece sweeps: cost of a neighbour a match does not continue, relative to the field's mean "
+     "patch distance; larger = larger pieces, guides followed less.",
+     "", 0, 100, &O::piece_weight},
+    {"piece-iterations",
+     "Of each level above the finest, how many of the last EM iterations are followed by piece "
+     "sweeps; 0 = every iteration.",
+     "iterations", 0, 100, &O::piece_iterations},
+    {"piece-levels",
+     "How many of the finest levels run piece sweeps, the finest included (never the coarsest).",
+     "levels", 1, 16, &O::piece_levels},
     {"uniform-coherence-sweeps",
      "Uniform usage: sweeps after the assignment in which every stray match takes a neighbour's "
      "shifted source where that lowers the summed error, moving to it or swapping sources with "

@@ -182,12 +182,13 @@ int last_vote_size(const SynthesisOptions& options, int patch_size) {
 // and reverse_field come from a previous pass over the same level). Every search also tries
 // `candidates` (the level's candidate fields; empty = none). On the `finest` level the first
 // reversed round runs options.finest_first_round_iterations; with `polish` every search is a
-// plain nearest-neighbour one whatever the usage strategy; when these iterations `end_run`, the
-// last one votes with the footprint of last_vote_size.
+// plain nearest-neighbour one whatever the usage strategy; `piece_sweeps` > 0 runs that many
+// sweeps of synth::grow_pieces after every search, over the window of the vote that follows;
+// when these iterations `end_run`, the last one votes with the footprint of last_vote_size.
 void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, std::uint64_t key,
             int threads, bool warm_start, const std::vector<Nnf>& candidates, bool finest,
-            bool polish, bool end_run, Nnf& nnf, Nnf& reverse_field, Image& current,
-            ProgressTracker& tracker, const DebugSink& debug) {
+            bool polish, int piece_sweeps, bool end_run, Nnf& nnf, Nnf& reverse_field,
+            Image& current, ProgressTracker& tracker, const DebugSink& debug) {
     synth::ForwardProblem all{L, L.target_active.data()};
     evaluate_field(all, nnf, hash_keys(key, 0x2), threads);
     const double work = static_cast<double>(L.tw) * L.th * L.patch_size * L.patch_size /
@@ -218,9 +219,17 @@ void run_em(synth::Level& L, const SynthesisOptions& options, int iterations, st
                                        end_run && it + 1 == iterations,
                                        /*evaluated=*/it == 0};
         synth::search(setup, nnf);
+        const bool last_vote = end_run && it + 1 == iterations;
+        const bool sweeps_now =
+            finest || options.piece_iterations == 0 || it + options.piece_iterations >= iterations;
+        if (piece_sweeps > 0 && sweeps_now) {
+            // The window of the seams counted: the footprint of the vote that follows.
+            const int footprint = last_vote ? last_vote_size(options, L.patch_size) : L.patch_size;
+            synth::grow_pieces(L, nnf, piece_sweeps, options.piece_weight, footprint / 2, threads);
+        }
         synth::VoteParams vp =
             vote_params(L, options.vote, options.vote_coherence, nnf, &weights, threads);
-        if (end_run && it + 1 == iterations) {
+        if (last_vote) {
             vp.footprint = last_vote_size(options, L.patch_size);
             vp.blend_seams = options.final_vote_seams != 0;
         }
@@ -519,6 +528,7 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
         const int iterations = em_iterations_of_level(options, levels - 1 - l, levels);
         run_em(L, options, iterations, level_key, threads, /*warm_start=*/false, candidates, finest,
                /*polish=*/polishes_level(options, levels - 1 - l, levels),
+               piece_sweeps_of_level(options, levels - 1 - l, levels),
                /*end_run=*/finest && !final_pass, nnf, reverse_field, current, tracker, debug);
         if (tracker.cancelled) return cancelled();
         prev_sw = L.sw;
@@ -536,8 +546,8 @@ Result<SynthesisResult> run_synthesis(const SynthesisInput& in, SynthesisInput* 
                 // valid 3x3 match).
                 run_em(fine, options, options.final_pass_iterations, hash_keys(level_key, 0x333),
                        threads, /*warm_start=*/true, candidates, /*finest=*/true,
-                       /*polish=*/false, /*end_run=*/true, nnf, reverse_field, current, tracker,
-                       debug);
+                       /*polish=*/false, /*piece_sweeps=*/0, /*end_run=*/true, nnf, reverse_field,
+                       current, tracker, debug);
                 if (tracker.cancelled) return cancelled();
                 L = std::move(fine);
             }

@@ -634,6 +634,197 @@ void merge_stray_matches(const SearchSetup& setup, Nnf& nnf) {
                    setup.threads, Exploration::PropagationOnly);
 }
 
+// Mean cost of the active, matched entries of `nnf` (the stored errors): rows summed apart in
+// doubles, then added in row order, so the same for any thread count.
+double mean_match_error(const Level& L, const Nnf& nnf, int threads) {
+    std::vector<double> sums(static_cast<std::size_t>(L.th), 0.0);
+    std::vector<std::size_t> counts(static_cast<std::size_t>(L.th), 0);
+    parallel_for(0, L.th, threads, [&](int y) {
+        for (int x = 0; x < L.tw; ++x) {
+            const std::size_t t = L.target_index(x, y);
+            if (!L.target_active[t] || !(nnf[t].error < kInf)) continue;
+            sums[static_cast<std::size_t>(y)] += nnf[t].error;
+            ++counts[static_cast<std::size_t>(y)];
+        }
+    });
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t y = 0; y < sums.size(); ++y) {
+        sum += sums[y];
+        count += counts[y];
+    }
+    return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+}  // namespace
+
+// The largest window grow_pieces takes: the largest patch's (31 x 31), less its centre.
+constexpr std::size_t kMaxPieceWindow = 31 * 31 - 1;
+
+std::size_t grow_pieces(const Level& L, Nnf& nnf, int sweeps, float weight, int radius,
+                        int threads) {
+    const float lambda = static_cast<float>(weight * mean_match_error(L, nnf, threads));
+    if (!(lambda > 0.0f) || sweeps <= 0) return 0;
+    const ForwardProblem problem{L, L.target_active.data()};
+    std::vector<std::array<int, 2>> window;
+    for (int dy = -radius; dy <= radius; ++dy) {
+        for (int dx = -radius; dx <= radius; ++dx) {
+            if (dx != 0 || dy != 0) window.push_back({dx, dy});
+        }
+    }
+    struct Proposal {
+        int x, y;   // a neighbour's match shifted back to this target
+        int votes;  // how many neighbours of the window propose it
+    };
+    // Unturned levels: a neighbour proposes its match shifted back, which continues the target's
+    // own match when the two have the same offset (match - position), so the window is read as
+    // packed offsets (kNoOffset: inactive) and most targets, inside pieces, are passed over by
+    // counting equal offsets.
+    constexpr std::int64_t kNoOffset = std::numeric_limits<std::int64_t>::min();
+    const bool turned = L.rotated();
+    auto pack = [](int dx, int dy) {
+        return static_cast<std::int64_t>(static_cast<std::uint64_t>(static_cast<std::uint32_t>(dy))
+                                             << 32 |
+                                         static_cast<std::uint32_t>(dx));
+    };
+    std::vector<std::int64_t> offset(turned ? 0 : L.target_active.size(), kNoOffset);
+    auto set_offset = [&](int x, int y) {
+        const std::size_t t = L.target_index(x, y);
+        if (L.target_active[t]) offset[t] = pack(nnf[t].x - x, nnf[t].y - y);
+    };
+    if (!turned) {
+        parallel_for(0, L.th, threads, [&](int y) {
+            for (int x = 0; x < L.tw; ++x) set_offset(x, y);
+        });
+    }
+    std::vector<std::size_t> changed(static_cast<std::size_t>(L.th), 0);
+    // Targets of one phase are more than `radius` apart: none reads another's match.
+    const int period = radius + 1;
+    const int phases = period * period;
+    for (int step = 0; step < sweeps * phases; ++step) {
+        const int phase = step % phases;
+        const int px = phase % period, py = phase / period;
+        const int rows = (L.th - py + period - 1) / period;
+        parallel_for(0, rows, threads, [&](int row) {
+            const int y = py + row * period;
+            const int y0 = std::max(0, y - radius), y1 = std::min(L.th - 1, y + radius);
+            std::array<Proposal, kMaxPieceWindow> proposed;
+            std::array<std::int64_t, kMaxPieceWindow> distinct;
+            for (int x = px; x < L.tw; x += period) {
+                const std::size_t t = L.target_index(x, y);
+                if (!L.target_active[t]) continue;
+                const Match own = nnf[t];
+                // Each active neighbour proposes its match shifted back by the step between
+                // them; a neighbour continues a candidate when it proposes it.
+                int neighbours = 0, own_votes = 0, count = 0;
+                auto propose = [&](int cx, int cy) {
+                    if (cx < 0 || cy < 0 || cx >= L.sw || cy >= L.sh) return;
+                    int k = 0;
+                    while (k < count && (proposed[static_cast<std::size_t>(k)].x != cx ||
+                                         proposed[static_cast<std::size_t>(k)].y != cy)) {
+                        ++k;
+                    }
+                    if (k == count) proposed[static_cast<std::size_t>(count++)] = {cx, cy, 0};
+                    ++proposed[static_cast<std::size_t>(k)].votes;
+                };
+                if (!turned) {
+                    const int x0 = std::max(0, x - radius), x1 = std::min(L.tw - 1, x + radius);
+                    const std::int64_t mine = offset[t];
+                    for (int ny = y0; ny <= y1; ++ny) {
+                        const std::int64_t* o = &offset[L.target_index(0, ny)];
+                        for (int nx = x0; nx <= x1; ++nx) {
+                            neighbours += o[nx] != kNoOffset ? 1 : 0;
+                            own_votes += o[nx] == mine ? 1 : 0;
+                        }
+                    }
+                    --neighbours;  // the target itself
+                    --own_votes;
+                    if (own_votes == neighbours) continue;
+                    // Distinct offsets and their votes (runs of one offset along a row are
+                    // common: counted without a search).
+                    neighbours = own_votes = 0;
+                    std::int64_t last = kNoOffset;
+                    int last_k = 0;
+                    for (int ny = y0; ny <= y1; ++ny) {
+                        const std::int64_t* o = &offset[L.target_index(0, ny)];
+                        for (int nx = x0; nx <= x1; ++nx) {
+                            const std::int64_t v = o[nx];
+                            if (v == kNoOffset || (nx == x && ny == y)) continue;
+                            ++neighbours;
+                            if (v == mine) {
+                                ++own_votes;
+                                continue;
+                            }
+                            if (v != last) {
+                                int k = 0;
+                                while (k < count && distinct[static_cast<std::size_t>(k)] != v) ++k;
+                                if (k == count) {
+                                    distinct[static_cast<std::size_t>(count)] = v;
+                                    const Match& m = nnf[L.target_index(nx, ny)];
+                                    proposed[static_cast<std::size_t>(count++)] = {m.x - nx + x,
+                                                                                   m.y - ny + y, 0};
+                                }
+                                last = v;
+                                last_k = k;
+                            }
+                            ++proposed[static_cast<std::size_t>(last_k)].votes;
+                        }
+                    }
+                    // Proposals outside the source are no candidates (their votes still count
+                    // the neighbours that disagree with the own match).
+                    int kept = 0;
+                    for (int k = 0; k < count; ++k) {
+                        const Proposal& c = proposed[static_cast<std::size_t>(k)];
+                        if (c.x >= 0 && c.y >= 0 && c.x < L.sw && c.y < L.sh) {
+                            proposed[static_cast<std::size_t>(kept++)] = c;
+                        }
+                    }
+                    count = kept;
+                } else {
+                    for (const auto& [dx, dy] : window) {
+                        const int nx = x + dx, ny = y + dy;
+                        if (nx < 0 || ny < 0 || nx >= L.tw || ny >= L.th) continue;
+                        const std::size_t n = L.target_index(nx, ny);
+                        if (!L.target_active[n]) continue;
+                        ++neighbours;
+                        const Match& m = nnf[n];
+                        const RotatedOffset o = rotated_step(m.angle_rad, -dx, -dy);
+                        const int cx = m.x + o.dx, cy = m.y + o.dy;
+                        if (cx == own.x && cy == own.y) {
+                            ++own_votes;
+                        } else {
+                            propose(cx, cy);
+                        }
+                    }
+                }
+                if (own_votes == neighbours) continue;
+                Match best = own;
+                float best_total = own.error + lambda * static_cast<float>(neighbours - own_votes);
+                for (int k = 0; k < count; ++k) {
+                    const Proposal& c = proposed[static_cast<std::size_t>(k)];
+                    const float smooth = lambda * static_cast<float>(neighbours - c.votes);
+                    const float bound = best_total - smooth;
+                    if (!(bound > 0.0f) || !problem.db_ok(t, c.x, c.y)) continue;
+                    const float angle = problem.angle(t, c.x, c.y);
+                    const float d = problem.cost(x, y, c.x, c.y, angle, bound);
+                    if (d < bound) {
+                        best = Match{c.x, c.y, angle, d};
+                        best_total = d + smooth;
+                    }
+                }
+                if (best.x != own.x || best.y != own.y) {
+                    nnf[t] = best;
+                    if (!turned) set_offset(x, y);
+                    ++changed[static_cast<std::size_t>(y)];
+                }
+            }
+        });
+    }
+    return std::accumulate(changed.begin(), changed.end(), std::size_t{0});
+}
+
+namespace {
+
 // A stray target examines at most this many other stray users of a source for a swap (with a
 // large K a source has dozens of users; the first strays in scan order are as good as any).
 constexpr int kSwapUsersExamined = 2;

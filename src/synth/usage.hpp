@@ -72,6 +72,17 @@ struct SearchSetup {
 /// (whose active entries must hold valid matches on entry, e.g. from the previous iteration).
 SearchStats search(const SearchSetup& setup, Nnf& nnf);
 
+/// Coherent pieces: `sweeps` sweeps of iterated conditional modes (Besag 1986) on the Markov
+/// random field over the matches E = sum_p D(p, s(p)) + lambda sum_{p~q} [q does not continue
+/// s(p)], a Potts term on the offsets over the neighbours q within `radius` (Chebyshev) of p,
+/// lambda = weight x the field's mean stored error. Every active target takes, of its own match
+/// and its neighbours' matches shifted back to it, the one of least D + lambda x (neighbours
+/// that do not propose it); the searches' field becomes a mosaic of fewer, larger exemplar
+/// pieces. Targets are visited in (radius + 1)^2 phases of targets more than `radius` apart, so
+/// the result does not depend on the thread count. Returns how many matches changed.
+std::size_t grow_pieces(const Level& level, Nnf& nnf, int sweeps, float weight, int radius,
+                        int threads);
+
 /// Per pixel of a w x h grid, the index of the nearest pixel (Euclidean) whose `set` entry is
 /// non-zero (itself if set), or -1 if none is set. Ties go to a fixed one, whatever `threads`.
 std::vector<int> nearest_set_pixel(const std::vector<std::uint8_t>& set, int w, int h, int threads);

@@ -15,14 +15,16 @@ protected:
         const CliRun r =
             run(with(stylize_args(), {"-o", path("styled.png"), "--save-nnf", path("nnf.exr")}));
         ASSERT_EQ(r.code, 0) << r.err;
-        // The default preset's votes weigh coherence: the note says so.
-        ASSERT_NE(r.err.find("(apply-nnf --patch-size 3 --vote-size 3 --vote-coherence 2)"),
-                  std::string::npos)
+        // The default preset's votes weigh coherence and its last vote blends seams: the note
+        // says so.
+        ASSERT_NE(
+            r.err.find("(apply-nnf --patch-size 3 --vote-size 3 --vote-seams --vote-coherence 2)"),
+            std::string::npos)
             << r.err;
     }
     std::vector<std::string> apply_args(const std::string& source) const {
         return {"apply-nnf",    "--nnf", path("nnf.exr"),    "--source", path(source),
-                "--patch-size", "3",     "--vote-coherence", "2"};
+                "--patch-size", "3",     "--vote-coherence", "2",        "--vote-seams"};
     }
 };
 
@@ -39,9 +41,11 @@ TEST_F(ApplyNnf, ReproducesTheStylizeOutput) {
 }
 
 TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
-    // Without the 3x3 pass the 5x5 NNF votes with its central 3x3 (--final-vote-size 3).
-    auto args = with(stylize_args(), {"-o", path("styled5.png"), "--save-nnf", path("nnf5.exr")});
-    args[args.size() - 5] = "0";  // --final-pass-iterations 0
+    // Without the 3x3 pass the 5x5 NNF votes with its central 3x3 (--final-vote-size 3; seams
+    // not blended, which the default preset does).
+    auto args = with(stylize_args(), {"-o", path("styled5.png"), "--save-nnf", path("nnf5.exr"),
+                                      "--final-vote-seams", "0"});
+    args[args.size() - 7] = "0";  // --final-pass-iterations 0
     const CliRun r = run(args);
     ASSERT_EQ(r.code, 0) << r.err;
     ASSERT_NE(r.err.find("(apply-nnf --patch-size 5 --vote-size 3 --vote-coherence 2)"),
@@ -55,7 +59,7 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     // Whole 5x5 patches average more: a different image.
     ASSERT_EQ(run(with(apply, {"-q", "--vote-size", "0", "-o", path("whole5.png")})).code, 0);
     EXPECT_GT(max_abs_diff(read("whole5.png"), read("styled5.png")), 2.0f / 255.0f);
-    // A run with seams blended (--final-vote-seams 1, in --quality best) notes --vote-seams and
+    // A run with seams blended (--final-vote-seams 1, in the presets) notes --vote-seams and
     // is reproduced with it.
     auto seams = with(stylize_args(), {"-o", path("seams5.png"), "--save-nnf", path("seams5.exr"),
                                        "--final-vote-seams", "1"});
@@ -75,8 +79,8 @@ TEST_F(ApplyNnf, ReproducesTheDefaultNarrowVote) {
     // A run whose votes do not weigh coherence (--vote-coherence 0; 2 in the default and best
     // presets) notes no coherence and is reproduced without it; with it, a different image.
     auto plain = with(stylize_args(), {"-o", path("plain5.png"), "--save-nnf", path("plain5.exr"),
-                                       "--vote-coherence", "0"});
-    plain[plain.size() - 7] = "0";  // --final-pass-iterations 0
+                                       "--vote-coherence", "0", "--final-vote-seams", "0"});
+    plain[plain.size() - 9] = "0";  // --final-pass-iterations 0
     const CliRun c = run(plain);
     ASSERT_EQ(c.code, 0) << c.err;
     ASSERT_NE(c.err.find("(apply-nnf --patch-size 5 --vote-size 3)"), std::string::npos) << c.err;

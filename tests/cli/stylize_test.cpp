@@ -473,6 +473,16 @@ TEST_F(Cli, OutOfRangeValues) {
                    "quality: 'superb' is invalid (must be one of fast, default, best)");
     expect_failure(with(stylize_args(), {"--coherence-sweeps", "-1"}), 1,
                    "coherence-sweeps: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--piece-sweeps", "1.5"}), 1,
+                   "piece-sweeps: 1.5 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--finest-piece-sweeps", "-1"}), 1,
+                   "finest-piece-sweeps: -1 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--piece-weight", "-0.5"}), 1,
+                   "piece-weight: -0.5 is invalid (must be 0..100)");
+    expect_failure(with(stylize_args(), {"--piece-iterations", "101"}), 1,
+                   "piece-iterations: 101 is invalid (must be an integer, 0..100)");
+    expect_failure(with(stylize_args(), {"--piece-levels", "0"}), 1,
+                   "piece-levels: 0 is invalid (must be an integer, 1..16)");
     expect_failure(with(stylize_args(), {"--budget-polish-iterations", "-1"}), 1,
                    "budget-polish-iterations: -1 is invalid (must be an integer, 0..100)");
     expect_failure(with(stylize_args(), {"--vote-coherence", "101"}), 1,

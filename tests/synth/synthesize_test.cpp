@@ -304,6 +304,90 @@ TEST(Synthesize, PolishPatchSizeWidensOnlyThePolishedLevels) {
     EXPECT_TRUE(same_pixels(small.image, run(0, 2, nullptr).image));
 }
 
+// Piece sweeps run on their levels only: piece-sweeps on the levels above the finest up to
+// piece-levels (never the coarsest; after their last piece-iterations iterations, 0 = all),
+// finest-piece-sweeps on the finest; with both the final field
+// has fewer seams (4-neighbours that do not continue each other) and the same bytes come out for
+// any thread count.
+TEST(Synthesize, PieceSweepsRunOnTheirLevelsAndMergePieces) {
+    const SynthesisInput in = three_level_input();
+    SynthesisOptions opt;
+    opt.levels = 3;
+    struct Run {
+        Image image;
+        Nnf nnf;
+        std::vector<LevelImage> frames;
+    };
+    auto run = [&](int sweeps, int finest_sweeps, int threads) {
+        opt.piece_sweeps = sweeps;
+        opt.finest_piece_sweeps = finest_sweeps;
+        Run r;
+        auto result = synthesize(in, opt, RunContext{threads}, [&](const DebugFrame& f) {
+            r.frames.push_back(LevelImage{f.level, *f.current});
+        });
+        EXPECT_TRUE(result.ok());
+        if (result.ok()) r.image = result->image, r.nnf = result->nnf;
+        return r;
+    };
+    const auto seams = [](const Nnf& nnf) {
+        int n = 0;
+        for (int y = 0; y < nnf.height(); ++y) {
+            for (int x = 0; x < nnf.width(); ++x) {
+                const Match& m = nnf.at(x, y);
+                if (x + 1 < nnf.width()) {
+                    const Match& r = nnf.at(x + 1, y);
+                    n += r.x == m.x + 1 && r.y == m.y ? 0 : 1;
+                }
+                if (y + 1 < nnf.height()) {
+                    const Match& b = nnf.at(x, y + 1);
+                    n += b.x == m.x && b.y == m.y + 1 ? 0 : 1;
+                }
+            }
+        }
+        return n;
+    };
+    const Run off = run(0, 0, 2);
+    const Run coarse = run(2, 0, 2);
+    const Run finest = run(0, 1, 2);
+    const Run both = run(2, 1, 2);
+    ASSERT_EQ(off.frames.size(), coarse.frames.size());
+    ASSERT_EQ(off.frames.size(), finest.frames.size());
+    bool middle_differs = false;
+    for (std::size_t i = 0; i < off.frames.size(); ++i) {
+        const int level = off.frames[i].level;
+        // The coarsest never sweeps; the finest-only run changes nothing before the finest.
+        if (level == 0) {
+            EXPECT_TRUE(same_pixels(off.frames[i].current, coarse.frames[i].current)) << i;
+        }
+        if (level < 2) {
+            EXPECT_TRUE(same_pixels(off.frames[i].current, finest.frames[i].current)) << i;
+        }
+        if (level == 1) {
+            middle_differs |= !same_pixels(off.frames[i].current, coarse.frames[i].current);
+        }
+    }
+    EXPECT_TRUE(middle_differs);
+    EXPECT_FALSE(same_pixels(off.image, finest.image));
+    EXPECT_LT(seams(both.nnf), seams(off.nnf));
+    EXPECT_TRUE(same_pixels(run(2, 1, 1).image, both.image));
+    // piece-iterations 1: the level above the finest sweeps after its last iteration only (its
+    // earlier frames as without sweeps), the coarsest never.
+    opt.piece_iterations = 1;
+    const Run last = run(2, 0, 2);
+    ASSERT_EQ(off.frames.size(), last.frames.size());
+    for (std::size_t i = 0; i + 1 < off.frames.size(); ++i) {
+        if (off.frames[i].level == 1 && off.frames[i + 1].level == 1) {
+            EXPECT_TRUE(same_pixels(off.frames[i].current, last.frames[i].current)) << i;
+        }
+    }
+    EXPECT_FALSE(same_pixels(off.image, last.image));
+    EXPECT_FALSE(same_pixels(coarse.image, last.image));
+    opt.piece_iterations = 0;
+    // piece-levels 1: only the finest level sweeps.
+    opt.piece_levels = 1;
+    EXPECT_TRUE(same_pixels(run(2, 1, 2).image, finest.image));
+}
+
 // Compressed guides (--guide-pca) run through the whole engine: the identity still reproduces
 // the style, and the result does not depend on the thread count.
 TEST(Synthesize, CompressedGuidesKeepIdentityAndDeterminism) {

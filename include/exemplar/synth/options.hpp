@@ -166,6 +166,34 @@ struct SynthesisOptions {
     /// Closer to the exemplar and more of its grain kept; 0 = off (StyLit as published).
     /// Measurements in docs/PERFORMANCE.md.
     int coherence_sweeps = 2;
+    /// Coherent pieces: sweeps of iterated conditional modes after every search (and before its
+    /// vote) on the levels above the finest, up to piece_levels, on a Markov random field over
+    /// the matches with a Potts term on their offsets (synth::grow_pieces): each target takes,
+    /// of its own match and the shifted matches of its neighbours within the vote's footprint,
+    /// the one of least patch distance + lambda x (those neighbours it does not continue), with
+    /// lambda = piece_weight x the field's mean patch distance. The searches keep whichever of
+    /// many similar patches is marginally closest, so neighbours take unrelated sources: a
+    /// mosaic of small pieces whose seams no exemplar patch contains. The sweeps merge them into
+    /// larger pieces (Image Analogies' coherence, Ashikhmin's coherent candidates; Kwatra's
+    /// graph-cut textures place seams by the same kind of energy). 0 = off (default; the `default`
+    /// and `best` presets use 2; measurements in docs/performance-history.md, "Larger exemplar
+    /// pieces").
+    int piece_sweeps = 0;
+    /// The same sweeps on the finest level (its searches' window: the last vote's footprint);
+    /// 0 = none (default; the `default` and `best` presets use 1).
+    int finest_piece_sweeps = 0;
+    /// The Potts weight of piece_sweeps: the cost of one neighbour a match does not continue,
+    /// relative to the field's mean patch distance.
+    float piece_weight = 1.0f;
+    /// Of each level above the finest, how many of the last EM iterations are followed by piece
+    /// sweeps; 0 = every iteration (default; the `best` preset). The `default` preset sweeps
+    /// after each level's last iteration only: every sweep also lets pieces grow across region
+    /// edges the guides hardly mark (a painted shadow up a self-shadowed object), and one sweep
+    /// per level keeps most of the gain.
+    int piece_iterations = 0;
+    /// How many of the finest levels run piece sweeps, the finest included (never the coarsest,
+    /// whose field starts at random): 3 = the finest and the two before it.
+    int piece_levels = 3;
     /// Uniform usage: sweeps after the assignment in which every stray match (as for
     /// coherence_sweeps) takes a neighbour's shifted source instead where that lowers the summed
     /// patch error, by moving to it if every source's count stays K or K + 1 (and K > 0, so no
@@ -268,6 +296,13 @@ inline int em_iterations_of_level(const SynthesisOptions& options, int depth, in
     return options.em_iterations;
 }
 
+/// Sweeps of synth::grow_pieces after each search on the level `depth` steps above the finest
+/// (0 = finest) of a pyramid with `levels` levels: finest_piece_sweeps on the finest,
+/// piece_sweeps on the next ones up to piece_levels, none on the coarsest.
+inline int piece_sweeps_of_level(const SynthesisOptions& options, int depth, int levels) {
+    if (depth >= options.piece_levels || depth == levels - 1) return 0;
+    return depth == 0 ? options.finest_piece_sweeps : options.piece_sweeps;
+}
 /// Description of one numeric option. `field` points into SynthesisOptions.
 struct OptionSpec {
     std::string_view name;  ///< kebab-case name, used as --name and JSON key (with '_' too).
