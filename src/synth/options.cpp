@@ -79,12 +79,12 @@ std::span<const QualityChange> quality_changes(Quality quality) {
     // 1-3), 1-3% less texture on stylit and facestyle (issue 15, "default at half the CPU").
     // The three finest levels polish, with 7x7 patches: their seams fall where wider strips of the
     // exemplar agree, 10-19% closer on all five examples (texbynum 0.0502 -> 0.0448 over seeds
-    // 1-3, 12% closer than ebsynth), as much texture (stylit -1%, texbynum +4%), for 5-16% more CPU
-    // (issue 15, "`best` 10% closer than ebsynth on texbynum").
-    // Its searches are followed by piece sweeps (two on the levels above the finest, one on the
-    // finest): larger exemplar pieces, closer to the exemplar on all five examples (stylit -13%,
-    // facestyle -7%, texbynum -3%) with 3-20% more texture, for 4-16% more CPU (issue 15, "Larger
-    // exemplar pieces").
+    // 1-3), as much texture (stylit -1%, texbynum +4%), for 5-16% more CPU (issue 15, "`best` 10%
+    // closer than ebsynth on texbynum"). Its searches are followed by piece sweeps (two on the
+    // levels above the finest, one on the finest): larger exemplar pieces, closer on all five
+    // with 3-20% more texture, for 4-16% more CPU (issue 15, "Larger exemplar pieces"). Both
+    // together: texbynum 0.0502 -> 0.0420 over seeds 1-3, 17% closer than ebsynth (issue 15,
+    // "Merged presets and the quiet re-measure").
     // Default (what the stylize verbs run when no quality is given): the level before the finest
     // polishes (plain nearest neighbours from the budget's layout), the finest keeps one budget
     // iteration (it places the exemplar's rare patches, StyLit's highlights) and votes weigh

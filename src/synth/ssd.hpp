@@ -75,8 +75,8 @@ float ssd_rows_scalar(const std::uint8_t* a, std::size_t a_stride, const std::ui
                       float bound);
 
 /// The SIMD kernel of the chosen target one row at a time: each row's lanes summed, added and
-/// the bound checked before the next row. The definition of ssd_rows' SIMD value, to the bit (on
-/// 512-bit targets ssd_rows sums four rows' lanes at once and checks the bound at the end).
+/// the bound checked before the next row. The definition of ssd_rows' SIMD value, to the bit
+/// (ssd_rows runs the same operations through kernels compiled for the common 5x5 shapes).
 float ssd_rows_per_row(const std::uint8_t* a, std::size_t a_stride, const std::uint8_t* b,
                        std::size_t b_stride, int rows, int row_bytes, SsdWeights weights,
                        float bound);
